@@ -1,0 +1,141 @@
+//===- Diagnostic.h - diagnostics collected by every phase -----*- C++ -*-===//
+//
+// Phases never print (style.md): they report into a DiagnosticEngine, which
+// formats the message from the one table in DiagnosticKinds.def and keeps
+// it. The driver prints the collected diagnostics with llvm::SourceMgr (file,
+// line, column, source line and caret) or, in --verify mode, checks them
+// against the `# expected-error {{...}}` comments of the sources.
+//
+//===----------------------------------------------------------------------===//
+#ifndef BSC_BASIC_DIAGNOSTIC_H
+#define BSC_BASIC_DIAGNOSTIC_H
+
+#include "llvm/ADT/ArrayRef.h"
+#include "llvm/ADT/SmallVector.h"
+#include "llvm/ADT/StringRef.h"
+#include "llvm/Support/SMLoc.h"
+#include "llvm/Support/SourceMgr.h"
+#include <string>
+#include <vector>
+
+namespace llvm {
+class raw_ostream;
+}
+
+namespace bsc {
+
+namespace diag {
+/// Every diagnostic kind, from DiagnosticKinds.def.
+enum Kind : unsigned {
+#define DIAG(Id, Severity, Format) Id,
+#include "bsc/Basic/DiagnosticKinds.def"
+  NumKinds
+};
+} // namespace diag
+
+enum class Severity { Error, Warning, Note };
+
+/// One reported diagnostic, already formatted.
+struct Diagnostic {
+  diag::Kind Kind;
+  Severity Sev;
+  llvm::SMLoc Loc;
+  std::string Message;
+  llvm::SmallVector<llvm::SMRange, 1> Ranges;
+};
+
+/// The severity and format string of a kind.
+Severity getSeverity(diag::Kind K);
+llvm::StringRef getFormat(diag::Kind K);
+llvm::StringRef getIdName(diag::Kind K);
+
+class DiagnosticEngine;
+
+/// Collects the arguments of one diagnostic; the diagnostic is recorded when
+/// the builder goes out of scope: `Diags.report(Loc, diag::err_x) << Name;`.
+class DiagnosticBuilder {
+public:
+  DiagnosticBuilder(DiagnosticEngine *Engine, diag::Kind K, llvm::SMLoc Loc)
+      : Engine(Engine), Kind(K), Loc(Loc) {}
+  DiagnosticBuilder(DiagnosticBuilder &&Other)
+      : Engine(Other.Engine), Kind(Other.Kind), Loc(Other.Loc),
+        Args(std::move(Other.Args)), Ranges(std::move(Other.Ranges)) {
+    Other.Engine = nullptr;
+  }
+  DiagnosticBuilder(const DiagnosticBuilder &) = delete;
+  ~DiagnosticBuilder();
+
+  DiagnosticBuilder &operator<<(llvm::StringRef S) {
+    Args.push_back(S.str());
+    return *this;
+  }
+  DiagnosticBuilder &operator<<(const char *S) {
+    return *this << llvm::StringRef(S);
+  }
+  DiagnosticBuilder &operator<<(const std::string &S) {
+    return *this << llvm::StringRef(S);
+  }
+  DiagnosticBuilder &operator<<(long long N) {
+    Args.push_back(std::to_string(N));
+    return *this;
+  }
+  DiagnosticBuilder &operator<<(int N) { return *this << (long long)N; }
+  DiagnosticBuilder &operator<<(unsigned N) { return *this << (long long)N; }
+  DiagnosticBuilder &operator<<(size_t N) { return *this << (long long)N; }
+  /// Underlines a range of the source line in addition to the caret.
+  DiagnosticBuilder &operator<<(llvm::SMRange R) {
+    Ranges.push_back(R);
+    return *this;
+  }
+
+private:
+  DiagnosticEngine *Engine;
+  diag::Kind Kind;
+  llvm::SMLoc Loc;
+  llvm::SmallVector<std::string, 3> Args;
+  llvm::SmallVector<llvm::SMRange, 1> Ranges;
+};
+
+/// Keeps the diagnostics of a compilation in the order they were reported.
+class DiagnosticEngine {
+public:
+  /// After this many errors further errors (and their notes) are dropped, so
+  /// that garbage input (random bytes, a 10 MB file) cannot produce an
+  /// unbounded flood; phases poll tooManyErrors() to stop early.
+  static constexpr unsigned MaxErrors = 50;
+
+  DiagnosticBuilder report(llvm::SMLoc Loc, diag::Kind K) {
+    return DiagnosticBuilder(this, K, Loc);
+  }
+
+  bool hasErrors() const { return NumErrors != 0; }
+  unsigned getNumErrors() const { return NumErrors; }
+  unsigned getNumWarnings() const { return NumWarnings; }
+  bool tooManyErrors() const { return NumErrors >= MaxErrors; }
+  llvm::ArrayRef<Diagnostic> getDiagnostics() const { return Diags; }
+  void clear();
+
+  /// Formats `Format` with the %N arguments (also used by tests).
+  static std::string format(llvm::StringRef Format,
+                            llvm::ArrayRef<std::string> Args);
+
+private:
+  friend class DiagnosticBuilder;
+  void record(diag::Kind K, llvm::SMLoc Loc, std::string Message,
+              llvm::ArrayRef<llvm::SMRange> Ranges);
+
+  std::vector<Diagnostic> Diags;
+  unsigned NumErrors = 0;
+  unsigned NumWarnings = 0;
+  bool DroppingNotes = false;
+};
+
+/// Prints diagnostics the way clang does: `file:line:col: error: message`,
+/// the source line and a caret.
+void printDiagnostics(const llvm::SourceMgr &SM,
+                      llvm::ArrayRef<Diagnostic> Diags, llvm::raw_ostream &OS,
+                      bool ShowColors = false);
+
+} // namespace bsc
+
+#endif

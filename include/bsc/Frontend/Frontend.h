@@ -1,0 +1,73 @@
+//===- Frontend.h - from source files to a checked behavior ----*- C++ -*-===//
+//
+// The front end of one compilation: read the files named on the command
+// line, parse them, follow their `requires` to sibling `.bs` files (or
+// native modules), and check the whole behavior. The driver, the JIT runner
+// and the REPL all start here. Nothing here prints; diagnostics collect in
+// the Compilation's DiagnosticEngine.
+//
+//===----------------------------------------------------------------------===//
+#ifndef BSC_FRONTEND_FRONTEND_H
+#define BSC_FRONTEND_FRONTEND_H
+
+#include "bsc/AST/AST.h"
+#include "bsc/Basic/Diagnostic.h"
+#include "bsc/Sema/Sema.h"
+#include "llvm/Support/SourceMgr.h"
+#include <map>
+#include <string>
+#include <vector>
+
+namespace bsc {
+
+/// A source file larger than this is refused before it is read: a behavior
+/// module is a few kilobytes, and the limit keeps garbage input bounded.
+constexpr unsigned MaxSourceFileMiB = 64;
+
+struct FrontendOptions {
+  std::vector<std::string> Inputs;      ///< The .bs files named by the user.
+  std::vector<std::string> IncludeDirs; ///< -I: searched after the requiring file's folder.
+};
+
+/// Everything one compilation owns, alive until code generation is done.
+struct Compilation {
+  llvm::SourceMgr SM;
+  ASTContext Ctx;
+  DiagnosticEngine Diags;
+  NativeRegistry Natives = makeBuiltinNativeRegistry();
+  /// Every module, the inputs first, then required ones as found.
+  std::vector<ModuleAST *> Modules;
+  Behavior Checked;
+};
+
+/// Reads one source file into the SourceMgr; reports a missing, unreadable,
+/// oversized file or a directory and returns 0 (buffer IDs start at 1).
+unsigned addSourceFile(Compilation &C, llvm::StringRef Path);
+
+/// The module name of a file: its name without the `.bs` extension.
+std::string moduleNameForPath(llvm::StringRef Path);
+
+/// Parses the inputs and, transitively, the modules they require. A script
+/// module is looked up as `<Name>.bs` in the requiring file's folder, then
+/// in each -I folder; failing that, a native module of that name is used.
+/// Cyclic `requires` are allowed: a behavior is compiled as a whole.
+/// Returns false if an error was reported.
+bool loadModules(Compilation &C, const FrontendOptions &Opts);
+
+/// loadModules, then checkBehavior. Returns false if an error was reported.
+bool runFrontend(Compilation &C, const FrontendOptions &Opts);
+
+/// --verify: compares the reported diagnostics with the `# expected-error
+/// {{text}}` (also -warning, -note; `@+N`/`@-N` for another line) comments of
+/// the source buffers. Each diagnostic must match an expectation on its line
+/// whose text is a substring of its message, and each expectation must be
+/// used once. Prints the differences to OS in clang's -verify format and
+/// returns true when there are none (the driver then exits 0, even if the
+/// expected diagnostics include errors).
+bool verifyDiagnostics(const llvm::SourceMgr &SM,
+                       llvm::ArrayRef<Diagnostic> Diags,
+                       llvm::raw_ostream &OS);
+
+} // namespace bsc
+
+#endif

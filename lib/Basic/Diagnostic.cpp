@@ -1,0 +1,114 @@
+//===- Diagnostic.cpp - the diagnostics table and its engine --------------===//
+#include "bsc/Basic/Diagnostic.h"
+#include "llvm/Support/ErrorHandling.h"
+#include "llvm/Support/raw_ostream.h"
+
+using namespace bsc;
+
+namespace {
+struct KindInfo {
+  Severity Sev;
+  const char *Format;
+  const char *Id;
+};
+const KindInfo KindTable[] = {
+#define DIAG(Id, Sev, Format) {Severity::Sev, Format, #Id},
+#include "bsc/Basic/DiagnosticKinds.def"
+};
+} // namespace
+
+Severity bsc::getSeverity(diag::Kind K) { return KindTable[K].Sev; }
+llvm::StringRef bsc::getFormat(diag::Kind K) { return KindTable[K].Format; }
+llvm::StringRef bsc::getIdName(diag::Kind K) { return KindTable[K].Id; }
+
+DiagnosticBuilder::~DiagnosticBuilder() {
+  if (!Engine)
+    return;
+  Engine->record(Kind, Loc, DiagnosticEngine::format(getFormat(Kind), Args),
+                 Ranges);
+}
+
+std::string DiagnosticEngine::format(llvm::StringRef Format,
+                                     llvm::ArrayRef<std::string> Args) {
+  std::string Out;
+  for (size_t I = 0, E = Format.size(); I != E; ++I) {
+    char C = Format[I];
+    if (C == '%' && I + 1 != E && Format[I + 1] >= '0' && Format[I + 1] <= '9') {
+      unsigned N = Format[++I] - '0';
+      if (N < Args.size())
+        Out += Args[N];
+      continue;
+    }
+    Out += C;
+  }
+  return Out;
+}
+
+void DiagnosticEngine::record(diag::Kind K, llvm::SMLoc Loc,
+                              std::string Message,
+                              llvm::ArrayRef<llvm::SMRange> Ranges) {
+  Severity Sev = getSeverity(K);
+  switch (Sev) {
+  case Severity::Error:
+    if (NumErrors >= MaxErrors) {
+      DroppingNotes = true;
+      return;
+    }
+    ++NumErrors;
+    break;
+  case Severity::Warning:
+    if (tooManyErrors()) {
+      DroppingNotes = true;
+      return;
+    }
+    ++NumWarnings;
+    break;
+  case Severity::Note:
+    // A note belongs to the diagnostic before it.
+    if (DroppingNotes)
+      return;
+    break;
+  }
+  if (Sev != Severity::Note)
+    DroppingNotes = false;
+  Diags.push_back(Diagnostic{K, Sev, Loc, std::move(Message),
+                             llvm::SmallVector<llvm::SMRange, 1>(Ranges)});
+}
+
+void DiagnosticEngine::clear() {
+  Diags.clear();
+  NumErrors = NumWarnings = 0;
+  DroppingNotes = false;
+}
+
+static llvm::SourceMgr::DiagKind toLLVM(Severity S) {
+  switch (S) {
+  case Severity::Error:
+    return llvm::SourceMgr::DK_Error;
+  case Severity::Warning:
+    return llvm::SourceMgr::DK_Warning;
+  case Severity::Note:
+    return llvm::SourceMgr::DK_Note;
+  }
+  llvm_unreachable("unknown severity");
+}
+
+void bsc::printDiagnostics(const llvm::SourceMgr &SM,
+                           llvm::ArrayRef<Diagnostic> Diags,
+                           llvm::raw_ostream &OS, bool ShowColors) {
+  unsigned Errors = 0;
+  for (const Diagnostic &D : Diags) {
+    if (D.Sev == Severity::Error)
+      ++Errors;
+    // Locationless diagnostics (options, missing files) print as
+    // `bsc: error: ...`; SourceMgr does that for an invalid SMLoc.
+    if (D.Loc.isValid())
+      SM.PrintMessage(OS, D.Loc, toLLVM(D.Sev), D.Message, D.Ranges, {},
+                      ShowColors);
+    else
+      llvm::SMDiagnostic("", toLLVM(D.Sev), D.Message)
+          .print("bsc", OS, ShowColors);
+  }
+  if (Errors >= DiagnosticEngine::MaxErrors)
+    OS << "bsc: fatal: too many errors emitted, stopping now\n";
+}

@@ -1,0 +1,164 @@
+//===- ModuleLoader.cpp - reading files and resolving `requires` ----------===//
+//
+// A behavior is compiled as a whole, so the loader gathers every module
+// reachable through `requires` before Sema runs. Modules are keyed by name:
+// one name is one module in a behavior, whichever file asked for it.
+//
+//===----------------------------------------------------------------------===//
+#include "bsc/Frontend/Frontend.h"
+#include "bsc/Parse/Parser.h"
+#include "llvm/ADT/StringExtras.h"
+#include "llvm/ADT/StringSet.h"
+#include "llvm/Support/FileSystem.h"
+#include "llvm/Support/MemoryBuffer.h"
+#include "llvm/Support/Path.h"
+
+using namespace bsc;
+
+std::string bsc::moduleNameForPath(llvm::StringRef Path) {
+  llvm::StringRef Name = llvm::sys::path::filename(Path);
+  Name.consume_back(".bs");
+  return Name.str();
+}
+
+static bool isIdentifier(llvm::StringRef S) {
+  if (S.empty() || !(llvm::isAlpha(S[0]) || S[0] == '_'))
+    return false;
+  return llvm::all_of(S, [](char C) { return llvm::isAlnum(C) || C == '_'; });
+}
+
+unsigned bsc::addSourceFile(Compilation &C, llvm::StringRef Path) {
+  if (llvm::sys::fs::is_directory(Path)) {
+    C.Diags.report(llvm::SMLoc(), diag::err_file_is_directory) << Path;
+    return 0;
+  }
+  uint64_t Size = 0;
+  if (!llvm::sys::fs::file_size(Path, Size) &&
+      Size > uint64_t(MaxSourceFileMiB) * 1024 * 1024) {
+    C.Diags.report(llvm::SMLoc(), diag::err_file_too_large)
+        << Path << MaxSourceFileMiB;
+    return 0;
+  }
+  // Not a null-terminated view: the lexer works on the buffer's bounds, and
+  // a NUL byte inside the file is just an invalid character.
+  auto BufOrErr = llvm::MemoryBuffer::getFile(Path, /*IsText=*/false,
+                                              /*RequiresNullTerminator=*/false);
+  if (!BufOrErr) {
+    C.Diags.report(llvm::SMLoc(), diag::err_cannot_open_file)
+        << Path << BufOrErr.getError().message();
+    return 0;
+  }
+  return C.SM.AddNewSourceBuffer(std::move(*BufOrErr), llvm::SMLoc());
+}
+
+namespace {
+/// Loads modules by name, breadth first from the inputs.
+class ModuleLoader {
+public:
+  ModuleLoader(Compilation &C, const FrontendOptions &Opts)
+      : C(C), Opts(Opts) {}
+
+  void loadInputs() {
+    for (const std::string &Path : Opts.Inputs)
+      loadFile(Path);
+    // Modules grows while requires are resolved; index, not iterate.
+    for (size_t I = 0; I != C.Modules.size(); ++I)
+      resolveRequires(*C.Modules[I]);
+  }
+
+private:
+  ModuleAST *loadFile(llvm::StringRef Path) {
+    std::string Name = moduleNameForPath(Path);
+    if (!isIdentifier(Name)) {
+      C.Diags.report(llvm::SMLoc(), diag::err_bad_module_file_name)
+          << Name << Path;
+      return nullptr;
+    }
+    auto It = ByName.find(Name);
+    if (It != ByName.end()) {
+      if (!llvm::sys::fs::equivalent(It->second->Path, Path)) {
+        C.Diags.report(llvm::SMLoc(), diag::err_duplicate_module) << Name;
+        C.Diags.report(llvm::SMLoc(), diag::note_other_module_file)
+            << Name << It->second->Path;
+      }
+      return It->second;
+    }
+    unsigned BufferID = addSourceFile(C, Path);
+    if (!BufferID)
+      return nullptr;
+    ModuleAST *M = parseModule(C.SM, BufferID, Name, C.Ctx, C.Diags);
+    M->Path = Path.str();
+    ByName[Name] = M;
+    C.Modules.push_back(M);
+    return M;
+  }
+
+  void resolveRequires(ModuleAST &M) {
+    llvm::StringSet<> Seen;
+    for (RequireDecl &R : M.Requires) {
+      if (!Seen.insert(R.Name).second)
+        C.Diags.report(R.Range.Start, diag::warn_duplicate_require)
+            << R.Name << R.Range;
+      if (R.Name == M.Name) {
+        C.Diags.report(R.Range.Start, diag::err_require_self)
+            << R.Name << R.Range;
+        continue;
+      }
+      std::string Searched;
+      if (std::string Path = findScriptModule(M, R.Name, Searched);
+          !Path.empty()) {
+        R.Script = loadFile(Path);
+        continue;
+      }
+      if ((R.Native = C.Natives.find(R.Name)))
+        continue;
+      C.Diags.report(R.Range.Start, diag::err_unknown_module)
+          << R.Name << Searched << R.Range;
+    }
+  }
+
+  /// `<Name>.bs` in the requiring file's folder, then in the -I folders.
+  /// Returns "" if there is none; `Searched` lists the folders tried.
+  std::string findScriptModule(const ModuleAST &From, llvm::StringRef Name,
+                               std::string &Searched) {
+    llvm::SmallVector<std::string, 4> Dirs;
+    llvm::StringRef Parent = llvm::sys::path::parent_path(From.Path);
+    Dirs.push_back(Parent.empty() ? "." : Parent.str());
+    Dirs.append(Opts.IncludeDirs.begin(), Opts.IncludeDirs.end());
+    for (const std::string &Dir : Dirs) {
+      llvm::SmallString<128> Candidate(Dir);
+      llvm::sys::path::append(Candidate, Name + ".bs");
+      if (llvm::sys::fs::is_regular_file(Candidate))
+        return std::string(Candidate);
+      if (!Searched.empty())
+        Searched += ", ";
+      Searched += "'" + Dir + "'";
+    }
+    return "";
+  }
+
+  Compilation &C;
+  const FrontendOptions &Opts;
+  std::map<std::string, ModuleAST *> ByName;
+};
+} // namespace
+
+bool bsc::loadModules(Compilation &C, const FrontendOptions &Opts) {
+  unsigned ErrorsBefore = C.Diags.getNumErrors();
+  if (Opts.Inputs.empty()) {
+    C.Diags.report(llvm::SMLoc(), diag::err_no_input_files);
+    return false;
+  }
+  ModuleLoader(C, Opts).loadInputs();
+  return C.Diags.getNumErrors() == ErrorsBefore;
+}
+
+bool bsc::runFrontend(Compilation &C, const FrontendOptions &Opts) {
+  bool Loaded = loadModules(C, Opts);
+  if (C.Modules.empty() || C.Diags.tooManyErrors())
+    return false;
+  // Sema runs even after parse errors (they left error nodes, which are
+  // poison) so that one run reports as many independent mistakes as it can.
+  bool Checked = checkBehavior(C.Modules, C.Ctx, C.Diags, C.Checked);
+  return Loaded && Checked;
+}

@@ -1,0 +1,74 @@
+//===- DiagnosticTest.cpp - the diagnostics table, engine and printing ----===//
+#include "bsc/Basic/Diagnostic.h"
+#include "llvm/ADT/StringExtras.h"
+#include "llvm/Support/MemoryBuffer.h"
+#include "llvm/Support/raw_ostream.h"
+#include "gtest/gtest.h"
+
+using namespace bsc;
+
+namespace {
+
+TEST(DiagnosticTest, FormatsArgumentsInOrder) {
+  EXPECT_EQ(DiagnosticEngine::format("'%0' takes %1, not %2", {"f", "1", "2"}),
+            "'f' takes 1, not 2");
+  // A missing argument formats as nothing rather than reading past the end.
+  EXPECT_EQ(DiagnosticEngine::format("a %0 b %1", {"x"}), "a x b ");
+  EXPECT_EQ(DiagnosticEngine::format("100%", {}), "100%");
+}
+
+TEST(DiagnosticTest, TableGivesSeverityAndId) {
+  EXPECT_EQ(getSeverity(diag::err_unexpected_indent), Severity::Error);
+  EXPECT_EQ(getSeverity(diag::note_previous_definition), Severity::Note);
+  EXPECT_EQ(getSeverity(diag::warn_unreachable_code), Severity::Warning);
+  EXPECT_EQ(getIdName(diag::err_unexpected_indent), "err_unexpected_indent");
+}
+
+TEST(DiagnosticTest, EveryFormatIsLowerCaseWithoutPeriod) {
+  for (unsigned K = 0; K != diag::NumKinds; ++K) {
+    llvm::StringRef F = getFormat(diag::Kind(K));
+    ASSERT_FALSE(F.empty()) << getIdName(diag::Kind(K)).str();
+    EXPECT_FALSE(llvm::isUpper(F[0]) && !F.starts_with("TaskState"))
+        << getIdName(diag::Kind(K)).str();
+    EXPECT_FALSE(F.ends_with(".")) << getIdName(diag::Kind(K)).str();
+  }
+}
+
+TEST(DiagnosticTest, CountsAndStopsAfterTooManyErrors) {
+  DiagnosticEngine D;
+  D.report(llvm::SMLoc(), diag::warn_unreachable_code) << "return";
+  EXPECT_EQ(D.getNumWarnings(), 1u);
+  EXPECT_FALSE(D.hasErrors());
+  for (unsigned I = 0; I != DiagnosticEngine::MaxErrors + 10; ++I) {
+    D.report(llvm::SMLoc(), diag::err_undeclared_name) << "x";
+    D.report(llvm::SMLoc(), diag::note_previous_definition);
+  }
+  EXPECT_TRUE(D.tooManyErrors());
+  EXPECT_EQ(D.getNumErrors(), DiagnosticEngine::MaxErrors);
+  // The warning, then each kept error with its note; dropped errors drop
+  // their notes too.
+  EXPECT_EQ(D.getDiagnostics().size(), 1 + 2 * DiagnosticEngine::MaxErrors);
+}
+
+TEST(DiagnosticTest, PrintsFileLineColumnSourceLineAndCaret) {
+  llvm::SourceMgr SM;
+  unsigned ID = SM.AddNewSourceBuffer(
+      llvm::MemoryBuffer::getMemBufferCopy("task t()\n    yield 1.5\n", "m.bs"),
+      llvm::SMLoc());
+  const char *Start = SM.getMemoryBuffer(ID)->getBufferStart();
+  DiagnosticEngine D;
+  D.report(llvm::SMLoc::getFromPointer(Start + 19), diag::err_yield_value_type)
+      << "float";
+  D.report(llvm::SMLoc(), diag::err_no_input_files);
+  std::string Out;
+  llvm::raw_string_ostream OS(Out);
+  printDiagnostics(SM, D.getDiagnostics(), OS);
+  EXPECT_EQ(OS.str(),
+            "m.bs:2:11: error: the value of 'yield' must be 'int' or "
+            "'TaskState', not 'float'\n"
+            "    yield 1.5\n"
+            "          ^\n"
+            "bsc: error: no input files\n");
+}
+
+} // namespace
