@@ -1,0 +1,76 @@
+//===- CodeGen.h - a checked behavior to LLVM IR ---------------*- C++ -*-===//
+//
+// Lowers a checked Behavior to one LLVM module for one target. The target
+// matters already here: frames and the behavior state are laid out with the
+// target's DataLayout, and their sizes are part of the object's interface
+// (include/bscript/bscript.h).
+//
+// THE DESIGN (also docs/design/backend.md; code generation follows it):
+// - ABI: include/bscript/bscript.h (read it; C header robot code includes) and include/bsc/CodeGen/CodeGen.h (`emitLLVM`, `CodeGenOptions`, `BehaviorLayout`, `getEntrySymbol`). Keep these; extend only compatibly, and report changes.
+// - State: one LLVM struct type `%bs.state` = { bs_state_header fields: i32 cycle, i32 reserved, ptr input, ptr output } followed by one frame struct per task, laid out with the TARGET's DataLayout (i586: 4-byte pointers). Frame struct `%bs.frame.<Module>.<task>` = { i32 resume, i32 state, i32 last_cycle, params..., locals... } (field order: header, params in order, then CallableDecl::Locals in order; bool stored as i8, int i32, float float, string ptr, enum i32, TaskState i32). No heap, no LLVM coroutine intrinsics: identical frame sizes at -O0..-O3 and in the JIT.
+// - Every generated function takes `ptr %state` (the behavior state) as its FIRST parameter: funcs `(ptr state, params...) -> result`, nested funcs the same (they reach their task's frame through state), tasks `(ptr state, params...) -> void`. Internal functions have internal linkage; exported entries (top-level funcs and tasks of every module whose params are int/float/bool) are external functions named getEntrySymbol(BehaviorName, Decl) = `bs_<Behavior>__<Module>__<name>`, default visibility; bool params/results of entries travel as i32 (0/1). Also export a constant `bs_<Behavior>_info` of type bs_behavior_info {abi_version=1, state_size, state_align, num_tasks, ptr to constant array of {ptr name "Module::task", i32 frame_offset}}.
+// - Task call: the caller evaluates the arguments and calls the task function. The task function: frame = gep state; if (frame.state <= 0 || (state.cycle - frame.last_cycle) > 1 /*unsigned*/) { frame.resume = 0; zero every local of the frame (explicit stores per field; no memset) }; frame.last_cycle = state.cycle; store the params into the frame; switch (frame.resume) to the start (0) or to the code after the k-th yield (YieldStmt::ResumePoint, k >= 1). `yield [v]`: frame.resume = k; frame.state = v (1 if no value; int value of an int or TaskState expr); ret void. Falling off the end or `return`: frame.resume = 0; frame.state = 0; ret. A yield inside a loop resumes inside the loop (the loop's blocks are ordinary CFG; the switch jumps into the block after the yield: locals live in the frame, so no SSA value crosses a yield). `taskState(T)` loads T's frame.state (0 if never called because the state starts zeroed). bs_state_init zeroes the state; bs_begin_cycle does cycle += 1 (first cycle is 1) and stores input/output.
+// - Runtime safety: x / 0 == 0 and x % 0 == x (so a == (a/b)*b + a%b still holds); INT_MIN / -1 == INT_MIN, INT_MIN % -1 == 0; lower with a divisor of 1 substituted and selects, never a trap or UB. + - * wrap (no nsw/nuw flags). int(float) uses llvm.fptosi.sat.i32.f32 (NaN -> 0, saturating). No `unreachable` terminators on reachable paths, no llvm.trap. Locals are always initialised (zero / false / 0.0 / "" when there is no initialiser).
+// - No libc in the generated object: no memset/memcpy calls (mark functions "no-builtins" so loop idioms never become memset; never use CreateMemSet/CreateMemCpy); no libm. Its undefined symbols are only the runtime shim's and the bindings' (today: bs_io_printi/printf/printb/prints) — plus `_GLOBAL_OFFSET_TABLE_` which i386 PIC objects reference and the linker provides. No mutable global in the generated object (constants only: strings, the info struct).
+// - Native (io) calls: call NativeFunction::Symbol with C ABI: int -> i32, float -> float, bool -> i32 (0/1), string -> ptr to a private constant NUL-terminated string.
+// - Standalone program (CodeGenOptions::ProgramEntry): emitLLVM additionally emits `i32 @main()` that allocas the state (aligned to the state alignment), calls bs_state_init(state, &info), then for ProgramCycles cycles calls bs_begin_cycle(state, null, null) and the entry (args: an entry with parameters cannot be a program entry — the driver reports that), returns 0.
+// - Targets: `-target i586` means triple i586-unknown-linux-gnu with -mcpu=geode by default (x87 floats, no CMOV, no SSE), PIC (reloc model PIC_), ELF32; `-target x86_64` = x86_64-unknown-linux-gnu; default = host triple; any other string is an LLVM triple (unknown → diagnostic). Optimisation -O0..-O3 through the new pass manager (PassBuilder::buildPerModuleDefaultPipeline / buildO0DefaultPipeline).
+// - The runtime shim lib/Runtime (C, tiny): bscript.c (bs_state_init, bs_begin_cycle, bs_task_state; no libc except what is unavoidable — write loops, not memset) and io.c (bs_io_* with stdio). Built twice by CMake: host static library `bscript_rt` and i586 static library `bscript_rt_i586` (compile flags -m32 -march=geode -fPIC -O2; gcc-multilib is installed), both output to build/lib/.
+// - i586 programs: this machine's kernel has 32-bit emulation DISABLED at boot (dmesg: "32-bit emulation disabled"), so 32-bit programs fail with "Exec format error". The project runs them through utils/run-i586 (exists or to be written by the target/runtime helper): execs the program natively if the kernel can, else through `qemu-i386` (Debian package qemu-user, installed). Tests call it as `%run-i586 %t.prog`.
+//
+//===----------------------------------------------------------------------===//
+#ifndef BSC_CODEGEN_CODEGEN_H
+#define BSC_CODEGEN_CODEGEN_H
+
+#include "bsc/Sema/Sema.h"
+#include "llvm/IR/DataLayout.h"
+#include "llvm/IR/LLVMContext.h"
+#include "llvm/IR/Module.h"
+#include "llvm/TargetParser/Triple.h"
+#include <memory>
+#include <string>
+
+namespace bsc {
+
+struct CodeGenOptions {
+  /// Prefix of every exported symbol (`bs_<Name>_info`, `bs_<Name>__M__f`).
+  std::string BehaviorName;
+  /// When set, also emit `int main(void)` that initialises a state on its
+  /// stack and calls this entry once per cycle for `ProgramCycles` cycles
+  /// (standalone programs and `bsc run`).
+  const CallableDecl *ProgramEntry = nullptr;
+  unsigned ProgramCycles = 1;
+};
+
+/// Where things ended up; what --emit-header and the JIT need.
+struct BehaviorLayout {
+  uint64_t StateSize = 0;
+  uint64_t StateAlign = 1;
+  struct Task {
+    const TaskDecl *Decl;
+    uint64_t FrameOffset;
+  };
+  std::vector<Task> Tasks;
+  struct Entry {
+    const CallableDecl *Decl;
+    std::string Symbol;
+  };
+  /// The exported entries (top-level funcs and tasks with scalar parameters).
+  std::vector<Entry> Entries;
+  std::string InfoSymbol; ///< `bs_<Name>_info`.
+};
+
+/// Builds the IR of `B` for `Triple`/`DL`. Never fails on a behavior that
+/// Sema accepted.
+std::unique_ptr<llvm::Module> emitLLVM(const Behavior &B, llvm::LLVMContext &Ctx,
+                                       const llvm::Triple &Triple,
+                                       const llvm::DataLayout &DL,
+                                       const CodeGenOptions &Opts,
+                                       BehaviorLayout &Layout);
+
+/// `bs_<Behavior>__<Module>__<name>`.
+std::string getEntrySymbol(llvm::StringRef BehaviorName, const CallableDecl &D);
+
+} // namespace bsc
+
+#endif

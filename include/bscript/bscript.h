@@ -1,0 +1,91 @@
+/*===- bscript.h - the C API of a compiled b-script behavior -------------===*
+ *
+ * What robot code includes to run a behavior that bsc compiled. The
+ * generated object keeps all of its mutable state in one block of memory
+ * that the embedding provides (a static, a member of a robot object, one per
+ * simulated robot): generated code has no mutable globals and never
+ * allocates. Resetting a behavior is re-initialising its state.
+ *
+ * For a behavior named B (bsc --behavior-name, default: the first input's
+ * module name) the object exports:
+ *   const bs_behavior_info bs_B_info;        sizes and the task table
+ *   void bs_B__M__f(void *state, args...);   one entry per top-level func or
+ *                                            task f of module M whose
+ *                                            parameters are int/float/bool;
+ *                                            a func's result is returned
+ * `bsc --emit-header` writes the typed face of these for one behavior.
+ *
+ * A cycle: bs_begin_cycle(state, &input, &output), then call the entry.
+ *===----------------------------------------------------------------------===*/
+#ifndef BSCRIPT_BSCRIPT_H
+#define BSCRIPT_BSCRIPT_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Bumped whenever the layout below changes; bs_behavior_info carries it. */
+#define BS_ABI_VERSION 1
+
+/** Task states (language.md): > 0 running, 0 done, < 0 failure. */
+#define BS_TASK_DONE 0
+#define BS_TASK_RUNNING 1
+#define BS_TASK_FAILURE (-1)
+
+/** The start of every behavior state. */
+typedef struct bs_state_header {
+  uint32_t cycle;     /**< Execution cycle; bs_begin_cycle increments it. */
+  uint32_t reserved;  /**< Zero. */
+  const void *input;  /**< The `input` global of this cycle. */
+  void *output;       /**< The `output` global of this cycle. */
+} bs_state_header;
+
+/** The start of every task's frame inside the state. */
+typedef struct bs_frame_header {
+  int32_t resume;      /**< 0: start from the top; k: after the k-th yield. */
+  int32_t state;       /**< The task state its most recent call left. */
+  uint32_t last_cycle; /**< The cycle of its most recent call. */
+} bs_frame_header;
+
+typedef struct bs_task_info {
+  const char *name;      /**< "Module::task" */
+  uint32_t frame_offset; /**< Of its bs_frame_header inside the state. */
+} bs_task_info;
+
+typedef struct bs_behavior_info {
+  uint32_t abi_version; /**< BS_ABI_VERSION of the compiler that made it. */
+  uint32_t state_size;  /**< Bytes of state the embedding must provide... */
+  uint32_t state_align; /**< ...aligned to this. */
+  uint32_t num_tasks;
+  const bs_task_info *tasks;
+} bs_behavior_info;
+
+/** Zeroes a state: every task reports done and starts from the top at its
+ *  next call. Returns 0, or -1 if `info` is from another ABI version or the
+ *  storage is misaligned. */
+int bs_state_init(void *state, const bs_behavior_info *info);
+
+/** Starts the next execution cycle with this cycle's input and output. */
+void bs_begin_cycle(void *state, const void *input, void *output);
+
+/** The state that task `name` ("Module::task") left at its most recent call
+ *  (BS_TASK_DONE if never called); `found` (may be NULL) tells whether the
+ *  behavior has such a task. */
+int32_t bs_task_state(const void *state, const bs_behavior_info *info,
+                      const char *name, int *found);
+
+/** The standard native module `io`: each prints its value and a newline.
+ *  printf uses "%g"; printb prints true/false; bool travels as int32. */
+void bs_io_printi(int32_t value);
+void bs_io_printf(float value);
+void bs_io_printb(int32_t value);
+void bs_io_prints(const char *value);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* BSCRIPT_BSCRIPT_H */
