@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# The two quick-start commands of the README:
+#   ./dev.sh demo   install what is missing, build, cross-build the paper's
+#                   fib.bs for i586 and run it
+#   ./dev.sh test   install what is missing, build, run the whole test suite
+# Both work on a fresh Debian 12 machine as root (apt), and are what CI runs.
+set -euo pipefail
+cd "$(dirname "$0")"
+ROOT=$PWD
+BUILD=${BSC_BUILD_DIR:-$ROOT/build}
+
+# Debian packages the build, the tests and the examples need.
+PACKAGES=(cmake ninja-build g++ gcc-multilib g++-multilib python3 file
+          llvm-19-dev llvm-19-tools clang-19 lld-19 libgtest-dev
+          libeigen3-dev libedit-dev zlib1g-dev libzstd-dev qemu-user)
+
+install_missing() {
+  local missing=()
+  for p in "${PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  ((${#missing[@]})) || return 0
+  echo "dev.sh: installing ${missing[*]}"
+  local sudo=()
+  [[ $(id -u) == 0 ]] || sudo=(sudo)
+  "${sudo[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
+
+build() {
+  cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake --build "$BUILD"
+}
+
+demo() {
+  local out=$BUILD/demo
+  mkdir -p "$out"
+  local fib=$ROOT/../shared/conformance/paper/fib.bs
+  echo "== bsc -target i586 $fib"
+  "$BUILD/bin/bsc" -target i586 -O2 "$fib" -o "$out/fib-i586"
+  file "$out/fib-i586"
+  echo "== running the i586 program"
+  "$ROOT/utils/run-i586" "$out/fib-i586" | tee "$out/fib.out"
+  diff -u "$ROOT/../shared/conformance/paper/fib.expected" "$out/fib.out"
+  echo "== output matches fib.expected"
+}
+
+run_tests() {
+  local status=0
+  ctest --test-dir "$BUILD" --output-on-failure -j"$(nproc)" \
+        --output-junit "$BUILD/ctest-results.xml" || status=$?
+  # One closing line with every unit test and every lit test counted.
+  python3 "$ROOT/utils/summarize-tests.py" "$BUILD/ctest-results.xml" "$BUILD/lit-results.xml"
+  return $status
+}
+
+case "${1:-}" in
+  demo) install_missing; build; demo ;;
+  test) install_missing; build; run_tests ;;
+  *) echo "usage: $0 demo|test" >&2; exit 2 ;;
+esac
