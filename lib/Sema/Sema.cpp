@@ -1,0 +1,378 @@
+//===- Sema.cpp - checking a behavior: entry, module tables, lookup -------===//
+//
+// Sema checks all modules of a behavior together (whole program), because
+// the task rules (no task reachable from itself) are about the whole call
+// graph. It runs in three passes: module tables (namespaces and requires),
+// signatures (parameter and result types of every func and task, so calls
+// across modules can be checked in any order), then bodies; the call graph is
+// checked last.
+//
+// The rules, in short (docs/language.md has the long form):
+// - Names. A module's top-level funcs and tasks are its namespace. An
+//   unqualified name is looked up in the local scopes from the innermost out
+//   (a nested func sees its own params and locals, then the enclosing task's
+//   params and the task's top-level locals declared before the func), then
+//   the nested funcs of the current task, the module's funcs and tasks, and
+//   `input`/`output`. `M::name` needs M to be this module or a required one;
+//   `TaskState::done|running|failure` are 0, 1, -1; `E::value` names a value
+//   of an enum E of a required native module, `M::E::value` too. Nested funcs
+//   are not visible outside their task. Names of an unknown module (already
+//   diagnosed by the loader) are poison.
+// - Scopes. Blocks and `for` heads open scopes; a local is visible from its
+//   declaration to the end of its block. Redeclaring a visible local or
+//   parameter is an error (shadowing and same-scope redeclaration alike); a
+//   local named like a func or task is fine and wins.
+// - Types: int, float, bool, string, TaskState, registered enums. `int`
+//   converts implicitly to `float` (arithmetic, comparison, assignment,
+//   initialisation, arguments, return); everything else is explicit:
+//   `int(x)` from float, bool, enum, TaskState, int; `float(x)` from int,
+//   float; `bool(x)` from bool. TaskState and int do not mix implicitly.
+// - Operators: arithmetic on int/float (promoting), `%` on ints only,
+//   ordering on int/float, `==`/`!=` on same-typed int/float/bool/enum/
+//   TaskState (never strings), `&&` `||` `!` on bool, unary `-` on int/float.
+//   Conditions are bool.
+// - Statements: an expression statement must be a call; a task call is a
+//   statement only. Task parameters are read-only (also from nested funcs),
+//   `input` is read-only and `output` write-only. A func with a result
+//   returns on every path (an endless `for` without `break` counts). Code
+//   right after return/break/continue is warned about once per block.
+// - Tasks: `yield` only in a task body, its value int or TaskState; yields are
+//   numbered in source order (resume point N is after the Nth yield).
+// - No recursion at all: any cycle in the call graph of funcs and tasks is an
+//   error that names the cycle (tasks have one context each; funcs get a
+//   statically bounded stack).
+// - `input`/`output` have no type until a binding module registers one;
+//   checkIO is the one place that decides, so every use reports that once.
+// - One mistake, one message: the error type is poison.
+//
+//===----------------------------------------------------------------------===//
+#include "SemaImpl.h"
+#include "llvm/ADT/StringSwitch.h"
+
+using namespace bsc;
+using namespace bsc::sema;
+
+Sema::Sema(ASTContext &Ctx, DiagnosticEngine &Diags, Behavior &Out)
+    : Ctx(Ctx), Types(Ctx.getTypes()), Diags(Diags), Out(Out) {}
+
+DiagnosticBuilder Sema::diag(llvm::SMLoc Loc, diag::Kind K) {
+  if (getSeverity(K) == Severity::Error)
+    HadError = true;
+  return Diags.report(Loc, K);
+}
+
+bool Sema::run(llvm::ArrayRef<ModuleAST *> Modules) {
+  Out.Modules.assign(Modules.begin(), Modules.end());
+  buildModuleTables(Modules);
+
+  for (ModuleAST *M : Modules) {
+    CurModule = InfoOf[M];
+    for (CallableDecl *C : M->Decls) {
+      checkSignature(C);
+      if (auto *T = llvm::dyn_cast<TaskDecl>(C))
+        for (FuncDecl *F : T->NestedFuncs)
+          checkSignature(F);
+    }
+  }
+
+  for (ModuleAST *M : Modules) {
+    CurModule = InfoOf[M];
+    for (CallableDecl *C : M->Decls) {
+      if (Diags.tooManyErrors())
+        return false;
+      checkTopLevelCallable(C);
+    }
+  }
+  CurModule = nullptr;
+
+  for (ModuleAST *M : Modules)
+    for (CallableDecl *C : M->Decls) {
+      if (auto *F = llvm::dyn_cast<FuncDecl>(C)) {
+        Out.Funcs.push_back(F);
+        continue;
+      }
+      auto *T = llvm::cast<TaskDecl>(C);
+      Out.Tasks.push_back(T);
+      for (FuncDecl *F : T->NestedFuncs)
+        Out.Funcs.push_back(F);
+    }
+
+  checkCallGraph();
+  return !HadError;
+}
+
+void Sema::buildModuleTables(llvm::ArrayRef<ModuleAST *> Modules) {
+  NativeRegistry Builtins = makeBuiltinNativeRegistry();
+  for (const auto &NM : Builtins.Modules)
+    KnownModules.insert(NM->Name);
+
+  for (ModuleAST *M : Modules) {
+    KnownModules.insert(M->Name);
+    ModuleInfos.push_back(std::make_unique<ModuleInfo>());
+    ModuleInfo *Info = ModuleInfos.back().get();
+    Info->AST = M;
+    InfoOf[M] = Info;
+
+    for (const RequireDecl &R : M->Requires) {
+      Info->Requires.try_emplace(R.Name, &R);
+      KnownModules.insert(R.Name);
+      if (R.Native && llvm::find(AllNatives, R.Native) == AllNatives.end()) {
+        AllNatives.push_back(R.Native);
+        Out.NativeModules.push_back(R.Native);
+      }
+    }
+
+    for (CallableDecl *C : M->Decls) {
+      auto [It, Inserted] = Info->Decls.try_emplace(C->getName().Name, C);
+      if (!Inserted) {
+        diag(C->getName().Loc, diag::err_redefinition) << C->getName().Name;
+        diag(It->second->getName().Loc, diag::note_previous_definition);
+      }
+      // Two nested funcs of one task with one name are a redefinition too.
+      auto *T = llvm::dyn_cast<TaskDecl>(C);
+      if (!T)
+        continue;
+      llvm::StringMap<FuncDecl *> Nested;
+      for (FuncDecl *F : T->NestedFuncs) {
+        auto [NIt, NInserted] = Nested.try_emplace(F->getName().Name, F);
+        if (!NInserted) {
+          diag(F->getName().Loc, diag::err_redefinition) << F->getName().Name;
+          diag(NIt->second->getName().Loc, diag::note_previous_definition);
+        }
+      }
+    }
+  }
+}
+
+const Type *Sema::getEnumType(const NativeModule &M, const NativeEnum &E) {
+  return Types.getEnum(&E, M.Name + "::" + E.Name);
+}
+
+const Type *Sema::findRequiredEnum(llvm::StringRef Name) {
+  for (const RequireDecl &R : CurModule->AST->Requires)
+    if (R.Native)
+      if (const NativeEnum *E = R.Native->findEnum(Name.str()))
+        return getEnumType(*R.Native, *E);
+  return nullptr;
+}
+
+LookupResult Sema::lookup(const QualifiedName &N, LookupMode Mode) {
+  if (N.empty())
+    return {};
+  if (!N.isQualified())
+    return lookupUnqualified(N.Parts[0], Mode);
+  return lookupQualified(N);
+}
+
+LookupResult Sema::lookupUnqualified(const Ident &Id, LookupMode Mode) {
+  LookupResult R;
+  llvm::StringRef Name = Id.Name;
+  if (Mode == LookupMode::Type) {
+    const Type *Builtin = llvm::StringSwitch<const Type *>(Name)
+                              .Case("int", Types.getInt())
+                              .Case("float", Types.getFloat())
+                              .Case("bool", Types.getBool())
+                              .Case("string", Types.getString())
+                              .Case("TaskState", Types.getTaskState())
+                              .Default(nullptr);
+    if (Builtin) {
+      R.Kind = LookupKind::TypeName;
+      R.Ty = Builtin;
+      return R;
+    }
+  } else if (Decl *D = findVisible(Name)) {
+    if (auto *V = llvm::dyn_cast<VarDecl>(D)) {
+      R.Kind = LookupKind::Local;
+      R.Var = V;
+    } else {
+      R.Kind = LookupKind::Param;
+      R.Param = llvm::cast<ParamDecl>(D);
+    }
+    return R;
+  }
+
+  if (CurTask)
+    for (FuncDecl *F : CurTask->NestedFuncs)
+      if (F->getName().Name == Name) {
+        R.Kind = LookupKind::Callable;
+        R.Callable = F;
+        return R;
+      }
+  auto It = CurModule->Decls.find(Name);
+  if (It != CurModule->Decls.end()) {
+    R.Kind = LookupKind::Callable;
+    R.Callable = It->second;
+    return R;
+  }
+  if (Name == "input" || Name == "output") {
+    R.Kind = Name == "input" ? LookupKind::Input : LookupKind::Output;
+    return R;
+  }
+  if (Name == CurModule->AST->Name || CurModule->Requires.count(Name)) {
+    R.Kind = LookupKind::Module;
+    return R;
+  }
+  if (const Type *E = findRequiredEnum(Name)) {
+    R.Kind = LookupKind::TypeName;
+    R.Ty = E;
+    return R;
+  }
+  if (Mode == LookupMode::Value && Name == "TaskState") {
+    R.Kind = LookupKind::TypeName;
+    R.Ty = Types.getTaskState();
+    return R;
+  }
+  diag(Id.Loc, Mode == LookupMode::Type ? diag::err_unknown_type
+                                        : diag::err_undeclared_name)
+      << Name << Id.getRange();
+  return R;
+}
+
+LookupResult Sema::lookupEnumValue(const Type *EnumTy, llvm::StringRef EnumName,
+                                   const Ident &Value) {
+  LookupResult R;
+  if (EnumTy->isTaskState()) {
+    int32_t V = 0;
+    bool Found = true;
+    if (Value.Name == "done")
+      V = 0;
+    else if (Value.Name == "running")
+      V = 1;
+    else if (Value.Name == "failure")
+      V = -1;
+    else
+      Found = false;
+    if (Found) {
+      R.Kind = LookupKind::EnumValue;
+      R.Ty = EnumTy;
+      R.Value = V;
+      return R;
+    }
+  } else {
+    for (const NativeEnum::Value &NV : EnumTy->getEnum()->Values)
+      if (NV.Name == Value.Name) {
+        R.Kind = LookupKind::EnumValue;
+        R.Ty = EnumTy;
+        R.Value = NV.Number;
+        return R;
+      }
+  }
+  diag(Value.Loc, diag::err_no_enum_value) << EnumName << Value.Name
+                                           << Value.getRange();
+  return R;
+}
+
+namespace {
+/// The module a qualifier names from the point of view of one module.
+struct QualifierModule {
+  enum { None, Script, Native, Poison } Kind = None;
+  ModuleAST *ScriptModule = nullptr;
+  const NativeModule *NativeMod = nullptr;
+};
+} // namespace
+
+LookupResult Sema::lookupQualified(const QualifiedName &N) {
+  LookupResult R;
+  const Ident &Q = N.Parts[0];
+  auto Join = [&](size_t Count) {
+    std::string S;
+    for (size_t I = 0; I != Count; ++I)
+      S += (I ? "::" : "") + N.Parts[I].Name.str();
+    return S;
+  };
+
+  QualifierModule QM;
+  if (Q.Name == CurModule->AST->Name) {
+    QM.Kind = QualifierModule::Script;
+    QM.ScriptModule = CurModule->AST;
+  } else {
+    auto It = CurModule->Requires.find(Q.Name);
+    if (It != CurModule->Requires.end()) {
+      const RequireDecl *Req = It->second;
+      if (Req->Script) {
+        QM.Kind = QualifierModule::Script;
+        QM.ScriptModule = Req->Script;
+      } else if (Req->Native) {
+        QM.Kind = QualifierModule::Native;
+        QM.NativeMod = Req->Native;
+      } else {
+        QM.Kind = QualifierModule::Poison;
+      }
+    }
+  }
+
+  if (N.Parts.size() > 3) {
+    if (QM.Kind != QualifierModule::Poison)
+      diag(Q.Loc, diag::err_unknown_qualifier) << Join(N.Parts.size() - 1);
+    return R;
+  }
+  const Ident &Second = N.Parts[1];
+
+  switch (QM.Kind) {
+  case QualifierModule::Poison:
+    return R;
+  case QualifierModule::Script: {
+    auto It = InfoOf[QM.ScriptModule]->Decls.find(Second.Name);
+    if (It == InfoOf[QM.ScriptModule]->Decls.end()) {
+      diag(Second.Loc, diag::err_no_member_in_module)
+          << Q.Name << Second.Name << Second.getRange();
+      return R;
+    }
+    if (N.Parts.size() == 3) {
+      diag(Q.Loc, diag::err_unknown_qualifier) << Join(2);
+      return R;
+    }
+    R.Kind = LookupKind::Callable;
+    R.Callable = It->second;
+    return R;
+  }
+  case QualifierModule::Native: {
+    std::string Member = Second.Name.str();
+    if (const NativeEnum *E = QM.NativeMod->findEnum(Member)) {
+      const Type *Ty = getEnumType(*QM.NativeMod, *E);
+      if (N.Parts.size() == 3)
+        return lookupEnumValue(Ty, Join(2), N.Parts[2]);
+      R.Kind = LookupKind::TypeName;
+      R.Ty = Ty;
+      return R;
+    }
+    const NativeFunction *F = QM.NativeMod->findFunction(Member);
+    if (!F) {
+      diag(Second.Loc, diag::err_no_member_in_module)
+          << Q.Name << Second.Name << Second.getRange();
+      return R;
+    }
+    if (N.Parts.size() == 3) {
+      diag(Q.Loc, diag::err_unknown_qualifier) << Join(2);
+      return R;
+    }
+    R.Kind = LookupKind::NativeFn;
+    R.NativeFn = F;
+    return R;
+  }
+  case QualifierModule::None:
+    break;
+  }
+
+  // Not a module: TaskState or an enum of a required native module.
+  const Type *EnumTy = Q.Name == "TaskState" ? Types.getTaskState()
+                                              : findRequiredEnum(Q.Name);
+  if (EnumTy) {
+    if (N.Parts.size() == 3) {
+      diag(Q.Loc, diag::err_unknown_qualifier) << Join(2);
+      return R;
+    }
+    return lookupEnumValue(EnumTy, Q.Name, Second);
+  }
+  if (KnownModules.count(Q.Name))
+    diag(Q.Loc, diag::err_module_not_required) << Q.Name << Q.getRange();
+  else
+    diag(Q.Loc, diag::err_unknown_qualifier) << Q.Name << Q.getRange();
+  return R;
+}
+
+bool bsc::checkBehavior(llvm::ArrayRef<ModuleAST *> Modules, ASTContext &Ctx,
+                        DiagnosticEngine &Diags, Behavior &Out) {
+  Sema S(Ctx, Diags, Out);
+  return S.run(Modules);
+}

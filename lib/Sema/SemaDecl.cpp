@@ -1,0 +1,163 @@
+//===- SemaDecl.cpp - types, signatures, locals and callable bodies -------===//
+//
+// Types are resolved by name at module level only (built-ins, TaskState,
+// enums of required native modules); locals never name types. Signatures
+// are resolved in a pass of their own before any body, so a call can be
+// checked against a callee declared later or in another module.
+//
+// Scopes are a stack of small vectors searched from the top: b-script bodies
+// are short, so a linear search beats hashing, and the stack makes "visible
+// from the declaration to the end of the block" fall out of push/pop. A
+// nested func is checked at the point of its declaration with the task's
+// scopes still on the stack, which is exactly the "params and top-level
+// locals declared before the func" rule.
+//
+//===----------------------------------------------------------------------===//
+#include "SemaImpl.h"
+
+using namespace bsc;
+using namespace bsc::sema;
+
+const Type *Sema::resolveType(const QualifiedName &N) {
+  LookupResult L = lookup(N, LookupMode::Type);
+  switch (L.Kind) {
+  case LookupKind::Error:
+    return Types.getError();
+  case LookupKind::TypeName:
+    return L.Ty;
+  case LookupKind::Local:
+  case LookupKind::Param:
+  case LookupKind::Callable:
+  case LookupKind::NativeFn:
+  case LookupKind::EnumValue:
+  case LookupKind::Input:
+  case LookupKind::Output:
+  case LookupKind::Module:
+    break;
+  }
+  diag(N.getLoc(), diag::err_not_a_type) << N.str() << N.getRange();
+  return Types.getError();
+}
+
+const Type *Sema::resolveNativeType(const NativeType &T) {
+  switch (T.TheCode) {
+  case NativeType::Void:
+    return Types.getVoid();
+  case NativeType::Bool:
+    return Types.getBool();
+  case NativeType::Int:
+    return Types.getInt();
+  case NativeType::Float:
+    return Types.getFloat();
+  case NativeType::String:
+    return Types.getString();
+  case NativeType::Enum: {
+    llvm::StringRef Name = T.Name;
+    auto [ModName, EnumName] = Name.rsplit("::");
+    for (const NativeModule *M : AllNatives)
+      if (M->Name == ModName)
+        if (const NativeEnum *E = M->findEnum(EnumName.str()))
+          return getEnumType(*M, *E);
+    // An enum of a module this behavior does not load: unusable, but the
+    // binding was checked when it was registered, so stay silent.
+    return Types.getError();
+  }
+  case NativeType::Class:
+    // Registered classes are not supported yet.
+    return Types.getError();
+  }
+  llvm_unreachable("unknown native type code");
+}
+
+void Sema::checkSignature(CallableDecl *C) {
+  for (ParamDecl *P : C->Params)
+    P->Ty = resolveType(P->TypeName);
+  if (auto *F = llvm::dyn_cast<FuncDecl>(C))
+    F->ResultTy = F->ResultTypeName.empty() ? Types.getVoid()
+                                            : resolveType(F->ResultTypeName);
+}
+
+Decl *Sema::findVisible(llvm::StringRef Name) {
+  for (auto S = Scopes.rbegin(), E = Scopes.rend(); S != E; ++S)
+    for (auto It = S->rbegin(), IE = S->rend(); It != IE; ++It)
+      if (It->first == Name)
+        return It->second;
+  return nullptr;
+}
+
+void Sema::declare(Decl *D) {
+  const Ident &Name = D->getName();
+  if (Decl *Prev = findVisible(Name.Name)) {
+    diag(Name.Loc, diag::err_shadowing) << Name.Name << Name.getRange();
+    diag(Prev->getName().Loc, diag::note_previous_definition);
+  }
+  // Declared even after an error, so later uses find the newest one.
+  Scopes.back().push_back({Name.Name, D});
+}
+
+void Sema::checkVarDecl(VarDecl *V) {
+  V->Owner = CurCallable;
+  CurCallable->Locals.push_back(V);
+  V->Ty = resolveType(V->TypeName);
+  // The initializer is checked before the variable is visible: `int x = x`
+  // reads an outer `x` (and is then a shadowing error anyway).
+  if (V->Init) {
+    const Type *InitTy = checkExpr(V->Init);
+    if (!V->Ty->isError() && !InitTy->isError() &&
+        !convertImplicitly(V->Init, V->Ty))
+      diag(V->Init->getLoc(), diag::err_init_type_mismatch)
+          << V->getName().Name << V->Ty->getName() << InitTy->getName()
+          << V->Init->getRange();
+  }
+  declare(V);
+}
+
+void Sema::checkCallableBody(CallableDecl *C) {
+  CallableDecl *SavedCallable = CurCallable;
+  unsigned SavedLoopDepth = LoopDepth;
+  CurCallable = C;
+  LoopDepth = 0;
+
+  pushScope();
+  for (ParamDecl *P : C->Params)
+    declare(P);
+  if (C->Body)
+    checkBlock(C->Body);
+  popScope();
+
+  if (auto *F = llvm::dyn_cast<FuncDecl>(C))
+    checkMissingReturn(F);
+  CurCallable = SavedCallable;
+  LoopDepth = SavedLoopDepth;
+}
+
+void Sema::checkNestedFunc(FuncDecl *F) {
+  // Only a func the parser recorded as nested in the current task is
+  // checked here; a misplaced one was diagnosed by the parser.
+  if (!CurTask || F->EnclosingTask != CurTask || CurCallable != CurTask ||
+      !CheckedNested.insert(F).second)
+    return;
+  checkCallableBody(F);
+}
+
+void Sema::checkTopLevelCallable(CallableDecl *C) {
+  Scopes.clear();
+  CurTask = llvm::dyn_cast<TaskDecl>(C);
+  checkCallableBody(C);
+  if (CurTask) {
+    // A nested func the task body did not reach (it sat where the parser
+    // refused it) still gets its fields filled in, seeing the task's params.
+    for (FuncDecl *F : CurTask->NestedFuncs) {
+      if (CheckedNested.count(F))
+        continue;
+      CheckedNested.insert(F);
+      pushScope();
+      for (ParamDecl *P : CurTask->Params)
+        Scopes.back().push_back({P->getName().Name, P});
+      checkCallableBody(F);
+      popScope();
+    }
+  }
+  CurTask = nullptr;
+  CurCallable = nullptr;
+}

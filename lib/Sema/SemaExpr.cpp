@@ -1,0 +1,453 @@
+//===- SemaExpr.cpp - types of expressions, calls and assignments ---------===//
+//
+// Every check returns the expression's type and stores it in Expr::Ty. The
+// error type is poison: a check that sees it among its operands returns the
+// error type without a message, so one mistake gives one message.
+//
+// The only implicit conversion is int to float. It is made visible in the
+// tree (an implicit ConversionExpr around the int operand) so that CodeGen
+// never has to re-derive the typing rules.
+//
+//===----------------------------------------------------------------------===//
+#include "SemaImpl.h"
+
+using namespace bsc;
+using namespace bsc::sema;
+
+std::string Sema::getText(const Expr *E) const {
+  if (auto *N = llvm::dyn_cast<NameExpr>(E))
+    return N->Name.str();
+  llvm::SMRange R = E->getRange();
+  const char *B = R.Start.getPointer(), *End = R.End.getPointer();
+  if (B && End && End > B)
+    return std::string(B, End);
+  return "expression";
+}
+
+void Sema::promoteToFloat(Expr *&E) {
+  auto *C = Ctx.create<ConversionExpr>(E->getRange(), QualifiedName(), E,
+                                       /*Implicit=*/true);
+  C->Ty = Types.getFloat();
+  E = C;
+}
+
+bool Sema::convertImplicitly(Expr *&E, const Type *To) {
+  if (!E || !E->Ty)
+    return true;
+  const Type *From = E->Ty;
+  if (From == To || From->isError() || To->isError())
+    return true;
+  if (From->isInt() && To->isFloat()) {
+    promoteToFloat(E);
+    return true;
+  }
+  return false;
+}
+
+const Type *Sema::checkExpr(Expr *E, Access A) {
+  if (!E) // A part the parser could not build; it reported that.
+    return Types.getError();
+  const Type *T = checkExprImpl(E, A);
+  E->Ty = T;
+  return T;
+}
+
+const Type *Sema::checkExprImpl(Expr *E, Access A) {
+  switch (E->getKind()) {
+  case NodeKind::IntLiteralExpr:
+    return Types.getInt();
+  case NodeKind::FloatLiteralExpr:
+    return Types.getFloat();
+  case NodeKind::BoolLiteralExpr:
+    return Types.getBool();
+  case NodeKind::StringLiteralExpr:
+    return Types.getString();
+  case NodeKind::NameExpr:
+    return checkName(llvm::cast<NameExpr>(E), A);
+  case NodeKind::MemberExpr:
+    return checkMember(llvm::cast<MemberExpr>(E), A);
+  case NodeKind::CallExpr:
+    return checkCall(llvm::cast<CallExpr>(E), /*AsStatement=*/false);
+  case NodeKind::UnaryExpr:
+    return checkUnary(llvm::cast<UnaryExpr>(E));
+  case NodeKind::BinaryExpr:
+    return checkBinary(llvm::cast<BinaryExpr>(E));
+  case NodeKind::TaskStateExpr:
+    return checkTaskState(llvm::cast<TaskStateExpr>(E));
+  case NodeKind::ConversionExpr:
+    return checkConversion(llvm::cast<ConversionExpr>(E));
+  case NodeKind::ErrorExpr:
+    return Types.getError();
+  case NodeKind::FuncDecl:
+  case NodeKind::TaskDecl:
+  case NodeKind::ParamDecl:
+  case NodeKind::VarDecl:
+  case NodeKind::BlockStmt:
+  case NodeKind::DeclStmt:
+  case NodeKind::FuncDeclStmt:
+  case NodeKind::AssignStmt:
+  case NodeKind::ExprStmt:
+  case NodeKind::IfStmt:
+  case NodeKind::ForStmt:
+  case NodeKind::BreakStmt:
+  case NodeKind::ContinueStmt:
+  case NodeKind::ReturnStmt:
+  case NodeKind::YieldStmt:
+  case NodeKind::ErrorStmt:
+    break;
+  }
+  llvm_unreachable("not an expression");
+}
+
+//===----------------------------------------------------------------------===//
+// Names, input and output, members
+//===----------------------------------------------------------------------===//
+
+const Type *Sema::checkIO(NameExpr *E, bool IsInput, Access A) {
+  E->Kind = IsInput ? NameKind::Input : NameKind::Output;
+  // The direction rules do not depend on the type: input is read-only,
+  // output write-only.
+  if (IsInput && (A == Access::Write || A == Access::Modify)) {
+    diag(E->getLoc(), diag::err_assign_to_input) << E->getRange();
+    return Types.getError();
+  }
+  if (!IsInput && (A == Access::Read || A == Access::Modify)) {
+    diag(E->getLoc(), diag::err_read_of_output) << E->getRange();
+    return Types.getError();
+  }
+  // The one place that decides the types of input and output: no binding
+  // module declares them yet.
+  diag(E->getLoc(), IsInput ? diag::err_no_input_type : diag::err_no_output_type)
+      << E->getRange();
+  return Types.getError();
+}
+
+const Type *Sema::applyLookup(NameExpr *E, const LookupResult &L, Access A) {
+  const char *What = nullptr;
+  switch (L.Kind) {
+  case LookupKind::Error:
+    return Types.getError();
+  case LookupKind::Local:
+    E->Kind = NameKind::Local;
+    E->Local = L.Var;
+    return L.Var->Ty ? L.Var->Ty : Types.getError();
+  case LookupKind::Param:
+    E->Kind = NameKind::Param;
+    E->Param = L.Param;
+    return L.Param->Ty ? L.Param->Ty : Types.getError();
+  case LookupKind::EnumValue:
+    E->Kind = NameKind::EnumValue;
+    E->EnumValue = L.Value;
+    return L.Ty;
+  case LookupKind::Input:
+    return checkIO(E, /*IsInput=*/true, A);
+  case LookupKind::Output:
+    return checkIO(E, /*IsInput=*/false, A);
+  case LookupKind::Callable:
+    What = llvm::isa<TaskDecl>(L.Callable) ? "task" : "function";
+    break;
+  case LookupKind::NativeFn:
+    What = "function";
+    break;
+  case LookupKind::Module:
+    What = "module";
+    break;
+  case LookupKind::TypeName:
+    What = "type";
+    break;
+  }
+  diag(E->getLoc(), diag::err_not_a_value)
+      << E->Name.str() << What << E->getRange();
+  return Types.getError();
+}
+
+const Type *Sema::checkName(NameExpr *E, Access A) {
+  return applyLookup(E, lookup(E->Name, LookupMode::Value), A);
+}
+
+const Type *Sema::checkMember(MemberExpr *E, Access A) {
+  // A part of input or output follows the rules of the whole.
+  const Type *BaseTy =
+      checkExpr(E->Base, A == Access::MethodBase ? Access::Read : A);
+  if (BaseTy->isError())
+    return Types.getError();
+  // No registered classes yet: nothing has members.
+  diag(E->Base->getLoc(), diag::err_member_of_non_class)
+      << getText(E->Base) << BaseTy->getName() << E->Base->getRange();
+  return Types.getError();
+}
+
+//===----------------------------------------------------------------------===//
+// Operators and conversions
+//===----------------------------------------------------------------------===//
+
+const Type *Sema::checkUnary(UnaryExpr *E) {
+  const Type *T = checkExpr(E->Operand);
+  if (T->isError())
+    return T;
+  switch (E->Op) {
+  case UnaryOp::Neg:
+    if (T->isArithmetic())
+      return T;
+    break;
+  case UnaryOp::Not:
+    if (T->isBool())
+      return T;
+    break;
+  }
+  diag(E->getLoc(), diag::err_unary_operand)
+      << getSpelling(E->Op) << T->getName() << E->getRange();
+  return Types.getError();
+}
+
+/// Promotes the int side of a mixed int/float pair; returns the common type.
+static const Type *promoteArithmetic(Sema &S, Expr *&L, Expr *&R) {
+  if (L->Ty == R->Ty)
+    return L->Ty;
+  if (L->Ty->isInt())
+    S.promoteToFloat(L);
+  else
+    S.promoteToFloat(R);
+  return S.Types.getFloat();
+}
+
+const Type *Sema::checkBinary(BinaryExpr *E) {
+  const Type *L = checkExpr(E->LHS);
+  const Type *R = checkExpr(E->RHS);
+  if (L->isError() || R->isError())
+    return Types.getError();
+  bool Arith = L->isArithmetic() && R->isArithmetic();
+  switch (E->Op) {
+  case BinaryOp::Add:
+  case BinaryOp::Sub:
+  case BinaryOp::Mul:
+  case BinaryOp::Div:
+    if (Arith)
+      return promoteArithmetic(*this, E->LHS, E->RHS);
+    break;
+  case BinaryOp::Rem:
+    if (L->isInt() && R->isInt())
+      return L;
+    break;
+  case BinaryOp::Lt:
+  case BinaryOp::Le:
+  case BinaryOp::Gt:
+  case BinaryOp::Ge:
+    if (!Arith)
+      break;
+    promoteArithmetic(*this, E->LHS, E->RHS);
+    return Types.getBool();
+  case BinaryOp::Eq:
+  case BinaryOp::Ne:
+    if (Arith) {
+      promoteArithmetic(*this, E->LHS, E->RHS);
+      return Types.getBool();
+    }
+    if (L == R && (L->isBool() || L->isEnum() || L->isTaskState()))
+      return Types.getBool();
+    break;
+  case BinaryOp::And:
+  case BinaryOp::Or:
+    if (L->isBool() && R->isBool())
+      return L;
+    break;
+  }
+  diag(E->getLoc(), diag::err_binary_operands)
+      << getSpelling(E->Op) << L->getName() << R->getName() << E->getRange();
+  return Types.getError();
+}
+
+const Type *Sema::checkConversion(ConversionExpr *E) {
+  const Type *From = checkExpr(E->Operand);
+  if (E->Implicit)
+    return Types.getFloat();
+  const Type *To = resolveType(E->TargetName);
+  if (From->isError() || To->isError())
+    return Types.getError();
+  bool OK = false;
+  switch (To->getKind()) {
+  case TypeKind::Int:
+    OK = From->isArithmetic() || From->isBool() || From->isEnum() ||
+         From->isTaskState();
+    break;
+  case TypeKind::Float:
+    OK = From->isArithmetic();
+    break;
+  case TypeKind::Bool:
+    OK = From->isBool();
+    break;
+  case TypeKind::Error:
+  case TypeKind::Void:
+  case TypeKind::String:
+  case TypeKind::TaskState:
+  case TypeKind::Enum:
+    break;
+  }
+  if (!OK) {
+    diag(E->getLoc(), diag::err_invalid_conversion)
+        << From->getName() << To->getName() << E->getRange();
+    return Types.getError();
+  }
+  return To;
+}
+
+//===----------------------------------------------------------------------===//
+// Calls
+//===----------------------------------------------------------------------===//
+
+const Type *Sema::checkCall(CallExpr *C, bool AsStatement) {
+  // Resolve the callee; on failure the arguments are still checked.
+  std::string Name;
+  llvm::SmallVector<const Type *, 4> ParamTys;
+  const Type *ResultTy = nullptr;
+  if (auto *N = llvm::dyn_cast_or_null<NameExpr>(C->Callee)) {
+    Name = N->Name.str();
+    LookupResult L = lookup(N->Name, LookupMode::Value);
+    if (L.Kind == LookupKind::Callable) {
+      N->Kind = NameKind::Callable;
+      N->Callable = L.Callable;
+      C->Target = L.Callable;
+      auto *F = llvm::dyn_cast<FuncDecl>(L.Callable);
+      C->Kind = F ? CallKind::Func : CallKind::Task;
+      for (ParamDecl *P : L.Callable->Params)
+        ParamTys.push_back(P->Ty ? P->Ty : Types.getError());
+      ResultTy = F ? (F->ResultTy ? F->ResultTy : Types.getError())
+                   : Types.getVoid();
+      recordCall(L.Callable, N->getLoc());
+    } else if (L.Kind == LookupKind::NativeFn) {
+      N->Kind = NameKind::NativeFunction;
+      N->NativeFn = L.NativeFn;
+      C->Kind = CallKind::NativeFunction;
+      C->NativeFn = L.NativeFn;
+      for (const NativeType &P : L.NativeFn->Params)
+        ParamTys.push_back(resolveNativeType(P));
+      ResultTy = resolveNativeType(L.NativeFn->Result);
+    } else if (L.Kind != LookupKind::Error) {
+      diag(N->getLoc(), diag::err_not_callable) << Name << N->getRange();
+    }
+    N->Ty = ResultTy ? ResultTy : Types.getError();
+  } else if (auto *M = llvm::dyn_cast_or_null<MemberExpr>(C->Callee)) {
+    // A method call; methods come with registered classes.
+    checkMember(M, Access::MethodBase);
+    M->Ty = Types.getError();
+  } else {
+    const Type *T = checkExpr(C->Callee);
+    if (!T->isError() && C->Callee)
+      diag(C->Callee->getLoc(), diag::err_not_callable)
+          << getText(C->Callee) << C->Callee->getRange();
+  }
+
+  for (Expr *Arg : C->Args)
+    checkExpr(Arg);
+  if (!ResultTy)
+    return Types.getError();
+
+  if (ParamTys.size() != C->Args.size()) {
+    diag(C->getLoc(), diag::err_call_arity)
+        << Name << ParamTys.size() << C->Args.size() << C->getRange();
+  } else {
+    for (size_t I = 0, E = C->Args.size(); I != E; ++I) {
+      if (!C->Args[I])
+        continue;
+      const Type *ArgTy = C->Args[I]->Ty;
+      if (!convertImplicitly(C->Args[I], ParamTys[I]))
+        diag(C->Args[I]->getLoc(), diag::err_call_arg_type)
+            << I + 1 << Name << ParamTys[I]->getName() << ArgTy->getName()
+            << C->Args[I]->getRange();
+    }
+  }
+
+  if (AsStatement)
+    return ResultTy;
+  if (C->Kind == CallKind::Task) {
+    diag(C->getLoc(), diag::err_task_call_in_expression)
+        << Name << C->getRange();
+    return Types.getError();
+  }
+  if (ResultTy->isVoid()) {
+    diag(C->getLoc(), diag::err_void_value) << Name << C->getRange();
+    return Types.getError();
+  }
+  return ResultTy;
+}
+
+//===----------------------------------------------------------------------===//
+// Assignments
+//===----------------------------------------------------------------------===//
+
+const Type *Sema::checkAssignTarget(Expr *T, Access A) {
+  if (!T)
+    return Types.getError();
+  if (auto *N = llvm::dyn_cast<NameExpr>(T)) {
+    LookupResult L = lookup(N->Name, LookupMode::Value);
+    switch (L.Kind) {
+    case LookupKind::Error:
+    case LookupKind::Local:
+    case LookupKind::Input:
+    case LookupKind::Output:
+      return N->Ty = applyLookup(N, L, A);
+    case LookupKind::Param: {
+      const Type *Ty = applyLookup(N, L, A);
+      N->Ty = Ty;
+      if (auto *Task = llvm::dyn_cast_or_null<TaskDecl>(L.Param->Owner)) {
+        diag(N->getLoc(), diag::err_assign_to_task_param)
+            << N->Name.str() << Task->getName().Name << N->getRange();
+        return Types.getError();
+      }
+      return Ty;
+    }
+    case LookupKind::Callable:
+    case LookupKind::NativeFn:
+    case LookupKind::EnumValue:
+    case LookupKind::Module:
+    case LookupKind::TypeName:
+      N->Ty = Types.getError();
+      diag(N->getLoc(), diag::err_not_assignable) << N->getRange();
+      return Types.getError();
+    }
+    llvm_unreachable("unknown lookup result");
+  }
+  if (llvm::isa<MemberExpr>(T))
+    return checkExpr(T, A);
+  // Literals, calls, operators: checked for their own mistakes first.
+  if (!checkExpr(T)->isError())
+    diag(T->getLoc(), diag::err_not_assignable) << T->getRange();
+  return Types.getError();
+}
+
+void Sema::checkAssign(AssignStmt *S) {
+  BinaryOp Bin = BinaryOp::Add;
+  bool Compound = getCompoundOperator(S->Op, Bin);
+  const Type *TargetTy =
+      checkAssignTarget(S->Target, Compound ? Access::Modify : Access::Write);
+  const Type *ValueTy = checkExpr(S->Value);
+  if (TargetTy->isError() || ValueTy->isError())
+    return;
+
+  auto Mismatch = [&](const Type *From) {
+    diag(S->Value->getLoc(), diag::err_assign_type_mismatch)
+        << From->getName() << getText(S->Target) << TargetTy->getName()
+        << S->Value->getRange();
+  };
+  if (!Compound) {
+    if (!convertImplicitly(S->Value, TargetTy))
+      Mismatch(ValueTy);
+    return;
+  }
+  if (!TargetTy->isArithmetic()) {
+    diag(S->Target->getLoc(), diag::err_compound_assign_type)
+        << getSpelling(S->Op) << TargetTy->getName() << S->Target->getRange();
+    return;
+  }
+  // `t op= v` follows the rules of `t op v`, whose result must then fit t.
+  bool OK = ValueTy->isArithmetic() &&
+            (Bin != BinaryOp::Rem || (TargetTy->isInt() && ValueTy->isInt()));
+  if (!OK) {
+    diag(S->getLoc(), diag::err_binary_operands)
+        << getSpelling(S->Op) << TargetTy->getName() << ValueTy->getName()
+        << S->getRange();
+    return;
+  }
+  if (!convertImplicitly(S->Value, TargetTy))
+    Mismatch(ValueTy);
+}

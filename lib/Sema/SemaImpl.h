@@ -1,0 +1,186 @@
+//===- SemaImpl.h - the checker shared by the lib/Sema files ---*- C++ -*-===//
+//
+// Private to lib/Sema. One Sema object checks one behavior; its members are
+// split over files by construct (Sema.cpp: module tables and name lookup,
+// SemaDecl.cpp: types, signatures and declarations, SemaStmt.cpp, SemaExpr.cpp,
+// SemaTask.cpp: yields, taskState and the call graph). Keeping all state in
+// one class lets each file stay a plain walk over the tree without threading
+// a context parameter through every function.
+//
+//===----------------------------------------------------------------------===//
+#ifndef BSC_LIB_SEMA_SEMAIMPL_H
+#define BSC_LIB_SEMA_SEMAIMPL_H
+
+#include "bsc/AST/AST.h"
+#include "bsc/Basic/Diagnostic.h"
+#include "bsc/Sema/Sema.h"
+#include "llvm/ADT/DenseMap.h"
+#include "llvm/ADT/DenseSet.h"
+#include "llvm/ADT/SmallVector.h"
+#include "llvm/ADT/StringMap.h"
+#include "llvm/ADT/StringSet.h"
+
+namespace bsc {
+namespace sema {
+
+/// What a (possibly qualified) name denotes. Lookup reports the errors it
+/// can judge by itself (unknown qualifier, module not required, ...) and
+/// then answers Error, which callers treat as poison.
+enum class LookupKind {
+  Error,       ///< Already diagnosed, or a name of an unknown module.
+  Local,       ///< Var.
+  Param,       ///< Param.
+  Callable,    ///< Callable: a func or a task.
+  NativeFn,    ///< NativeFn.
+  EnumValue,   ///< Ty (an enum or TaskState) and Value.
+  Input,       ///< The `input` global.
+  Output,      ///< The `output` global.
+  Module,      ///< A module name on its own.
+  TypeName,    ///< A type: a built-in, TaskState or a registered enum (Ty).
+};
+
+/// The answer of a lookup: a kind and the fields that kind names.
+struct LookupResult {
+  LookupKind Kind = LookupKind::Error;
+  VarDecl *Var = nullptr;
+  ParamDecl *Param = nullptr;
+  CallableDecl *Callable = nullptr;
+  const NativeFunction *NativeFn = nullptr;
+  const Type *Ty = nullptr;
+  int32_t Value = 0;
+};
+
+/// Whether lookup looks for a value (locals first) or a type (module-level
+/// names only; an unknown name is then an unknown type).
+enum class LookupMode { Value, Type };
+
+/// How an expression is used; decides what `input` and `output` allow.
+enum class Access {
+  Read,       ///< Its value is read.
+  Write,      ///< It is the target of `=`.
+  Modify,     ///< It is the target of `+=` etc. (read and written).
+  MethodBase, ///< A method is called on it.
+};
+
+/// The name tables of one module.
+struct ModuleInfo {
+  ModuleAST *AST = nullptr;
+  /// The module's namespace: its top-level funcs and tasks.
+  llvm::StringMap<CallableDecl *> Decls;
+  /// The modules it requires, by name (resolved or poison).
+  llvm::StringMap<const RequireDecl *> Requires;
+};
+
+/// One call site in the call graph.
+struct CallEdge {
+  CallableDecl *Callee;
+  llvm::SMLoc Loc;
+};
+
+/// The checker. See Sema.cpp for the rules it implements.
+class Sema {
+public:
+  Sema(ASTContext &Ctx, DiagnosticEngine &Diags, Behavior &Out);
+  /// Checks every module; returns false if an error was reported.
+  bool run(llvm::ArrayRef<ModuleAST *> Modules);
+
+  //--- Sema.cpp: reporting, module tables, name lookup ----------------------
+  DiagnosticBuilder diag(llvm::SMLoc Loc, diag::Kind K);
+  void buildModuleTables(llvm::ArrayRef<ModuleAST *> Modules);
+  LookupResult lookup(const QualifiedName &N, LookupMode Mode);
+  LookupResult lookupUnqualified(const Ident &Id, LookupMode Mode);
+  LookupResult lookupQualified(const QualifiedName &N);
+  LookupResult lookupEnumValue(const Type *EnumTy, llvm::StringRef EnumName,
+                               const Ident &Value);
+  /// The type of a registered enum (`M::E`).
+  const Type *getEnumType(const NativeModule &M, const NativeEnum &E);
+  /// The enum named `E` of a native module the current module requires.
+  const Type *findRequiredEnum(llvm::StringRef E);
+
+  //--- SemaDecl.cpp: types, signatures, declarations, bodies ----------------
+  const Type *resolveType(const QualifiedName &N);
+  const Type *resolveNativeType(const NativeType &T);
+  void checkSignature(CallableDecl *C);
+  void checkTopLevelCallable(CallableDecl *C);
+  void checkCallableBody(CallableDecl *C);
+  void checkNestedFunc(FuncDecl *F);
+  void pushScope() { Scopes.emplace_back(); }
+  void popScope() { Scopes.pop_back(); }
+  /// Adds a local or parameter to the innermost scope; a name that is
+  /// already visible as a local or parameter is err_shadowing.
+  void declare(Decl *D);
+  Decl *findVisible(llvm::StringRef Name);
+  void checkVarDecl(VarDecl *V);
+
+  //--- SemaStmt.cpp ---------------------------------------------------------
+  void checkBlock(BlockStmt *B);
+  void checkStmt(Stmt *S);
+  void checkIf(IfStmt *S);
+  void checkFor(ForStmt *S);
+  void checkReturn(ReturnStmt *S);
+  void checkCondition(Expr *&Cond);
+  void checkMissingReturn(FuncDecl *F);
+
+  //--- SemaExpr.cpp ---------------------------------------------------------
+  /// Checks `E` (for the given use), sets E->Ty and returns it.
+  const Type *checkExpr(Expr *E, Access A = Access::Read);
+  const Type *checkExprImpl(Expr *E, Access A);
+  const Type *checkName(NameExpr *E, Access A);
+  const Type *applyLookup(NameExpr *E, const LookupResult &L, Access A);
+  const Type *checkIO(NameExpr *E, bool IsInput, Access A);
+  const Type *checkMember(MemberExpr *E, Access A);
+  const Type *checkUnary(UnaryExpr *E);
+  const Type *checkBinary(BinaryExpr *E);
+  const Type *checkConversion(ConversionExpr *E);
+  /// Checks a call; a call statement may call a task or a void function.
+  const Type *checkCall(CallExpr *C, bool AsStatement);
+  void checkAssign(AssignStmt *S);
+  const Type *checkAssignTarget(Expr *T, Access A);
+  /// Converts `E` to `To` if the language allows it implicitly (wrapping an
+  /// int in an implicit int-to-float conversion); false if not allowed.
+  bool convertImplicitly(Expr *&E, const Type *To);
+  void promoteToFloat(Expr *&E);
+  /// The source text of an expression, for messages.
+  std::string getText(const Expr *E) const;
+
+  //--- SemaTask.cpp ---------------------------------------------------------
+  void checkYield(YieldStmt *S);
+  const Type *checkTaskState(TaskStateExpr *E);
+  void recordCall(CallableDecl *Callee, llvm::SMLoc Loc);
+  void checkCallGraph();
+
+  //--- State ----------------------------------------------------------------
+  ASTContext &Ctx;
+  TypeContext &Types;
+  DiagnosticEngine &Diags;
+  Behavior &Out;
+  bool HadError = false;
+
+  std::vector<std::unique_ptr<ModuleInfo>> ModuleInfos;
+  llvm::DenseMap<const ModuleAST *, ModuleInfo *> InfoOf;
+  /// Names of every module a `requires` could name (known modules).
+  llvm::StringSet<> KnownModules;
+  /// Every native module some module requires (for native enum types).
+  std::vector<const NativeModule *> AllNatives;
+
+  ModuleInfo *CurModule = nullptr;
+  /// The func or task whose body is being checked (a nested func when
+  /// inside one).
+  CallableDecl *CurCallable = nullptr;
+  /// The task whose context the current code runs in (the enclosing task of
+  /// a nested func), or null.
+  TaskDecl *CurTask = nullptr;
+  unsigned LoopDepth = 0;
+  llvm::DenseSet<const FuncDecl *> CheckedNested;
+
+  using Scope = llvm::SmallVector<std::pair<llvm::StringRef, Decl *>, 4>;
+  std::vector<Scope> Scopes;
+
+  /// Call sites of each func and task, in source order.
+  llvm::DenseMap<const CallableDecl *, std::vector<CallEdge>> Calls;
+};
+
+} // namespace sema
+} // namespace bsc
+
+#endif
