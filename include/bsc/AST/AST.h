@@ -547,6 +547,9 @@ public:
   std::string Name;      ///< The file name without `.bs`.
   std::string Path;      ///< As given or found.
   unsigned BufferID = 0; ///< In the compilation's llvm::SourceMgr.
+  /// The text of that buffer (set by the parser), so that dumpAST can turn
+  /// node locations into line:col without a SourceMgr.
+  llvm::StringRef Source;
   std::vector<RequireDecl> Requires;
   /// The funcs and tasks at module scope, in source order.
   std::vector<CallableDecl *> Decls;
