@@ -4,12 +4,31 @@
 // `--emit=` value names a place where the pipeline can stop and dump what it
 // has (MLIR Toy's -emit), which is what the tests look at.
 //
+//   bsc [options] FILE.bs...          a program linked with the runtime shim
+//   bsc -c / -S                       an object / assembly to embed
+//   bsc --emit-header                 the typed C header of the behavior
+//   bsc run [options] FILE.bs...      JIT on the host, N cycles of the entry
+//
+// Everything the user can get wrong on the command line (a bad option value,
+// a missing entry, an unknown target, an unwritable output, a missing
+// linker or runtime) becomes a `bsc: error: ...` diagnostic and exit 1.
+//
 //===----------------------------------------------------------------------===//
+#include "EmitHeader.h"
+#include "bsc/CodeGen/CodeGen.h"
+#include "bsc/CodeGen/Target.h"
 #include "bsc/Frontend/Frontend.h"
+#include "bsc/JIT/JIT.h"
 #include "bsc/Parse/Lexer.h"
 #include "bsc/Parse/Parser.h"
+#include "llvm/ADT/ScopeExit.h"
+#include "llvm/ADT/StringExtras.h"
 #include "llvm/Support/CommandLine.h"
+#include "llvm/Support/FileSystem.h"
 #include "llvm/Support/InitLLVM.h"
+#include "llvm/Support/Path.h"
+#include "llvm/Support/Program.h"
+#include "llvm/Support/ToolOutputFile.h"
 #include "llvm/Support/WithColor.h"
 #include "llvm/Support/raw_ostream.h"
 
@@ -17,12 +36,36 @@ using namespace bsc;
 namespace cl = llvm::cl;
 
 namespace {
-enum class EmitKind { Default, Tokens, AST, TypedAST };
+enum class EmitKind { Default, Tokens, AST, TypedAST, LLVM, Asm, Obj };
 
 cl::OptionCategory BscCategory("bsc options");
+cl::SubCommand RunCmd("run", "Run a behavior on the host in a JIT, one call "
+                             "of the entry per cycle");
+
+/// Options shared by the compiler and `bsc run` are in both subcommands.
+#define BSC_BOTH cl::sub(cl::SubCommand::getTopLevel()), cl::sub(RunCmd)
 
 cl::list<std::string> InputFiles(cl::Positional, cl::desc("<file.bs>..."),
-                                 cl::cat(BscCategory));
+                                 cl::cat(BscCategory), BSC_BOTH);
+cl::list<std::string> IncludeDirs("I", cl::Prefix,
+                                  cl::desc("Search folder for required modules"),
+                                  cl::value_desc("dir"), cl::cat(BscCategory),
+                                  BSC_BOTH);
+cl::opt<std::string>
+    EntryName("entry",
+              cl::desc("The task or func called once per cycle (default: "
+                       "'main' of the first file's module)"),
+              cl::value_desc("Module::name"), cl::init("main"),
+              cl::cat(BscCategory), BSC_BOTH);
+cl::opt<std::string> CyclesArg("cycles",
+                               cl::desc("Execution cycles to run (default 1)"),
+                               cl::value_desc("N"), cl::init("1"),
+                               cl::cat(BscCategory), BSC_BOTH);
+cl::opt<std::string> OptLevelArg("O", cl::Prefix,
+                                 cl::desc("Optimisation level 0..3 (default 0)"),
+                                 cl::value_desc("level"), cl::init("0"),
+                                 cl::cat(BscCategory), BSC_BOTH);
+
 cl::opt<bool> SyntaxOnly("fsyntax-only",
                          cl::desc("Check the program; produce no output"),
                          cl::cat(BscCategory));
@@ -35,11 +78,45 @@ cl::opt<EmitKind> Emit(
     cl::values(clEnumValN(EmitKind::Tokens, "tokens", "the tokens of each file"),
                clEnumValN(EmitKind::AST, "ast", "the syntax tree (parse only)"),
                clEnumValN(EmitKind::TypedAST, "typed-ast",
-                          "the syntax tree after semantic checks")),
+                          "the syntax tree after semantic checks"),
+               clEnumValN(EmitKind::LLVM, "llvm", "the LLVM IR (after -O)"),
+               clEnumValN(EmitKind::Asm, "asm", "the target's assembly"),
+               clEnumValN(EmitKind::Obj, "obj", "the object file")),
     cl::cat(BscCategory));
-cl::list<std::string> IncludeDirs("I", cl::Prefix,
-                                  cl::desc("Search folder for required modules"),
-                                  cl::value_desc("dir"), cl::cat(BscCategory));
+cl::opt<bool> EmitLLVMFlag("emit-llvm", cl::desc("Same as --emit=llvm"),
+                           cl::cat(BscCategory));
+cl::opt<bool> CompileOnly("c", cl::desc("Write an object file to embed "
+                                        "(default name: <first file>.o)"),
+                          cl::cat(BscCategory));
+cl::opt<bool> AssembleOnly("S", cl::desc("Write assembly (default name: "
+                                         "<first file>.s)"),
+                           cl::cat(BscCategory));
+cl::opt<bool> EmitHeaderFlag(
+    "emit-header",
+    cl::desc("Write the typed C header of the behavior for the target"),
+    cl::cat(BscCategory));
+cl::opt<std::string> OutputFile("o", cl::desc("Output file ('-' for stdout)"),
+                                cl::value_desc("file"), cl::cat(BscCategory));
+cl::opt<std::string>
+    TargetArg("target",
+              cl::desc("i586 (the robot: Geode, PIC, ELF32), x86_64, or an "
+                       "LLVM triple (default: the host)"),
+              cl::value_desc("target"), cl::cat(BscCategory));
+cl::opt<std::string> CPUArg("mcpu",
+                            cl::desc("Target CPU (default: geode for i586)"),
+                            cl::value_desc("cpu"), cl::cat(BscCategory));
+cl::opt<std::string> BehaviorNameArg(
+    "behavior-name",
+    cl::desc("Prefix of the exported symbols (default: the first file's "
+             "module name)"),
+    cl::value_desc("name"), cl::cat(BscCategory));
+cl::opt<bool> DebugInfo("g",
+                        cl::desc("Accepted for compatibility; bsc does not "
+                                 "emit debug information yet"),
+                        cl::cat(BscCategory));
+
+/// Limit of --cycles: a run of more than a day of 30 Hz cycles is a typo.
+constexpr unsigned MaxCycles = 100000000;
 
 /// Prints the diagnostics (or verifies them) and returns the exit status.
 int finish(Compilation &C) {
@@ -69,11 +146,332 @@ int emitAST(Compilation &C, const FrontendOptions &Opts) {
     dumpAST(*M, llvm::outs());
   return finish(C);
 }
+
+bool isIdentifier(llvm::StringRef S) {
+  if (S.empty() || !(llvm::isAlpha(S[0]) || S[0] == '_'))
+    return false;
+  return llvm::all_of(S, [](char Ch) { return llvm::isAlnum(Ch) || Ch == '_'; });
+}
+
+/// The options every back-end path needs, checked.
+struct BackendOptions {
+  TargetOptions Target;
+  unsigned Cycles = 1;
+};
+
+/// Checks -O and --cycles; reports and returns false if one is bad.
+bool parseBackendOptions(DiagnosticEngine &Diags, BackendOptions &Out) {
+  bool OK = true;
+  if (std::optional<unsigned> Level = parseOptLevel(OptLevelArg)) {
+    Out.Target.OptLevel = *Level;
+  } else {
+    Diags.report(llvm::SMLoc(), diag::err_bad_option_value)
+        << OptLevelArg.getValue() << "-O";
+    OK = false;
+  }
+  unsigned Cycles;
+  if (llvm::StringRef(CyclesArg).getAsInteger(10, Cycles) ||
+      Cycles > MaxCycles) {
+    Diags.report(llvm::SMLoc(), diag::err_bad_option_value)
+        << CyclesArg.getValue() << "--cycles";
+    OK = false;
+  } else {
+    Out.Cycles = Cycles;
+  }
+  Out.Target.Target = TargetArg;
+  Out.Target.CPU = CPUArg;
+  return OK;
+}
+
+/// The behavior name: --behavior-name, or the first input's module.
+std::string getBehaviorName(Compilation &C) {
+  if (!BehaviorNameArg.empty()) {
+    if (!isIdentifier(BehaviorNameArg)) {
+      C.Diags.report(llvm::SMLoc(), diag::err_bad_behavior_name)
+          << BehaviorNameArg.getValue();
+      return "";
+    }
+    return BehaviorNameArg;
+  }
+  return C.Modules.empty() ? "" : C.Modules.front()->Name;
+}
+
+/// Finds --entry: `Module::name`, or `name` in the first input's module.
+const CallableDecl *findEntry(Compilation &C) {
+  llvm::StringRef Spec = EntryName;
+  auto [ModName, Name] = Spec.rsplit("::");
+  if (Name.empty() && !Spec.contains("::")) {
+    Name = Spec;
+    ModName = C.Modules.empty() ? "" : llvm::StringRef(C.Modules.front()->Name);
+  }
+  for (ModuleAST *M : C.Checked.Modules) {
+    if (M->Name != ModName)
+      continue;
+    for (CallableDecl *D : M->Decls)
+      if (D->getName().Name == Name)
+        return D;
+  }
+  C.Diags.report(llvm::SMLoc(), diag::err_no_entry) << EntryName.getValue();
+  return nullptr;
+}
+
+/// Finds the entry of a program or a JIT run: it must take no parameters.
+const CallableDecl *findProgramEntry(Compilation &C) {
+  const CallableDecl *Entry = findEntry(C);
+  if (Entry && !Entry->Params.empty()) {
+    C.Diags.report(Entry->getLoc(), diag::err_entry_has_params)
+        << Entry->getQualifiedName();
+    return nullptr;
+  }
+  return Entry;
+}
+
+/// Opens `Path` for writing ("-" is stdout); reports failure.
+std::unique_ptr<llvm::ToolOutputFile> openOutput(Compilation &C,
+                                                 llvm::StringRef Path,
+                                                 bool Text) {
+  std::error_code EC;
+  if (Path != "-" && llvm::sys::fs::is_directory(Path)) {
+    C.Diags.report(llvm::SMLoc(), diag::err_cannot_write_output)
+        << Path << "is a directory";
+    return nullptr;
+  }
+  auto Out = std::make_unique<llvm::ToolOutputFile>(
+      Path, EC, Text ? llvm::sys::fs::OF_Text : llvm::sys::fs::OF_None);
+  if (EC) {
+    C.Diags.report(llvm::SMLoc(), diag::err_cannot_write_output)
+        << Path << EC.message();
+    return nullptr;
+  }
+  return Out;
+}
+
+/// `<first input without .bs><Ext>` in the current folder.
+std::string defaultOutputName(llvm::StringRef Ext) {
+  llvm::StringRef Stem = llvm::sys::path::stem(InputFiles.front());
+  return (Stem + Ext).str();
+}
+
+/// The folder the runtime libraries are in: `<bsc's folder>/../lib`.
+std::string getRuntimeDir(const char *Argv0) {
+  std::string Exe =
+      llvm::sys::fs::getMainExecutable(Argv0, (void *)&getRuntimeDir);
+  llvm::SmallString<256> Dir(Exe);
+  llvm::sys::path::remove_filename(Dir); // bin
+  llvm::sys::path::remove_filename(Dir); // build
+  llvm::sys::path::append(Dir, "lib");
+  return std::string(Dir);
+}
+
+/// Whether `T` runs 32-bit x86 code (the robot runtime and `cc -m32`).
+bool isX86_32(const llvm::Triple &T) { return T.getArch() == llvm::Triple::x86; }
+
+/// Links `Object` with the runtime shim into the program `Output` with the
+/// system's C compiler driver. Reports and returns false on failure.
+bool linkProgram(Compilation &C, const llvm::Triple &T, llvm::StringRef Object,
+                 llvm::StringRef Output, const char *Argv0) {
+  std::string RuntimeDir = getRuntimeDir(Argv0);
+  std::string RuntimeName =
+      isX86_32(T) ? "libbscript_rt_i586.a" : "libbscript_rt.a";
+  llvm::SmallString<256> Runtime(RuntimeDir);
+  llvm::sys::path::append(Runtime, RuntimeName);
+  if (!llvm::sys::fs::exists(Runtime)) {
+    C.Diags.report(llvm::SMLoc(), diag::err_runtime_missing)
+        << RuntimeName << ("'" + RuntimeDir + "'");
+    return false;
+  }
+
+  // `cc` (gcc with gcc-multilib for -m32), else clang-19 with lld.
+  std::vector<std::string> Args;
+  std::string Program;
+  if (auto CC = llvm::sys::findProgramByName("cc")) {
+    Program = *CC;
+    Args = {"cc"};
+    if (isX86_32(T))
+      Args.push_back("-m32");
+  } else if (auto Clang = llvm::sys::findProgramByName("clang-19")) {
+    Program = *Clang;
+    Args = {"clang-19", "--target=" + T.str(), "-fuse-ld=lld"};
+  } else {
+    C.Diags.report(llvm::SMLoc(), diag::err_no_linker)
+        << T.str() << "neither 'cc' nor 'clang-19' is on PATH";
+    return false;
+  }
+  Args.insert(Args.end(), {Object.str(), Runtime.str().str(), "-o",
+                           Output.str()});
+  llvm::SmallVector<llvm::StringRef, 8> ArgRefs(Args.begin(), Args.end());
+  std::string ErrMsg;
+  int RC = llvm::sys::ExecuteAndWait(Program, ArgRefs, std::nullopt, {}, 0, 0,
+                                     &ErrMsg);
+  if (RC != 0) {
+    C.Diags.report(llvm::SMLoc(), diag::err_link_failed)
+        << Output << Program << RC;
+    return false;
+  }
+  return true;
+}
+
+/// What the top-level command produces when it goes past the front end.
+enum class OutputKind { LLVM, Asm, Obj, Header, Program };
+
+int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
+            const char *Argv0) {
+  std::unique_ptr<llvm::TargetMachine> TM =
+      createTargetMachine(BOpts.Target, C.Diags);
+  if (!TM)
+    return finish(C);
+  CodeGenOptions CGOpts;
+  CGOpts.BehaviorName = getBehaviorName(C);
+  if (CGOpts.BehaviorName.empty())
+    return finish(C);
+  if (Kind == OutputKind::Program) {
+    CGOpts.ProgramEntry = findProgramEntry(C);
+    if (!CGOpts.ProgramEntry)
+      return finish(C);
+    CGOpts.ProgramCycles = BOpts.Cycles;
+  }
+
+  llvm::LLVMContext Ctx;
+  BehaviorLayout Layout;
+  std::unique_ptr<llvm::Module> M =
+      emitLLVM(C.Checked, Ctx, TM->getTargetTriple(), TM->createDataLayout(),
+               CGOpts, Layout);
+  if (!verifyGeneratedModule(*M, C.Diags))
+    return finish(C);
+
+  if (Kind == OutputKind::Header) {
+    auto Out = openOutput(C, OutputFile.empty() ? "-" : OutputFile.getValue(), true);
+    if (!Out)
+      return finish(C);
+    writeBehaviorHeader(C.Checked, Layout, CGOpts.BehaviorName,
+                        TM->getTargetTriple(), TM->createDataLayout(),
+                        Out->os());
+    Out->keep();
+    return finish(C);
+  }
+
+  optimizeModule(*M, TM.get(), BOpts.Target.OptLevel);
+
+  switch (Kind) {
+  case OutputKind::LLVM: {
+    auto Out = openOutput(C, OutputFile.empty() ? "-" : OutputFile.getValue(), true);
+    if (!Out)
+      return finish(C);
+    M->print(Out->os(), nullptr);
+    Out->keep();
+    return finish(C);
+  }
+  case OutputKind::Asm:
+  case OutputKind::Obj: {
+    bool IsAsm = Kind == OutputKind::Asm;
+    std::string Path = OutputFile;
+    if (Path.empty())
+      Path = Emit != EmitKind::Default ? "-"
+                                       : defaultOutputName(IsAsm ? ".s" : ".o");
+    auto Out = openOutput(C, Path, IsAsm);
+    if (!Out)
+      return finish(C);
+    if (emitMachineCode(*M, *TM,
+                        IsAsm ? llvm::CodeGenFileType::AssemblyFile
+                              : llvm::CodeGenFileType::ObjectFile,
+                        Out->os(), C.Diags))
+      Out->keep();
+    return finish(C);
+  }
+  case OutputKind::Program: {
+    std::string Path = OutputFile.empty() ? "a.out" : OutputFile.getValue();
+    // Check the output before the work of linking, and so that the error
+    // names the file rather than coming from the linker.
+    if (!openOutput(C, Path, false))
+      return finish(C);
+    int FD;
+    llvm::SmallString<128> ObjPath;
+    if (std::error_code EC = llvm::sys::fs::createTemporaryFile(
+            "bsc-" + CGOpts.BehaviorName, "o", FD, ObjPath)) {
+      C.Diags.report(llvm::SMLoc(), diag::err_cannot_write_output)
+          << "a temporary object file" << EC.message();
+      return finish(C);
+    }
+    auto RemoveObj =
+        llvm::make_scope_exit([&] { llvm::sys::fs::remove(ObjPath); });
+    {
+      llvm::raw_fd_ostream ObjOS(FD, /*shouldClose=*/true);
+      if (!emitMachineCode(*M, *TM, llvm::CodeGenFileType::ObjectFile, ObjOS,
+                           C.Diags))
+        return finish(C);
+    }
+    if (!linkProgram(C, TM->getTargetTriple(), ObjPath, Path, Argv0))
+      llvm::sys::fs::remove(Path);
+    return finish(C);
+  }
+  case OutputKind::Header:
+    break;
+  }
+  return finish(C);
+}
+
+/// `bsc run`: the behavior in the host JIT, --cycles calls of --entry.
+int runJIT(Compilation &C, const FrontendOptions &FOpts) {
+  BackendOptions BOpts;
+  bool OptionsOK = parseBackendOptions(C.Diags, BOpts);
+  if (!runFrontend(C, FOpts) || !OptionsOK)
+    return finish(C);
+  const CallableDecl *Entry = findProgramEntry(C);
+  if (!Entry)
+    return finish(C);
+  std::unique_ptr<BehaviorJIT> JIT = BehaviorJIT::create(C.Diags);
+  if (!JIT)
+    return finish(C);
+
+  CodeGenOptions CGOpts;
+  CGOpts.BehaviorName = C.Modules.front()->Name;
+  auto Ctx = std::make_unique<llvm::LLVMContext>();
+  BehaviorLayout Layout;
+  std::unique_ptr<llvm::Module> M = emitLLVM(
+      C.Checked, *Ctx, JIT->getTriple(), JIT->getDataLayout(), CGOpts, Layout);
+  if (!verifyGeneratedModule(*M, C.Diags))
+    return finish(C);
+  std::string EntrySymbol = getEntrySymbol(CGOpts.BehaviorName, *Entry);
+  if (JIT->addModule(std::move(M), std::move(Ctx), BOpts.Target.OptLevel,
+                     C.Diags))
+    JIT->runCycles(Layout.InfoSymbol, EntrySymbol, BOpts.Cycles, C.Diags);
+  return finish(C);
+}
+
+/// Reports options that ask for two different outputs.
+bool checkConflicts(DiagnosticEngine &Diags) {
+  llvm::SmallVector<const char *, 4> Modes;
+  if (SyntaxOnly)
+    Modes.push_back("-fsyntax-only");
+  if (Verify)
+    Modes.push_back("--verify");
+  if (CompileOnly)
+    Modes.push_back("-c");
+  if (AssembleOnly)
+    Modes.push_back("-S");
+  if (EmitHeaderFlag)
+    Modes.push_back("--emit-header");
+  if (Emit != EmitKind::Default)
+    Modes.push_back("--emit");
+  if (EmitLLVMFlag)
+    Modes.push_back("--emit-llvm");
+  // --verify checks the diagnostics of a front-end run: -fsyntax-only with it
+  // says the same thing twice.
+  if (Modes.size() == 2 && SyntaxOnly && Verify)
+    return true;
+  if (Modes.size() > 1) {
+    Diags.report(llvm::SMLoc(), diag::err_conflicting_options)
+        << Modes[0] << Modes[1];
+    return false;
+  }
+  return true;
+}
 } // namespace
 
 int main(int argc, char **argv) {
   llvm::InitLLVM X(argc, argv);
   cl::HideUnrelatedOptions(BscCategory);
+  cl::HideUnrelatedOptions(BscCategory, RunCmd);
   cl::ParseCommandLineOptions(argc, argv,
                               "bsc: the b-script compiler for robot behaviors\n");
 
@@ -82,6 +480,13 @@ int main(int argc, char **argv) {
   Opts.Inputs.assign(InputFiles.begin(), InputFiles.end());
   Opts.IncludeDirs.assign(IncludeDirs.begin(), IncludeDirs.end());
 
+  if (RunCmd)
+    return runJIT(C, Opts);
+
+  if (!checkConflicts(C.Diags))
+    return finish(C);
+  if (EmitLLVMFlag)
+    Emit = EmitKind::LLVM;
   switch (Emit) {
   case EmitKind::Tokens:
     return emitTokens(C);
@@ -89,8 +494,25 @@ int main(int argc, char **argv) {
   case EmitKind::TypedAST:
     return emitAST(C, Opts);
   case EmitKind::Default:
+  case EmitKind::LLVM:
+  case EmitKind::Asm:
+  case EmitKind::Obj:
     break;
   }
-  runFrontend(C, Opts);
-  return finish(C);
+
+  BackendOptions BOpts;
+  bool OptionsOK = parseBackendOptions(C.Diags, BOpts);
+  if (!runFrontend(C, Opts) || !OptionsOK || SyntaxOnly || Verify)
+    return finish(C);
+
+  OutputKind Kind = OutputKind::Program;
+  if (Emit == EmitKind::LLVM)
+    Kind = OutputKind::LLVM;
+  else if (Emit == EmitKind::Asm || AssembleOnly)
+    Kind = OutputKind::Asm;
+  else if (Emit == EmitKind::Obj || CompileOnly)
+    Kind = OutputKind::Obj;
+  else if (EmitHeaderFlag)
+    Kind = OutputKind::Header;
+  return compile(C, BOpts, Kind, argv[0]);
 }

@@ -1,0 +1,90 @@
+//===- Target.h - target machines, optimisation, object emission -*- C++ -*-===//
+//
+// The part of the back end after IR generation: which machine a behavior is
+// compiled for (`-target`, `-mcpu`), the optimisation pipeline (`-O0..-O3`)
+// and writing assembly or an object file. It is separate from emitLLVM
+// because the JIT (`bsc run`) and the driver share it, and because emitLLVM
+// only needs the DataLayout, not the machine.
+//
+// The robot target is `-target i586`: i586-unknown-linux-gnu with
+// `-mcpu=geode` (the paper's Nao V3.3: no CMOV, no SSE, x87 floats),
+// position-independent code (Reloc::PIC_) so the object links into a shared
+// library without text relocations.
+//
+// Nothing here prints: failures are reported into a DiagnosticEngine.
+//
+//===----------------------------------------------------------------------===//
+#ifndef BSC_CODEGEN_TARGET_H
+#define BSC_CODEGEN_TARGET_H
+
+#include "bsc/Basic/Diagnostic.h"
+#include "llvm/ADT/StringRef.h"
+#include "llvm/Target/TargetMachine.h"
+#include "llvm/TargetParser/Triple.h"
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace llvm {
+class Module;
+class raw_pwrite_stream;
+} // namespace llvm
+
+namespace bsc {
+
+/// What the user asked for on the command line.
+struct TargetOptions {
+  /// `-target`: "i586", "x86_64", any LLVM triple, or empty for the host.
+  std::string Target;
+  /// `-mcpu`: empty for the target's default (geode for i586).
+  std::string CPU;
+  /// `-O0`..`-O3`.
+  unsigned OptLevel = 0;
+};
+
+/// The highest `-O` level.
+constexpr unsigned MaxOptLevel = 3;
+
+/// Registers the X86 back end with LLVM (the only one bsc links). Idempotent.
+void initializeTargets();
+
+/// The triple `-target Name` stands for: "i586" is i586-unknown-linux-gnu,
+/// "x86_64" is x86_64-unknown-linux-gnu, the empty string is the host, and
+/// anything else is normalised as an LLVM triple. Does not check that LLVM
+/// supports it (createTargetMachine does).
+llvm::Triple resolveTargetTriple(llvm::StringRef Name);
+
+/// The CPU used when `-mcpu` is not given: "geode" for i586 triples (the
+/// robot), "x86-64" for x86_64, "generic" otherwise.
+std::string getDefaultCPU(const llvm::Triple &T);
+
+/// Parses an `-O` value ("0".."3"); std::nullopt if it is not one.
+std::optional<unsigned> parseOptLevel(llvm::StringRef Value);
+
+/// Creates the machine for `Opts`, PIC, with the CPU checked against the
+/// target's list. Reports an unknown triple or CPU into `Diags` and returns
+/// null.
+std::unique_ptr<llvm::TargetMachine>
+createTargetMachine(const TargetOptions &Opts, DiagnosticEngine &Diags);
+
+/// Checks `M` with the IR verifier and reports an internal error if it is
+/// broken (a bug in bsc, never in the user's program). Returns false then.
+bool verifyGeneratedModule(const llvm::Module &M, DiagnosticEngine &Diags);
+
+/// Runs the new pass manager's default pipeline for `OptLevel` over `M`.
+/// Library-call recognition is disabled (the generated object must not call
+/// memset/memcpy or libm), so the pipeline never introduces libc calls.
+/// `TM` may be null (then no target-specific analyses are used).
+void optimizeModule(llvm::Module &M, llvm::TargetMachine *TM,
+                    unsigned OptLevel);
+
+/// Writes `M` as assembly or as an object file through the legacy code
+/// generation pass manager. Reports into `Diags` and returns false if the
+/// target cannot emit that kind of file.
+bool emitMachineCode(llvm::Module &M, llvm::TargetMachine &TM,
+                     llvm::CodeGenFileType Kind, llvm::raw_pwrite_stream &OS,
+                     DiagnosticEngine &Diags);
+
+} // namespace bsc
+
+#endif

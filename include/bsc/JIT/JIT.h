@@ -1,0 +1,62 @@
+//===- JIT.h - running a behavior on the host with ORC LLJIT ---*- C++ -*-===//
+//
+// `bsc run`: the development machine runs a behavior in a JIT, cycle by
+// cycle, with the same runtime shim and the same generated code as a
+// compiled program, so it prints exactly what the robot program would.
+// The runtime shim is linked into bsc and handed to the JIT by address;
+// the generated code cannot reach anything else in the bsc process.
+//
+//===----------------------------------------------------------------------===//
+#ifndef BSC_JIT_JIT_H
+#define BSC_JIT_JIT_H
+
+#include "bsc/Basic/Diagnostic.h"
+#include "llvm/IR/DataLayout.h"
+#include "llvm/IR/LLVMContext.h"
+#include "llvm/IR/Module.h"
+#include "llvm/TargetParser/Triple.h"
+#include <memory>
+#include <string>
+
+namespace llvm::orc {
+class LLJIT;
+} // namespace llvm::orc
+
+namespace bsc {
+
+/// One JIT session on the host: a DataLayout to generate code for, then one
+/// module to run.
+class BehaviorJIT {
+public:
+  /// Creates the JIT for the host CPU. Reports into `Diags` and returns null
+  /// if the host cannot JIT.
+  static std::unique_ptr<BehaviorJIT> create(DiagnosticEngine &Diags);
+  ~BehaviorJIT();
+
+  const llvm::Triple &getTriple() const { return Triple; }
+  const llvm::DataLayout &getDataLayout() const { return DL; }
+
+  /// Optimises `M` at `OptLevel` and adds it. Returns false after reporting.
+  bool addModule(std::unique_ptr<llvm::Module> M,
+                 std::unique_ptr<llvm::LLVMContext> Ctx, unsigned OptLevel,
+                 DiagnosticEngine &Diags);
+
+  /// Initialises a state for the behavior whose info struct is `InfoSymbol`,
+  /// then `Cycles` times begins a cycle (no input or output) and calls the
+  /// parameterless entry `EntrySymbol`. Returns false after reporting.
+  bool runCycles(llvm::StringRef InfoSymbol, llvm::StringRef EntrySymbol,
+                 unsigned Cycles, DiagnosticEngine &Diags);
+
+private:
+  BehaviorJIT() = default;
+  void *lookup(llvm::StringRef Symbol, DiagnosticEngine &Diags);
+
+  std::unique_ptr<llvm::orc::LLJIT> J;
+  llvm::Triple Triple;
+  llvm::DataLayout DL{""};
+  std::string CPU;
+};
+
+} // namespace bsc
+
+#endif

@@ -1,0 +1,36 @@
+//===- EmitObject.cpp - assembly and object files --------------------------===//
+//
+// Machine code generation still runs on the legacy pass manager in LLVM 19
+// (TargetMachine::addPassesToEmitFile), so this is the one place bsc uses it.
+// As in Optimize.cpp, the target library info has no C functions.
+//
+//===----------------------------------------------------------------------===//
+#include "bsc/CodeGen/Target.h"
+#include "llvm/Analysis/TargetLibraryInfo.h"
+#include "llvm/IR/LegacyPassManager.h"
+#include "llvm/IR/Module.h"
+#include "llvm/Support/raw_ostream.h"
+
+using namespace bsc;
+
+bool bsc::emitMachineCode(llvm::Module &M, llvm::TargetMachine &TM,
+                          llvm::CodeGenFileType Kind,
+                          llvm::raw_pwrite_stream &OS,
+                          DiagnosticEngine &Diags) {
+  M.setDataLayout(TM.createDataLayout());
+  M.setTargetTriple(TM.getTargetTriple().str());
+
+  llvm::legacy::PassManager PM;
+  llvm::TargetLibraryInfoImpl TLII(TM.getTargetTriple());
+  TLII.disableAllFunctions();
+  PM.add(new llvm::TargetLibraryInfoWrapperPass(TLII));
+  if (TM.addPassesToEmitFile(PM, OS, nullptr, Kind)) {
+    Diags.report(llvm::SMLoc(), diag::err_cannot_emit)
+        << TM.getTargetTriple().str()
+        << (Kind == llvm::CodeGenFileType::AssemblyFile ? "assembly"
+                                                         : "object files");
+    return false;
+  }
+  PM.run(M);
+  return true;
+}
