@@ -1,0 +1,379 @@
+//===- CGExpr.cpp - lowering expressions ----------------------------------===//
+//
+// Expressions become SSA values: int/TaskState/enums are i32, float is
+// float, bool i1, string a pointer to a constant. Sema has made every
+// conversion explicit (an implicit int-to-float promotion is a
+// ConversionExpr), so operands of one operator have one type.
+//
+// The runtime-safety rules of language.md are enforced here, in the
+// instructions chosen, rather than by checks that trap:
+// - + - * on int wrap: no nsw/nuw flags, so no poison and no UB.
+// - int / and % never divide by zero or overflow: a divisor of 1 is
+//   substituted and the result selected (emitSafeIntDivRem).
+// - float -> int saturates with llvm.fptosi.sat (NaN -> 0).
+// - float % is computed inline, never by fmodf (no libm in the object).
+//
+//===----------------------------------------------------------------------===//
+#include "CodeGenImpl.h"
+#include "llvm/IR/Constants.h"
+#include "llvm/IR/Intrinsics.h"
+#include "llvm/Support/ErrorHandling.h"
+
+using namespace bsc;
+using namespace bsc::codegen;
+
+llvm::Value *FunctionEmitter::emitLoad(const Type *T, llvm::Value *Addr,
+                                       const llvm::Twine &Name) {
+  llvm::Value *V = Builder.CreateLoad(CGM.getMemoryType(T), Addr, Name);
+  if (T->isBool())
+    return Builder.CreateTrunc(V, Builder.getInt1Ty());
+  return V;
+}
+
+void FunctionEmitter::emitStore(const Type *T, llvm::Value *V,
+                                llvm::Value *Addr) {
+  if (T->isBool())
+    V = Builder.CreateZExt(V, Builder.getInt8Ty());
+  Builder.CreateStore(V, Addr);
+}
+
+llvm::Value *FunctionEmitter::getDeclAddress(const Decl *Dcl) {
+  if (const auto *V = llvm::dyn_cast<VarDecl>(Dcl)) {
+    // A task's locals are in its frame, also when a nested func uses them.
+    if (const auto *T = llvm::dyn_cast_or_null<TaskDecl>(V->Owner))
+      return getFrameFieldPtr(T, CGM.getFrame(T).Fields.lookup(V));
+    assert(Slots.count(V) && "local of another func");
+    return Slots.lookup(V);
+  }
+  const auto *P = llvm::cast<ParamDecl>(Dcl);
+  if (const auto *T = llvm::dyn_cast_or_null<TaskDecl>(P->Owner)) {
+    if (T == Task)
+      return nullptr;
+    return getFrameFieldPtr(T, CGM.getFrame(T).Fields.lookup(P));
+  }
+  assert(Slots.count(P) && "parameter of another func");
+  return Slots.lookup(P);
+}
+
+llvm::Value *FunctionEmitter::getLValueAddress(const Expr *E) {
+  if (const auto *N = llvm::dyn_cast<NameExpr>(E)) {
+    const Decl *Target = N->Kind == NameKind::Local
+                             ? static_cast<const Decl *>(N->Local)
+                             : static_cast<const Decl *>(N->Param);
+    assert((N->Kind == NameKind::Local || N->Kind == NameKind::Param) &&
+           "Sema allows assignment only to variables");
+    llvm::Value *Addr = getDeclAddress(Target);
+    assert(Addr && "Sema rejects assignment to a task parameter");
+    return Addr;
+  }
+  // `output.motion = ...`: the address will be emitGlobalIOPointer(Output)
+  // plus the member's offset from the binding's layout. Sema does not
+  // accept member access until bindings exist.
+  llvm_unreachable("assignment to a member is not lowered yet");
+}
+
+llvm::Value *FunctionEmitter::emitGlobalIOPointer(NameKind K) {
+  assert((K == NameKind::Input || K == NameKind::Output) && "not a global");
+  // The embedding passes this cycle's input and output to bs_begin_cycle,
+  // which keeps them in the state header.
+  unsigned Field = K == NameKind::Input ? StateInput : StateOutput;
+  llvm::Value *Addr = Builder.CreateConstInBoundsGEP2_32(
+      CGM.getStateType(), StatePtr, 0, Field,
+      K == NameKind::Input ? "input.addr" : "output.addr");
+  return Builder.CreateLoad(Builder.getPtrTy(), Addr,
+                            K == NameKind::Input ? "input" : "output");
+}
+
+llvm::Value *FunctionEmitter::emitCond(const Expr *E) {
+  llvm::Value *V = emitExpr(E);
+  assert(V->getType()->isIntegerTy(1) && "Sema makes conditions bool");
+  return V;
+}
+
+llvm::Value *FunctionEmitter::emitExpr(const Expr *E) {
+  switch (E->getKind()) {
+  case NodeKind::IntLiteralExpr:
+    return Builder.getInt32(llvm::cast<IntLiteralExpr>(E)->Value);
+  case NodeKind::FloatLiteralExpr:
+    return llvm::ConstantFP::get(Builder.getFloatTy(),
+                                 llvm::cast<FloatLiteralExpr>(E)->Value);
+  case NodeKind::BoolLiteralExpr:
+    return Builder.getInt1(llvm::cast<BoolLiteralExpr>(E)->Value);
+  case NodeKind::StringLiteralExpr:
+    return CGM.getString(llvm::cast<StringLiteralExpr>(E)->Value);
+  case NodeKind::NameExpr:
+    return emitName(*llvm::cast<NameExpr>(E));
+  case NodeKind::MemberExpr:
+    return emitMember(*llvm::cast<MemberExpr>(E));
+  case NodeKind::CallExpr:
+    return emitCall(*llvm::cast<CallExpr>(E));
+  case NodeKind::UnaryExpr:
+    return emitUnary(*llvm::cast<UnaryExpr>(E));
+  case NodeKind::BinaryExpr:
+    return emitBinary(*llvm::cast<BinaryExpr>(E));
+  case NodeKind::TaskStateExpr:
+    return emitTaskState(llvm::cast<TaskStateExpr>(E)->Task);
+  case NodeKind::ConversionExpr:
+    return emitConversion(*llvm::cast<ConversionExpr>(E));
+  case NodeKind::ErrorExpr:
+    llvm_unreachable("a behavior with a parse error never reaches CodeGen");
+  case NodeKind::FuncDecl:
+  case NodeKind::TaskDecl:
+  case NodeKind::ParamDecl:
+  case NodeKind::VarDecl:
+  case NodeKind::BlockStmt:
+  case NodeKind::DeclStmt:
+  case NodeKind::FuncDeclStmt:
+  case NodeKind::AssignStmt:
+  case NodeKind::ExprStmt:
+  case NodeKind::IfStmt:
+  case NodeKind::ForStmt:
+  case NodeKind::BreakStmt:
+  case NodeKind::ContinueStmt:
+  case NodeKind::ReturnStmt:
+  case NodeKind::YieldStmt:
+  case NodeKind::ErrorStmt:
+    break;
+  }
+  llvm_unreachable("not an expression");
+}
+
+llvm::Value *FunctionEmitter::emitName(const NameExpr &E) {
+  switch (E.Kind) {
+  case NameKind::Local:
+    return emitLoad(E.Local->Ty, getDeclAddress(E.Local),
+                    E.Local->getName().Name);
+  case NameKind::Param:
+    if (llvm::Value *Addr = getDeclAddress(E.Param))
+      return emitLoad(E.Param->Ty, Addr, E.Param->getName().Name);
+    return Fn->getArg(E.Param->Index + 1);
+  case NameKind::EnumValue:
+    return Builder.getInt32(E.EnumValue);
+  case NameKind::Input:
+  case NameKind::Output:
+    return emitGlobalIOPointer(E.Kind);
+  case NameKind::Callable:
+  case NameKind::NativeFunction:
+  case NameKind::Unresolved:
+    break;
+  }
+  llvm_unreachable("Sema allows callables only as callees");
+}
+
+llvm::Value *FunctionEmitter::emitMember(const MemberExpr &E) {
+  // Fields of registered classes (`input.ball.position.x`) need the
+  // binding's layout; Sema does not accept member access until bindings
+  // exist. The base of `input.*` will come from emitGlobalIOPointer.
+  llvm_unreachable("member access is not lowered yet");
+}
+
+llvm::Value *FunctionEmitter::emitCall(const CallExpr &E) {
+  switch (E.Kind) {
+  case CallKind::Func:
+  case CallKind::Task: {
+    // Tasks and funcs alike: (state, args...). A task call runs one step.
+    llvm::Function *Callee = CGM.getFunction(E.Target);
+    llvm::SmallVector<llvm::Value *, 4> Args = {StatePtr};
+    for (const Expr *A : E.Args) {
+      llvm::Value *V = emitExpr(A);
+      llvm::Type *PTy = Callee->getArg(Args.size())->getType();
+      if (PTy->isFloatTy() && V->getType()->isIntegerTy(32))
+        V = Builder.CreateSIToFP(V, PTy);
+      Args.push_back(V);
+    }
+    return Builder.CreateCall(Callee, Args);
+  }
+  case CallKind::NativeFunction: {
+    assert(llvm::isa<NameExpr>(E.Callee) &&
+           "native methods are not accepted by Sema yet");
+    const NativeFunction &NF = *E.NativeFn;
+    llvm::FunctionCallee Callee = CGM.getNative(NF);
+    llvm::SmallVector<llvm::Value *, 4> Args;
+    for (const Expr *A : E.Args) {
+      llvm::Value *V = emitExpr(A);
+      llvm::Type *PTy = Callee.getFunctionType()->getParamType(Args.size());
+      // The C ABI: bool is an int32 0/1; ints promote to float parameters.
+      if (V->getType()->isIntegerTy(1))
+        V = Builder.CreateZExt(V, PTy);
+      else if (PTy->isFloatTy() && V->getType()->isIntegerTy(32))
+        V = Builder.CreateSIToFP(V, PTy);
+      Args.push_back(V);
+    }
+    llvm::CallInst *Call = Builder.CreateCall(Callee, Args);
+    if (NF.Result.TheCode == NativeType::Bool)
+      return Builder.CreateICmpNE(Call, Builder.getInt32(0));
+    return Call;
+  }
+  case CallKind::Unresolved:
+    break;
+  }
+  llvm_unreachable("Sema resolves every call");
+}
+
+llvm::Value *FunctionEmitter::emitUnary(const UnaryExpr &E) {
+  llvm::Value *V = emitExpr(E.Operand);
+  switch (E.Op) {
+  case UnaryOp::Neg:
+    if (V->getType()->isFloatTy())
+      return Builder.CreateFNeg(V);
+    // 0 - x without nsw: -INT_MIN wraps to INT_MIN.
+    return Builder.CreateSub(Builder.getInt32(0), V, "neg");
+  case UnaryOp::Not:
+    return Builder.CreateNot(V, "not");
+  }
+  llvm_unreachable("unknown unary operator");
+}
+
+llvm::Value *FunctionEmitter::emitBinary(const BinaryExpr &E) {
+  if (E.Op == BinaryOp::And || E.Op == BinaryOp::Or)
+    return emitLogical(E);
+  llvm::Value *L = emitExpr(E.LHS);
+  llvm::Value *R = emitExpr(E.RHS);
+  // Sema promotes mixed int/float operands; this only guards the IR.
+  if (L->getType()->isFloatTy() && R->getType()->isIntegerTy(32))
+    R = Builder.CreateSIToFP(R, L->getType());
+  if (R->getType()->isFloatTy() && L->getType()->isIntegerTy(32))
+    L = Builder.CreateSIToFP(L, R->getType());
+  return emitArith(E.Op, L, R);
+}
+
+llvm::Value *FunctionEmitter::emitLogical(const BinaryExpr &E) {
+  llvm::LLVMContext &Ctx = CGM.getContext();
+  bool IsAnd = E.Op == BinaryOp::And;
+  llvm::Value *L = emitCond(E.LHS);
+  llvm::BasicBlock *LHSEnd = Builder.GetInsertBlock();
+  llvm::BasicBlock *RHSBB =
+      llvm::BasicBlock::Create(Ctx, IsAnd ? "and.rhs" : "or.rhs", Fn);
+  llvm::BasicBlock *EndBB =
+      llvm::BasicBlock::Create(Ctx, IsAnd ? "and.end" : "or.end");
+  // The right operand runs only when the left one does not decide: it may
+  // call a task, which must then not advance.
+  if (IsAnd)
+    Builder.CreateCondBr(L, RHSBB, EndBB);
+  else
+    Builder.CreateCondBr(L, EndBB, RHSBB);
+  Builder.SetInsertPoint(RHSBB);
+  llvm::Value *R = emitCond(E.RHS);
+  llvm::BasicBlock *RHSEnd = Builder.GetInsertBlock();
+  Builder.CreateBr(EndBB);
+
+  EndBB->insertInto(Fn);
+  Builder.SetInsertPoint(EndBB);
+  llvm::PHINode *Phi = Builder.CreatePHI(Builder.getInt1Ty(), 2,
+                                         IsAnd ? "and" : "or");
+  Phi->addIncoming(Builder.getInt1(!IsAnd), LHSEnd);
+  Phi->addIncoming(R, RHSEnd);
+  return Phi;
+}
+
+llvm::Value *FunctionEmitter::emitSafeIntDivRem(bool IsRem, llvm::Value *L,
+                                                llvm::Value *R) {
+  llvm::Value *Zero = Builder.getInt32(0);
+  llvm::Value *One = Builder.getInt32(1);
+  llvm::Value *IsZero = Builder.CreateICmpEQ(R, Zero, "div.zero");
+  llvm::Value *Overflow = Builder.CreateAnd(
+      Builder.CreateICmpEQ(L, Builder.getInt32(INT32_MIN)),
+      Builder.CreateICmpEQ(R, Builder.getInt32(-1)), "div.ovf");
+  // Dividing by 1 instead is always defined and, for INT_MIN / -1, already
+  // gives the wrapped quotient INT_MIN and the remainder 0.
+  llvm::Value *Divisor = Builder.CreateSelect(
+      Builder.CreateOr(IsZero, Overflow), One, R, "div.safe");
+  if (IsRem) {
+    llvm::Value *Rem = Builder.CreateSRem(L, Divisor, "rem");
+    // x % 0 == x keeps a == (a / b) * b + a % b true for b == 0.
+    return Builder.CreateSelect(IsZero, L, Rem, "rem.res");
+  }
+  llvm::Value *Quot = Builder.CreateSDiv(L, Divisor, "div");
+  return Builder.CreateSelect(IsZero, Zero, Quot, "div.res");
+}
+
+llvm::Value *FunctionEmitter::emitFloatRem(llvm::Value *L, llvm::Value *R) {
+  // a - b * trunc(a / b). trunc is done by an int round trip where the
+  // quotient fits (|q| < 2^23 is exact in i32) and is q itself beyond that
+  // (such floats are integral already): llvm.trunc would become a truncf
+  // call on an x87 target, and frem a call of fmodf. IEEE semantics carry
+  // NaN and infinities through (b == 0 gives NaN, as fmod does).
+  llvm::Type *FloatTy = L->getType();
+  llvm::Value *Q = Builder.CreateFDiv(L, R, "frem.q");
+  llvm::Value *AbsQ = Builder.CreateUnaryIntrinsic(llvm::Intrinsic::fabs, Q);
+  llvm::Value *Small = Builder.CreateFCmpOLT(
+      AbsQ, llvm::ConstantFP::get(FloatTy, 8388608.0), "frem.small");
+  // Saturating, so the arm not selected is not poison for huge or NaN q.
+  llvm::Value *QI = Builder.CreateIntrinsic(
+      llvm::Intrinsic::fptosi_sat, {Builder.getInt32Ty(), FloatTy}, {Q});
+  llvm::Value *Trunc = Builder.CreateSelect(
+      Small, Builder.CreateSIToFP(QI, FloatTy), Q, "frem.t");
+  return Builder.CreateFSub(L, Builder.CreateFMul(R, Trunc), "frem");
+}
+
+llvm::Value *FunctionEmitter::emitArith(BinaryOp Op, llvm::Value *L,
+                                        llvm::Value *R) {
+  bool IsFloat = L->getType()->isFloatTy();
+  switch (Op) {
+  case BinaryOp::Add:
+    return IsFloat ? Builder.CreateFAdd(L, R, "add")
+                   : Builder.CreateAdd(L, R, "add");
+  case BinaryOp::Sub:
+    return IsFloat ? Builder.CreateFSub(L, R, "sub")
+                   : Builder.CreateSub(L, R, "sub");
+  case BinaryOp::Mul:
+    return IsFloat ? Builder.CreateFMul(L, R, "mul")
+                   : Builder.CreateMul(L, R, "mul");
+  case BinaryOp::Div:
+    return IsFloat ? Builder.CreateFDiv(L, R, "div")
+                   : emitSafeIntDivRem(/*IsRem=*/false, L, R);
+  case BinaryOp::Rem:
+    return IsFloat ? emitFloatRem(L, R)
+                   : emitSafeIntDivRem(/*IsRem=*/true, L, R);
+  // Float comparisons are ordered except !=, as in C: NaN compares unequal
+  // to everything and nothing else is true of it.
+  case BinaryOp::Lt:
+    return IsFloat ? Builder.CreateFCmpOLT(L, R, "lt")
+                   : Builder.CreateICmpSLT(L, R, "lt");
+  case BinaryOp::Le:
+    return IsFloat ? Builder.CreateFCmpOLE(L, R, "le")
+                   : Builder.CreateICmpSLE(L, R, "le");
+  case BinaryOp::Gt:
+    return IsFloat ? Builder.CreateFCmpOGT(L, R, "gt")
+                   : Builder.CreateICmpSGT(L, R, "gt");
+  case BinaryOp::Ge:
+    return IsFloat ? Builder.CreateFCmpOGE(L, R, "ge")
+                   : Builder.CreateICmpSGE(L, R, "ge");
+  case BinaryOp::Eq:
+    return IsFloat ? Builder.CreateFCmpOEQ(L, R, "eq")
+                   : Builder.CreateICmpEQ(L, R, "eq");
+  case BinaryOp::Ne:
+    return IsFloat ? Builder.CreateFCmpUNE(L, R, "ne")
+                   : Builder.CreateICmpNE(L, R, "ne");
+  case BinaryOp::And:
+  case BinaryOp::Or:
+    break;
+  }
+  llvm_unreachable("logical operators short-circuit (emitLogical)");
+}
+
+llvm::Value *FunctionEmitter::emitConversion(const ConversionExpr &E) {
+  llvm::Value *V = emitExpr(E.Operand);
+  llvm::Type *From = V->getType();
+  llvm::Type *To = CGM.getValueType(E.Ty);
+  if (From == To) // int(TaskState), int(enum), float(float), ...
+    return V;
+  if (To->isFloatTy()) {
+    // bool -> 0.0/1.0; int -> nearest float.
+    if (From->isIntegerTy(1))
+      return Builder.CreateUIToFP(V, To, "conv");
+    return Builder.CreateSIToFP(V, To, "conv");
+  }
+  if (To->isIntegerTy(1)) {
+    // bool(x) is x != 0, as in C (NaN is true).
+    if (From->isFloatTy())
+      return Builder.CreateFCmpUNE(V, llvm::ConstantFP::get(From, 0.0), "tobool");
+    return Builder.CreateICmpNE(V, llvm::ConstantInt::get(From, 0), "tobool");
+  }
+  assert(To->isIntegerTy(32) && "conversions produce int, float or bool");
+  if (From->isIntegerTy(1))
+    return Builder.CreateZExt(V, To, "conv");
+  // Saturating: out-of-range floats clamp to INT_MIN/INT_MAX, NaN is 0.
+  return Builder.CreateIntrinsic(llvm::Intrinsic::fptosi_sat, {To, From}, {V},
+                                 nullptr, "conv");
+}

@@ -1,0 +1,205 @@
+//===- CGStmt.cpp - lowering statements -----------------------------------===//
+//
+// Statements become ordinary control flow, the same in funcs and tasks:
+// a `yield` is just one more statement that ends its block with `ret` and
+// starts a new block the resume switch can jump to (CGTask.cpp). Loops
+// therefore need nothing special to survive a yield, and `break` and
+// `continue` after a yield branch to the same blocks as before it.
+//
+// Code that follows a terminator (`return`, `break`, `continue`) goes into
+// a fresh block without predecessors; FunctionEmitter::run deletes such
+// blocks at the end, which keeps the emitters free of "is this reachable?"
+// bookkeeping.
+//
+//===----------------------------------------------------------------------===//
+#include "CodeGenImpl.h"
+#include "llvm/IR/Constants.h"
+#include "llvm/Support/ErrorHandling.h"
+
+using namespace bsc;
+using namespace bsc::codegen;
+
+void FunctionEmitter::startDeadBlock() {
+  Builder.SetInsertPoint(
+      llvm::BasicBlock::Create(CGM.getContext(), "dead", Fn));
+}
+
+void FunctionEmitter::emitBranch(llvm::BasicBlock *Dest) {
+  if (!Builder.GetInsertBlock()->getTerminator())
+    Builder.CreateBr(Dest);
+}
+
+void FunctionEmitter::emitBlock(const BlockStmt *S) {
+  for (const Stmt *Child : S->Stmts)
+    emitStmt(Child);
+}
+
+void FunctionEmitter::emitStmt(const Stmt *S) {
+  switch (S->getKind()) {
+  case NodeKind::BlockStmt:
+    return emitBlock(llvm::cast<BlockStmt>(S));
+  case NodeKind::DeclStmt:
+    return emitDecl(*llvm::cast<DeclStmt>(S));
+  case NodeKind::FuncDeclStmt:
+    // A nested func is a function of its own (ModuleEmitter emits every
+    // func of Behavior::Funcs); its declaration runs no code.
+    return;
+  case NodeKind::AssignStmt:
+    return emitAssign(*llvm::cast<AssignStmt>(S));
+  case NodeKind::ExprStmt:
+    emitExpr(llvm::cast<ExprStmt>(S)->E);
+    return;
+  case NodeKind::IfStmt:
+    return emitIf(*llvm::cast<IfStmt>(S));
+  case NodeKind::ForStmt:
+    return emitFor(*llvm::cast<ForStmt>(S));
+  case NodeKind::BreakStmt:
+    return emitBreak(*llvm::cast<BreakStmt>(S));
+  case NodeKind::ContinueStmt:
+    return emitContinue(*llvm::cast<ContinueStmt>(S));
+  case NodeKind::ReturnStmt:
+    return emitReturn(*llvm::cast<ReturnStmt>(S));
+  case NodeKind::YieldStmt:
+    return emitYield(*llvm::cast<YieldStmt>(S));
+  case NodeKind::ErrorStmt:
+    llvm_unreachable("a behavior with a parse error never reaches CodeGen");
+  case NodeKind::FuncDecl:
+  case NodeKind::TaskDecl:
+  case NodeKind::ParamDecl:
+  case NodeKind::VarDecl:
+  case NodeKind::IntLiteralExpr:
+  case NodeKind::FloatLiteralExpr:
+  case NodeKind::BoolLiteralExpr:
+  case NodeKind::StringLiteralExpr:
+  case NodeKind::NameExpr:
+  case NodeKind::MemberExpr:
+  case NodeKind::CallExpr:
+  case NodeKind::UnaryExpr:
+  case NodeKind::BinaryExpr:
+  case NodeKind::TaskStateExpr:
+  case NodeKind::ConversionExpr:
+  case NodeKind::ErrorExpr:
+    break;
+  }
+  llvm_unreachable("not a statement");
+}
+
+void FunctionEmitter::emitDecl(const DeclStmt &S) {
+  const VarDecl *V = S.Var;
+  // Without an initialiser the local is its type's zero, every time the
+  // declaration runs (a declaration in a loop body starts over each pass).
+  llvm::Value *Init = V->Init ? emitExpr(V->Init) : CGM.getZeroValue(V->Ty);
+  if (V->Init && V->Ty->isFloat() && Init->getType()->isIntegerTy(32))
+    Init = Builder.CreateSIToFP(Init, Builder.getFloatTy());
+  llvm::Value *Addr = getDeclAddress(V);
+  if (V->Init)
+    emitStore(V->Ty, Init, Addr);
+  else
+    Builder.CreateStore(Init, Addr); // Already in its memory type.
+}
+
+void FunctionEmitter::emitAssign(const AssignStmt &S) {
+  const Type *T = S.Target->Ty;
+  llvm::Value *Addr = getLValueAddress(S.Target);
+  BinaryOp Op;
+  if (!getCompoundOperator(S.Op, Op)) {
+    llvm::Value *V = emitExpr(S.Value);
+    if (T->isFloat() && V->getType()->isIntegerTy(32))
+      V = Builder.CreateSIToFP(V, Builder.getFloatTy());
+    emitStore(T, V, Addr);
+    return;
+  }
+  // `x op= v` is `x = x op v` with x evaluated once; the target is a plain
+  // variable, so reading it first or after `v` is the same (v cannot
+  // assign to it: calls cannot reach a caller's locals).
+  llvm::Value *Old = emitLoad(T, Addr);
+  llvm::Value *V = emitExpr(S.Value);
+  if (T->isFloat() && V->getType()->isIntegerTy(32))
+    V = Builder.CreateSIToFP(V, Builder.getFloatTy());
+  emitStore(T, emitArith(Op, Old, V), Addr);
+}
+
+void FunctionEmitter::emitIf(const IfStmt &S) {
+  llvm::LLVMContext &Ctx = CGM.getContext();
+  llvm::Value *Cond = emitCond(S.Cond);
+  llvm::BasicBlock *ThenBB = llvm::BasicBlock::Create(Ctx, "if.then", Fn);
+  llvm::BasicBlock *EndBB = llvm::BasicBlock::Create(Ctx, "if.end");
+  llvm::BasicBlock *ElseBB = EndBB;
+  if (S.Else)
+    ElseBB = llvm::BasicBlock::Create(Ctx, "if.else", Fn);
+  Builder.CreateCondBr(Cond, ThenBB, ElseBB);
+
+  Builder.SetInsertPoint(ThenBB);
+  emitBlock(S.Then);
+  emitBranch(EndBB);
+  if (S.Else) {
+    Builder.SetInsertPoint(ElseBB);
+    emitStmt(S.Else);
+    emitBranch(EndBB);
+  }
+  EndBB->insertInto(Fn);
+  Builder.SetInsertPoint(EndBB);
+}
+
+void FunctionEmitter::emitFor(const ForStmt &S) {
+  llvm::LLVMContext &Ctx = CGM.getContext();
+  if (S.Init)
+    emitStmt(S.Init);
+  llvm::BasicBlock *CondBB = llvm::BasicBlock::Create(Ctx, "for.cond", Fn);
+  llvm::BasicBlock *BodyBB = llvm::BasicBlock::Create(Ctx, "for.body");
+  llvm::BasicBlock *StepBB = llvm::BasicBlock::Create(Ctx, "for.step");
+  llvm::BasicBlock *EndBB = llvm::BasicBlock::Create(Ctx, "for.end");
+  Builder.CreateBr(CondBB);
+
+  // A missing condition is true.
+  Builder.SetInsertPoint(CondBB);
+  if (S.Cond)
+    Builder.CreateCondBr(emitCond(S.Cond), BodyBB, EndBB);
+  else
+    Builder.CreateBr(BodyBB);
+
+  BodyBB->insertInto(Fn);
+  Builder.SetInsertPoint(BodyBB);
+  Loops.push_back({EndBB, StepBB});
+  emitBlock(S.Body);
+  Loops.pop_back();
+  emitBranch(StepBB);
+
+  // `continue` runs the step, as in C. A `yield` step returns here and the
+  // next call resumes at the condition.
+  StepBB->insertInto(Fn);
+  Builder.SetInsertPoint(StepBB);
+  if (S.Step)
+    emitStmt(S.Step);
+  emitBranch(CondBB);
+
+  EndBB->insertInto(Fn);
+  Builder.SetInsertPoint(EndBB);
+}
+
+void FunctionEmitter::emitBreak(const BreakStmt &) {
+  assert(!Loops.empty() && "Sema allows break only in loops");
+  Builder.CreateBr(Loops.back().Break);
+  startDeadBlock();
+}
+
+void FunctionEmitter::emitContinue(const ContinueStmt &) {
+  assert(!Loops.empty() && "Sema allows continue only in loops");
+  Builder.CreateBr(Loops.back().Continue);
+  startDeadBlock();
+}
+
+void FunctionEmitter::emitReturn(const ReturnStmt &S) {
+  if (Task) {
+    // `return` in a task: done, and start from the top at the next call.
+    emitTaskFinish();
+  } else if (S.Value) {
+    llvm::Value *V = emitExpr(S.Value);
+    if (Fn->getReturnType()->isFloatTy() && V->getType()->isIntegerTy(32))
+      V = Builder.CreateSIToFP(V, Builder.getFloatTy());
+    Builder.CreateRet(V);
+  } else {
+    Builder.CreateRetVoid();
+  }
+  startDeadBlock();
+}

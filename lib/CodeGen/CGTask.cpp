@@ -1,0 +1,139 @@
+//===- CGTask.cpp - lowering tasks: generators by hand --------------------===//
+//
+// A task is a singleton generator. Its function runs one step per call:
+//
+//   entry:     if (frame.state <= 0 || cycle - frame.last_cycle > 1) goto reset
+//   reset:     frame.resume = 0; every local = its zero value
+//   dispatch:  frame.last_cycle = cycle; frame.params = args
+//              switch (frame.resume) { 0: start; k: resume.k }
+//   start:     the body...
+//   yield k:   frame.resume = k; frame.state = v; ret void
+//   resume.k:  ...the code after the k-th yield
+//   end:       frame.resume = 0; frame.state = done; ret void
+//
+// This is done by hand rather than with LLVM's coroutine intrinsics because
+// the frame must be a struct whose size is fixed before any optimisation
+// runs (it is part of the object's interface and must match at -O0, -O2 and
+// in the JIT), and because a coroutine frame would be heap-allocated. The
+// body needs no special care: every parameter and local lives in the frame
+// (or is re-read from the arguments, which are fresh on every call), so no
+// SSA value is live across a yield and the switch may enter any loop.
+//
+// The reset rule is language.md's rule 4: start again from the top when the
+// last call finished (done or failure, which includes never having run:
+// the state starts zeroed) or when the task was called neither in the
+// previous cycle nor yet in this one. The gap is computed unsigned so that
+// the cycle counter may wrap.
+//
+//===----------------------------------------------------------------------===//
+#include "CodeGenImpl.h"
+#include "llvm/IR/Constants.h"
+
+using namespace bsc;
+using namespace bsc::codegen;
+
+llvm::Value *FunctionEmitter::getFramePtr(const TaskDecl *T) {
+  const FrameInfo &FI = CGM.getFrame(T);
+  return Builder.CreateConstInBoundsGEP2_32(CGM.getStateType(), StatePtr, 0,
+                                            FI.StateFieldNo,
+                                            T->getName().Name + ".frame");
+}
+
+llvm::Value *FunctionEmitter::getFrameFieldPtr(const TaskDecl *T,
+                                               unsigned Field) {
+  const FrameInfo &FI = CGM.getFrame(T);
+  // One GEP from the state: {0, frame, field}, a constant offset.
+  llvm::Value *Idx[] = {Builder.getInt32(0), Builder.getInt32(FI.StateFieldNo),
+                        Builder.getInt32(Field)};
+  return Builder.CreateInBoundsGEP(CGM.getStateType(), StatePtr, Idx);
+}
+
+llvm::Value *FunctionEmitter::emitTaskState(const TaskDecl *T) {
+  // A never-called task reports done: the state starts zeroed.
+  return Builder.CreateLoad(Builder.getInt32Ty(),
+                            getFrameFieldPtr(T, FrameState),
+                            T->getName().Name + ".state");
+}
+
+void FunctionEmitter::emitTaskPrologue() {
+  llvm::LLVMContext &Ctx = CGM.getContext();
+  const FrameInfo &FI = CGM.getFrame(Task);
+  llvm::Type *I32 = Builder.getInt32Ty();
+
+  llvm::Value *CyclePtr = Builder.CreateConstInBoundsGEP2_32(
+      CGM.getStateType(), StatePtr, 0, StateCycle, "cycle.addr");
+  llvm::Value *Cycle = Builder.CreateLoad(I32, CyclePtr, "cycle");
+  llvm::Value *StateAddr = getFrameFieldPtr(Task, FrameState);
+  llvm::Value *LastAddr = getFrameFieldPtr(Task, FrameLastCycle);
+  llvm::Value *ResumeAddr = getFrameFieldPtr(Task, FrameResume);
+  llvm::Value *State = Builder.CreateLoad(I32, StateAddr, "prev.state");
+  llvm::Value *Last = Builder.CreateLoad(I32, LastAddr, "last.cycle");
+  llvm::Value *Finished =
+      Builder.CreateICmpSLE(State, Builder.getInt32(TaskDone), "finished");
+  llvm::Value *Gap = Builder.CreateSub(Cycle, Last, "gap");
+  llvm::Value *Missed = Builder.CreateICmpUGT(Gap, Builder.getInt32(1), "missed");
+  llvm::Value *Reset = Builder.CreateOr(Finished, Missed, "reset");
+
+  llvm::BasicBlock *ResetBB = llvm::BasicBlock::Create(Ctx, "reset", Fn);
+  llvm::BasicBlock *DispatchBB = llvm::BasicBlock::Create(Ctx, "dispatch", Fn);
+  Builder.CreateCondBr(Reset, ResetBB, DispatchBB);
+
+  // Fresh locals: one store per field (never memset: no libc).
+  Builder.SetInsertPoint(ResetBB);
+  Builder.CreateStore(Builder.getInt32(0), ResumeAddr);
+  for (const VarDecl *V : Task->Locals)
+    Builder.CreateStore(CGM.getZeroValue(V->Ty),
+                        getFrameFieldPtr(Task, FI.Fields.lookup(V)));
+  Builder.CreateBr(DispatchBB);
+
+  // Parameters are re-evaluated at every call (rule 2): the body reads the
+  // arguments; nested funcs read the copies in the frame.
+  Builder.SetInsertPoint(DispatchBB);
+  Builder.CreateStore(Cycle, LastAddr);
+  for (const ParamDecl *P : Task->Params)
+    emitStore(P->Ty, Fn->getArg(P->Index + 1),
+              getFrameFieldPtr(Task, FI.Fields.lookup(P)));
+  llvm::Value *Resume = Builder.CreateLoad(I32, ResumeAddr, "resume");
+  llvm::BasicBlock *StartBB = llvm::BasicBlock::Create(Ctx, "start", Fn);
+  // An out-of-range resume point cannot happen (only yields store it); the
+  // default restarts the body rather than doing anything undefined.
+  ResumeSwitch = Builder.CreateSwitch(Resume, StartBB, Task->Yields.size());
+  Builder.SetInsertPoint(StartBB);
+}
+
+void FunctionEmitter::emitTaskFinish() {
+  Builder.CreateStore(Builder.getInt32(0), getFrameFieldPtr(Task, FrameResume));
+  Builder.CreateStore(Builder.getInt32(TaskDone),
+                      getFrameFieldPtr(Task, FrameState));
+  Builder.CreateRetVoid();
+}
+
+void FunctionEmitter::emitTaskEpilogue() {
+  // Falling off the end: done, and the next call starts from the top.
+  if (!Builder.GetInsertBlock()->getTerminator())
+    emitTaskFinish();
+}
+
+llvm::Value *FunctionEmitter::emitToTaskState(const Expr *E) {
+  llvm::Value *V = emitExpr(E);
+  // int, TaskState and enums are already i32; a bool state is 0/1.
+  if (V->getType()->isIntegerTy(1))
+    return Builder.CreateZExt(V, Builder.getInt32Ty());
+  return V;
+}
+
+void FunctionEmitter::emitYield(const YieldStmt &S) {
+  assert(Task && "Sema allows yield only in tasks");
+  assert(S.ResumePoint > 0 && "Sema numbers every yield");
+  llvm::Value *State =
+      S.Value ? emitToTaskState(S.Value) : Builder.getInt32(TaskRunning);
+  Builder.CreateStore(Builder.getInt32(S.ResumePoint),
+                      getFrameFieldPtr(Task, FrameResume));
+  Builder.CreateStore(State, getFrameFieldPtr(Task, FrameState));
+  Builder.CreateRetVoid();
+
+  llvm::BasicBlock *ResumeBB = llvm::BasicBlock::Create(
+      CGM.getContext(), "resume." + llvm::Twine(S.ResumePoint), Fn);
+  ResumeSwitch->addCase(Builder.getInt32(S.ResumePoint), ResumeBB);
+  Builder.SetInsertPoint(ResumeBB);
+}

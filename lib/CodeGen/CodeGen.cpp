@@ -1,0 +1,447 @@
+//===- CodeGen.cpp - a checked behavior to one LLVM module ----------------===//
+//
+// The entry point `emitLLVM` and everything that concerns the module as a
+// whole: the behavior-state and frame struct types, the functions of funcs
+// and tasks, the exported entries, the `bs_<B>_info` table and the optional
+// program `main`. The ABI these implement is include/bscript/bscript.h and
+// docs/design/backend.md; the numbers that robot code sees (state size,
+// alignment, frame offsets) are computed only here, from the target's
+// DataLayout, and no optimisation level can change them because every
+// frame is an explicit struct type rather than something a pass computes
+// (which is why tasks are lowered by hand and not with llvm.coro.*).
+//
+//===----------------------------------------------------------------------===//
+#include "CodeGenImpl.h"
+#include "llvm/IR/Constants.h"
+#include "llvm/IR/DerivedTypes.h"
+#include "llvm/IR/Function.h"
+#include "llvm/IR/GlobalVariable.h"
+#include "llvm/Support/ErrorHandling.h"
+#include "llvm/Transforms/Utils/BasicBlockUtils.h"
+
+using namespace bsc;
+using namespace bsc::codegen;
+
+/// The ABI version written into bs_behavior_info (BS_ABI_VERSION).
+static constexpr uint32_t ABIVersion = 1;
+
+std::string bsc::getEntrySymbol(llvm::StringRef BehaviorName,
+                                const CallableDecl &D) {
+  std::string S = "bs_" + BehaviorName.str() + "__";
+  if (D.Module)
+    S += D.Module->Name;
+  return S + "__" + D.getName().Name.str();
+}
+
+/// The name of the internal function of a func or task: `bs.M.f`, and
+/// `bs.M.task.f` for a func nested in a task. Dots cannot occur in
+/// b-script names, so these never clash with each other or with exports.
+static std::string getInternalName(const CallableDecl &D) {
+  std::string S = "bs.";
+  if (D.Module)
+    S += D.Module->Name + ".";
+  if (const auto *F = llvm::dyn_cast<FuncDecl>(&D))
+    if (F->EnclosingTask)
+      S += F->EnclosingTask->getName().Name.str() + ".";
+  return S + D.getName().Name.str();
+}
+
+/// Whether a func or task can be called from C: every parameter is int,
+/// float or bool (bscript.h).
+static bool isExportable(const CallableDecl &D) {
+  for (const ParamDecl *P : D.Params)
+    if (!P->Ty || !(P->Ty->isInt() || P->Ty->isFloat() || P->Ty->isBool()))
+      return false;
+  return true;
+}
+
+//===----------------------------------------------------------------------===//
+// ModuleEmitter
+//===----------------------------------------------------------------------===//
+
+ModuleEmitter::ModuleEmitter(const Behavior &B, llvm::Module &M,
+                             const CodeGenOptions &Opts, BehaviorLayout &Layout)
+    : B(B), M(M), Ctx(M.getContext()), Opts(Opts), Layout(Layout) {}
+
+llvm::Type *ModuleEmitter::getValueType(const Type *T) {
+  switch (T->getKind()) {
+  case TypeKind::Void:
+    return llvm::Type::getVoidTy(Ctx);
+  case TypeKind::Int:
+  case TypeKind::TaskState:
+  case TypeKind::Enum:
+    return llvm::Type::getInt32Ty(Ctx);
+  case TypeKind::Float:
+    return llvm::Type::getFloatTy(Ctx);
+  case TypeKind::Bool:
+    return llvm::Type::getInt1Ty(Ctx);
+  case TypeKind::String:
+    return llvm::PointerType::getUnqual(Ctx);
+  case TypeKind::Error:
+    break;
+  }
+  llvm_unreachable("the error type never reaches code generation");
+}
+
+llvm::Type *ModuleEmitter::getMemoryType(const Type *T) {
+  if (T->isBool())
+    return llvm::Type::getInt8Ty(Ctx);
+  return getValueType(T);
+}
+
+llvm::Constant *ModuleEmitter::getZeroValue(const Type *T) {
+  // A string local without initialiser is "" rather than null: it may be
+  // passed to C code that expects a valid `const char *`.
+  if (T->isString())
+    return getString("");
+  return llvm::Constant::getNullValue(getMemoryType(T));
+}
+
+const FrameInfo &ModuleEmitter::getFrame(const TaskDecl *T) const {
+  auto It = Frames.find(T);
+  assert(It != Frames.end() && "task is not part of the behavior");
+  return It->second;
+}
+
+llvm::Function *ModuleEmitter::getFunction(const CallableDecl *D) const {
+  auto It = Functions.find(D);
+  assert(It != Functions.end() && "callable is not part of the behavior");
+  return It->second;
+}
+
+llvm::Type *ModuleEmitter::getNativeType(const NativeType &NT) {
+  switch (NT.TheCode) {
+  case NativeType::Void:
+    return llvm::Type::getVoidTy(Ctx);
+  case NativeType::Bool: // C ABI: bool travels as a 0/1 int32 (bscript.h).
+  case NativeType::Int:
+  case NativeType::Enum:
+    return llvm::Type::getInt32Ty(Ctx);
+  case NativeType::Float:
+    return llvm::Type::getFloatTy(Ctx);
+  case NativeType::String:
+    return llvm::PointerType::getUnqual(Ctx);
+  case NativeType::Class:
+    break;
+  }
+  // Class values need the binding layer's sizes and thunks; Sema does not
+  // accept them yet, so no checked behavior gets here.
+  llvm_unreachable("native class values are not lowered yet");
+}
+
+llvm::FunctionCallee ModuleEmitter::getNative(const NativeFunction &NF) {
+  llvm::FunctionCallee &Slot = Natives[&NF];
+  if (Slot)
+    return Slot;
+  llvm::SmallVector<llvm::Type *, 4> Params;
+  for (const NativeType &P : NF.Params)
+    Params.push_back(getNativeType(P));
+  auto *FTy =
+      llvm::FunctionType::get(getNativeType(NF.Result), Params, false);
+  Slot = M.getOrInsertFunction(NF.Symbol, FTy);
+  if (auto *F = llvm::dyn_cast<llvm::Function>(Slot.getCallee()))
+    F->addFnAttr(llvm::Attribute::NoUnwind);
+  return Slot;
+}
+
+llvm::Constant *ModuleEmitter::getString(llvm::StringRef S) {
+  llvm::Constant *&Slot = Strings[S];
+  if (Slot)
+    return Slot;
+  llvm::Constant *Init = llvm::ConstantDataArray::getString(Ctx, S, true);
+  auto *GV = new llvm::GlobalVariable(M, Init->getType(), /*isConstant=*/true,
+                                      llvm::GlobalValue::PrivateLinkage, Init,
+                                      ".str");
+  GV->setUnnamedAddr(llvm::GlobalValue::UnnamedAddr::Global);
+  GV->setAlignment(llvm::Align(1));
+  Slot = GV;
+  return GV;
+}
+
+void ModuleEmitter::addCommonAttributes(llvm::Function *F) {
+  F->addFnAttr(llvm::Attribute::NoUnwind);
+  F->addFnAttr("no-builtins");
+}
+
+void ModuleEmitter::layoutState() {
+  llvm::Type *I32 = llvm::Type::getInt32Ty(Ctx);
+  llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
+  // bs_state_header: cycle, reserved, input, output.
+  llvm::SmallVector<llvm::Type *, 8> StateFields = {I32, I32, Ptr, Ptr};
+  for (const TaskDecl *T : B.Tasks) {
+    FrameInfo &FI = Frames[T];
+    // bs_frame_header: resume, state, last_cycle; then params, then locals.
+    llvm::SmallVector<llvm::Type *, 8> Fields = {I32, I32, I32};
+    for (const ParamDecl *P : T->Params) {
+      FI.Fields[P] = Fields.size();
+      Fields.push_back(getMemoryType(P->Ty));
+    }
+    for (const VarDecl *V : T->Locals) {
+      FI.Fields[V] = Fields.size();
+      Fields.push_back(getMemoryType(V->Ty));
+    }
+    std::string Name = "bs.frame.";
+    if (T->Module)
+      Name += T->Module->Name + ".";
+    Name += T->getName().Name.str();
+    FI.Ty = llvm::StructType::create(Ctx, Fields, Name);
+    FI.StateFieldNo = StateFields.size();
+    StateFields.push_back(FI.Ty);
+  }
+  StateTy = llvm::StructType::create(Ctx, StateFields, "bs.state");
+
+  const llvm::DataLayout &DL = M.getDataLayout();
+  const llvm::StructLayout *SL = DL.getStructLayout(StateTy);
+  Layout.StateSize = DL.getTypeAllocSize(StateTy);
+  Layout.StateAlign = DL.getABITypeAlign(StateTy).value();
+  Layout.Tasks.clear();
+  for (const TaskDecl *T : B.Tasks)
+    Layout.Tasks.push_back(
+        {T, SL->getElementOffset(Frames[T].StateFieldNo)});
+}
+
+void ModuleEmitter::declareFunctions() {
+  llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
+  auto Declare = [&](const CallableDecl *D, llvm::Type *Result) {
+    llvm::SmallVector<llvm::Type *, 4> Params = {Ptr};
+    for (const ParamDecl *P : D->Params)
+      Params.push_back(getValueType(P->Ty));
+    auto *FTy = llvm::FunctionType::get(Result, Params, false);
+    auto *F = llvm::Function::Create(FTy, llvm::GlobalValue::InternalLinkage,
+                                     getInternalName(*D), M);
+    addCommonAttributes(F);
+    F->getArg(0)->setName("state");
+    for (const ParamDecl *P : D->Params)
+      F->getArg(P->Index + 1)->setName(P->getName().Name);
+    Functions[D] = F;
+  };
+  for (const TaskDecl *T : B.Tasks)
+    Declare(T, llvm::Type::getVoidTy(Ctx));
+  for (const FuncDecl *F : B.Funcs)
+    Declare(F, getValueType(F->ResultTy));
+}
+
+void ModuleEmitter::emitEntries() {
+  llvm::Type *I32 = llvm::Type::getInt32Ty(Ctx);
+  llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
+  Layout.Entries.clear();
+  for (const ModuleAST *Mod : B.Modules) {
+    for (const CallableDecl *D : Mod->Decls) {
+      if (!isExportable(*D))
+        continue;
+      llvm::Function *Impl = getFunction(D);
+      // The C face: bool travels as int32 0/1 both ways.
+      auto CType = [&](llvm::Type *T) { return T->isIntegerTy(1) ? I32 : T; };
+      llvm::SmallVector<llvm::Type *, 4> Params = {Ptr};
+      for (const ParamDecl *P : D->Params)
+        Params.push_back(CType(getValueType(P->Ty)));
+      llvm::Type *Result = CType(Impl->getReturnType());
+      std::string Symbol = getEntrySymbol(Opts.BehaviorName, *D);
+      auto *F = llvm::Function::Create(
+          llvm::FunctionType::get(Result, Params, false),
+          llvm::GlobalValue::ExternalLinkage, Symbol, M);
+      addCommonAttributes(F);
+      F->getArg(0)->setName("state");
+
+      llvm::IRBuilder<> IRB(llvm::BasicBlock::Create(Ctx, "entry", F));
+      llvm::SmallVector<llvm::Value *, 4> Args = {F->getArg(0)};
+      for (const ParamDecl *P : D->Params) {
+        llvm::Value *A = F->getArg(P->Index + 1);
+        A->setName(P->getName().Name);
+        if (P->Ty->isBool())
+          A = IRB.CreateICmpNE(A, llvm::ConstantInt::get(I32, 0));
+        Args.push_back(A);
+      }
+      llvm::CallInst *Call = IRB.CreateCall(Impl, Args);
+      if (Result->isVoidTy())
+        IRB.CreateRetVoid();
+      else if (Impl->getReturnType()->isIntegerTy(1))
+        IRB.CreateRet(IRB.CreateZExt(Call, I32));
+      else
+        IRB.CreateRet(Call);
+      Layout.Entries.push_back({D, Symbol});
+    }
+  }
+}
+
+void ModuleEmitter::emitInfo() {
+  llvm::Type *I32 = llvm::Type::getInt32Ty(Ctx);
+  llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
+  auto *TaskInfoTy = llvm::StructType::create(Ctx, {Ptr, I32}, "bs_task_info");
+  auto *InfoTy = llvm::StructType::create(Ctx, {I32, I32, I32, I32, Ptr},
+                                          "bs_behavior_info");
+
+  llvm::SmallVector<llvm::Constant *, 8> Tasks;
+  for (const BehaviorLayout::Task &T : Layout.Tasks)
+    Tasks.push_back(llvm::ConstantStruct::get(
+        TaskInfoTy, {getString(T.Decl->getQualifiedName()),
+                     llvm::ConstantInt::get(I32, T.FrameOffset)}));
+  llvm::Constant *TaskTable = llvm::ConstantPointerNull::get(
+      llvm::PointerType::getUnqual(Ctx));
+  if (!Tasks.empty()) {
+    auto *ArrTy = llvm::ArrayType::get(TaskInfoTy, Tasks.size());
+    auto *GV = new llvm::GlobalVariable(
+        M, ArrTy, /*isConstant=*/true, llvm::GlobalValue::PrivateLinkage,
+        llvm::ConstantArray::get(ArrTy, Tasks),
+        "bs_" + Opts.BehaviorName + "_tasks");
+    TaskTable = GV;
+  }
+
+  Layout.InfoSymbol = "bs_" + Opts.BehaviorName + "_info";
+  llvm::Constant *Init = llvm::ConstantStruct::get(
+      InfoTy, {llvm::ConstantInt::get(I32, ABIVersion),
+               llvm::ConstantInt::get(I32, Layout.StateSize),
+               llvm::ConstantInt::get(I32, Layout.StateAlign),
+               llvm::ConstantInt::get(I32, Layout.Tasks.size()), TaskTable});
+  Info = new llvm::GlobalVariable(M, InfoTy, /*isConstant=*/true,
+                                  llvm::GlobalValue::ExternalLinkage, Init,
+                                  Layout.InfoSymbol);
+}
+
+void ModuleEmitter::emitProgramMain() {
+  const CallableDecl *Entry = Opts.ProgramEntry;
+  llvm::Type *I32 = llvm::Type::getInt32Ty(Ctx);
+  llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
+  llvm::FunctionCallee Init = M.getOrInsertFunction(
+      "bs_state_init", llvm::FunctionType::get(I32, {Ptr, Ptr}, false));
+  llvm::FunctionCallee Begin = M.getOrInsertFunction(
+      "bs_begin_cycle",
+      llvm::FunctionType::get(llvm::Type::getVoidTy(Ctx), {Ptr, Ptr, Ptr},
+                              false));
+
+  auto *Main = llvm::Function::Create(llvm::FunctionType::get(I32, false),
+                                      llvm::GlobalValue::ExternalLinkage,
+                                      "main", M);
+  addCommonAttributes(Main);
+  llvm::BasicBlock *EntryBB = llvm::BasicBlock::Create(Ctx, "entry", Main);
+  llvm::BasicBlock *Loop = llvm::BasicBlock::Create(Ctx, "cycle", Main);
+  llvm::BasicBlock *Done = llvm::BasicBlock::Create(Ctx, "done", Main);
+  llvm::IRBuilder<> IRB(EntryBB);
+  llvm::AllocaInst *State = IRB.CreateAlloca(StateTy, nullptr, "state");
+  State->setAlignment(llvm::Align(Layout.StateAlign));
+  IRB.CreateCall(Init, {State, Info});
+  IRB.CreateBr(Loop);
+
+  // for (i = 0; i != cycles; ++i) { bs_begin_cycle(...); entry(state); }
+  IRB.SetInsertPoint(Loop);
+  llvm::PHINode *I = IRB.CreatePHI(I32, 2, "i");
+  I->addIncoming(llvm::ConstantInt::get(I32, 0), EntryBB);
+  llvm::Constant *Null = llvm::ConstantPointerNull::get(
+      llvm::PointerType::getUnqual(Ctx));
+  IRB.CreateCall(Begin, {State, Null, Null});
+  llvm::Function *Callee = getFunction(Entry);
+  llvm::SmallVector<llvm::Value *, 4> Args = {State};
+  // The driver refuses entries with parameters; zeros keep the IR valid.
+  for (unsigned A = 1; A < Callee->arg_size(); ++A)
+    Args.push_back(llvm::Constant::getNullValue(Callee->getArg(A)->getType()));
+  IRB.CreateCall(Callee, Args);
+  llvm::Value *Next = IRB.CreateAdd(I, llvm::ConstantInt::get(I32, 1), "i.next");
+  I->addIncoming(Next, Loop);
+  IRB.CreateCondBr(
+      IRB.CreateICmpULT(Next, llvm::ConstantInt::get(I32, Opts.ProgramCycles)),
+      Loop, Done);
+  IRB.SetInsertPoint(Done);
+  IRB.CreateRet(llvm::ConstantInt::get(I32, 0));
+}
+
+void ModuleEmitter::run() {
+  layoutState();
+  declareFunctions();
+  for (const TaskDecl *T : B.Tasks)
+    FunctionEmitter(*this, *T).run();
+  for (const FuncDecl *F : B.Funcs)
+    FunctionEmitter(*this, *F).run();
+  emitEntries();
+  emitInfo();
+  if (Opts.ProgramEntry)
+    emitProgramMain();
+}
+
+//===----------------------------------------------------------------------===//
+// FunctionEmitter: what funcs and tasks share
+//===----------------------------------------------------------------------===//
+
+FunctionEmitter::FunctionEmitter(ModuleEmitter &CGM, const CallableDecl &D)
+    : CGM(CGM), D(D), Task(llvm::dyn_cast<TaskDecl>(&D)),
+      Fn(CGM.getFunction(&D)), Builder(CGM.getContext()),
+      StatePtr(Fn->getArg(0)) {}
+
+const TaskDecl *FunctionEmitter::getFrameTask() const {
+  if (Task)
+    return Task;
+  return llvm::cast<FuncDecl>(D).EnclosingTask;
+}
+
+void FunctionEmitter::run() {
+  Builder.SetInsertPoint(llvm::BasicBlock::Create(CGM.getContext(), "entry", Fn));
+  if (Task)
+    emitTaskPrologue();
+  else
+    emitFuncPrologue();
+  if (D.Body)
+    emitBlock(D.Body);
+  if (Task)
+    emitTaskEpilogue();
+  else
+    emitFuncEpilogue();
+  // Statements after `return`, `break` or `continue` were emitted into
+  // blocks nothing branches to; drop them so -O0 code has no dead blocks.
+  llvm::EliminateUnreachableBlocks(*Fn);
+}
+
+void FunctionEmitter::emitFuncPrologue() {
+  // Allocas go before this marker so they all stay in the entry block,
+  // whatever control flow the body adds (mem2reg only promotes those).
+  AllocaPoint = Builder.CreateAlloca(Builder.getInt8Ty(), nullptr, "allocapt");
+  for (const ParamDecl *P : D.Params) {
+    llvm::AllocaInst *Slot = new llvm::AllocaInst(
+        CGM.getMemoryType(P->Ty), 0, P->getName().Name + ".addr", AllocaPoint);
+    Slots[P] = Slot;
+    emitStore(P->Ty, Fn->getArg(P->Index + 1), Slot);
+  }
+  for (const VarDecl *V : D.Locals)
+    Slots[V] = new llvm::AllocaInst(CGM.getMemoryType(V->Ty), 0,
+                                    V->getName().Name, AllocaPoint);
+}
+
+void FunctionEmitter::emitFuncEpilogue() {
+  if (!Builder.GetInsertBlock()->getTerminator()) {
+    // Sema makes every path of a func with a result return; should a path
+    // still end here, it returns the zero value rather than anything
+    // undefined (runtime safety).
+    const Type *ResultTy = llvm::cast<FuncDecl>(D).ResultTy;
+    if (ResultTy->isVoid())
+      Builder.CreateRetVoid();
+    else if (ResultTy->isString())
+      Builder.CreateRet(CGM.getString(""));
+    else
+      Builder.CreateRet(llvm::Constant::getNullValue(Fn->getReturnType()));
+  }
+  AllocaPoint->eraseFromParent();
+  AllocaPoint = nullptr;
+}
+
+//===----------------------------------------------------------------------===//
+// Entry point
+//===----------------------------------------------------------------------===//
+
+std::unique_ptr<llvm::Module> bsc::emitLLVM(const Behavior &B,
+                                            llvm::LLVMContext &Ctx,
+                                            const llvm::Triple &Triple,
+                                            const llvm::DataLayout &DL,
+                                            const CodeGenOptions &Opts,
+                                            BehaviorLayout &Layout) {
+  // The driver names the behavior; without a name, the first module's name
+  // is the default bscript.h promises.
+  CodeGenOptions Named = Opts;
+  if (Named.BehaviorName.empty() && !B.Modules.empty())
+    Named.BehaviorName = B.Modules.front()->Name;
+  auto M = std::make_unique<llvm::Module>(Named.BehaviorName, Ctx);
+  M->setTargetTriple(Triple.str());
+  M->setDataLayout(DL);
+  if (!B.Modules.empty())
+    M->setSourceFileName(B.Modules.front()->Path);
+  Layout = BehaviorLayout();
+  ModuleEmitter(B, *M, Named, Layout).run();
+  return M;
+}

@@ -1,0 +1,236 @@
+//===- CodeGenImpl.h - private interface of the IR generator ---*- C++ -*-===//
+//
+// Two levels, as in Clang's CodeGenModule/CodeGenFunction:
+// - ModuleEmitter owns what is shared by the whole behavior: the state and
+//   frame struct types (laid out with the target's DataLayout), the LLVM
+//   function of every func and task, native declarations, string constants.
+// - FunctionEmitter lowers one func or task body. Statements are in
+//   CGStmt.cpp, expressions in CGExpr.cpp, and everything that exists only
+//   because a task is a generator (prologue, reset check, resume switch,
+//   yields, task states) in CGTask.cpp.
+//
+// Storage of values (docs/design/backend.md):
+// - A task's parameters and locals live in its frame inside the behavior
+//   state, so they survive a `yield` and nested funcs reach them through
+//   the `ptr %state` every generated function receives. No SSA value is
+//   live across a yield: the resume switch may jump into the middle of any
+//   loop, and only memory connects the code before and after a yield.
+// - A func's parameters and locals live in allocas (SROA/mem2reg turn them
+//   into registers at -O1 and above).
+// - bool is i1 in registers and i8 in memory, as in Clang.
+//
+//===----------------------------------------------------------------------===//
+#ifndef BSC_LIB_CODEGEN_CODEGENIMPL_H
+#define BSC_LIB_CODEGEN_CODEGENIMPL_H
+
+#include "bsc/CodeGen/CodeGen.h"
+#include "llvm/ADT/DenseMap.h"
+#include "llvm/ADT/SmallVector.h"
+#include "llvm/ADT/StringMap.h"
+#include "llvm/IR/IRBuilder.h"
+
+namespace bsc {
+namespace codegen {
+
+/// Field numbers of `%bs.state` (bs_state_header in bscript.h); the frame
+/// of task i is field FirstFrameField + i.
+enum StateField : unsigned {
+  StateCycle = 0,
+  StateReserved = 1,
+  StateInput = 2,
+  StateOutput = 3,
+  FirstFrameField = 4,
+};
+
+/// Field numbers of a `%bs.frame.*` (bs_frame_header in bscript.h); the
+/// parameters follow, then the locals.
+enum FrameField : unsigned {
+  FrameResume = 0,
+  FrameState = 1,
+  FrameLastCycle = 2,
+  FirstParamField = 3,
+};
+
+/// Values of frame.state (bscript.h BS_TASK_*).
+constexpr int32_t TaskDone = 0;
+constexpr int32_t TaskRunning = 1;
+
+/// Where a task's frame sits in the state and how its fields are numbered.
+struct FrameInfo {
+  llvm::StructType *Ty = nullptr;
+  unsigned StateFieldNo = 0; ///< Field of %bs.state holding this frame.
+  /// ParamDecl or VarDecl of the task -> field of the frame struct.
+  llvm::DenseMap<const Decl *, unsigned> Fields;
+};
+
+/// What the whole behavior shares while it is being lowered.
+class ModuleEmitter {
+public:
+  ModuleEmitter(const Behavior &B, llvm::Module &M, const CodeGenOptions &Opts,
+                BehaviorLayout &Layout);
+
+  /// Lays out types, declares and defines every function, the entries, the
+  /// info struct and (optionally) `main`.
+  void run();
+
+  // Types -----------------------------------------------------------------
+
+  /// The type of a value of `T` in a register (bool is i1).
+  llvm::Type *getValueType(const Type *T);
+  /// The type of a value of `T` in memory: frames, allocas (bool is i8).
+  llvm::Type *getMemoryType(const Type *T);
+  /// The value a local has before its declaration assigns it: 0, 0.0,
+  /// false, "" (language.md: every local is initialised).
+  llvm::Constant *getZeroValue(const Type *T);
+
+  llvm::StructType *getStateType() const { return StateTy; }
+  const FrameInfo &getFrame(const TaskDecl *T) const;
+
+  // Functions and constants -----------------------------------------------
+
+  /// The internal function generated for a func or task.
+  llvm::Function *getFunction(const CallableDecl *D) const;
+  /// The C-ABI declaration of a native function (int/enum -> i32,
+  /// bool -> i32 0/1, float -> float, string -> ptr).
+  llvm::FunctionCallee getNative(const NativeFunction &NF);
+  /// A private NUL-terminated constant; equal strings share one global.
+  llvm::Constant *getString(llvm::StringRef S);
+  /// The C ABI type of a native parameter or result.
+  llvm::Type *getNativeType(const NativeType &NT);
+
+  /// Attributes every generated function carries: nounwind (b-script has no
+  /// exceptions) and "no-builtins" so that loop idioms and runs of stores
+  /// never become calls of memset/memcpy (the object must not need libc).
+  void addCommonAttributes(llvm::Function *F);
+
+  const Behavior &getBehavior() const { return B; }
+  llvm::Module &getModule() { return M; }
+  llvm::LLVMContext &getContext() { return Ctx; }
+
+private:
+  void layoutState();
+  void declareFunctions();
+  void emitEntries();
+  void emitInfo();
+  void emitProgramMain();
+
+  const Behavior &B;
+  llvm::Module &M;
+  llvm::LLVMContext &Ctx;
+  const CodeGenOptions &Opts;
+  BehaviorLayout &Layout;
+
+  llvm::StructType *StateTy = nullptr;
+  llvm::DenseMap<const TaskDecl *, FrameInfo> Frames;
+  llvm::DenseMap<const CallableDecl *, llvm::Function *> Functions;
+  llvm::DenseMap<const NativeFunction *, llvm::FunctionCallee> Natives;
+  llvm::StringMap<llvm::Constant *> Strings;
+  llvm::GlobalVariable *Info = nullptr;
+};
+
+/// Lowers the body of one func or task into its (already declared) function.
+class FunctionEmitter {
+public:
+  FunctionEmitter(ModuleEmitter &CGM, const CallableDecl &D);
+
+  /// Emits the whole body.
+  void run();
+
+private:
+  // CodeGen.cpp: funcs.
+  void emitFuncPrologue();
+  void emitFuncEpilogue();
+
+  // CGTask.cpp: everything a generator needs.
+  void emitTaskPrologue();
+  void emitTaskEpilogue();
+  /// frame.resume = 0; frame.state = done; ret void.
+  void emitTaskFinish();
+  void emitYield(const YieldStmt &S);
+  /// A pointer to the frame of `T` inside the state.
+  llvm::Value *getFramePtr(const TaskDecl *T);
+  /// A pointer to field `Field` of the frame of `T`.
+  llvm::Value *getFrameFieldPtr(const TaskDecl *T, unsigned Field);
+  llvm::Value *emitTaskState(const TaskDecl *T);
+
+  // CGStmt.cpp.
+  void emitStmt(const Stmt *S);
+  void emitBlock(const BlockStmt *S);
+  void emitDecl(const DeclStmt &S);
+  void emitAssign(const AssignStmt &S);
+  void emitIf(const IfStmt &S);
+  void emitFor(const ForStmt &S);
+  void emitBreak(const BreakStmt &S);
+  void emitContinue(const ContinueStmt &S);
+  void emitReturn(const ReturnStmt &S);
+  /// Starts a new block for code that follows a terminator (after `return`,
+  /// `break`, ...); it has no predecessors and is removed at the end.
+  void startDeadBlock();
+  /// Branches to `Dest` unless the current block is already terminated.
+  void emitBranch(llvm::BasicBlock *Dest);
+
+  // CGExpr.cpp.
+  llvm::Value *emitExpr(const Expr *E);
+  /// Emits a condition as i1.
+  llvm::Value *emitCond(const Expr *E);
+  llvm::Value *emitName(const NameExpr &E);
+  llvm::Value *emitCall(const CallExpr &E);
+  llvm::Value *emitUnary(const UnaryExpr &E);
+  llvm::Value *emitBinary(const BinaryExpr &E);
+  llvm::Value *emitLogical(const BinaryExpr &E);
+  llvm::Value *emitConversion(const ConversionExpr &E);
+  llvm::Value *emitMember(const MemberExpr &E);
+  /// `L op R` for arithmetic and comparison operators on already evaluated
+  /// operands of one type (shared with compound assignment). Integers (i32,
+  /// and i1 for bool ==/!=) compare signed; floats as in C.
+  llvm::Value *emitArith(BinaryOp Op, llvm::Value *L, llvm::Value *R);
+  /// Integer `/` and `%` without traps or UB (docs/design/backend.md):
+  /// x / 0 == 0, x % 0 == x, INT_MIN / -1 == INT_MIN, INT_MIN % -1 == 0.
+  llvm::Value *emitSafeIntDivRem(bool IsRem, llvm::Value *L, llvm::Value *R);
+  /// Float `%` without libm: a - b * trunc(a / b).
+  llvm::Value *emitFloatRem(llvm::Value *L, llvm::Value *R);
+  /// The address of a local or parameter (of this callable, or of the task
+  /// a nested func belongs to). Null for a task's parameter in its own body:
+  /// there the body reads the argument, which is fresh at every call.
+  llvm::Value *getDeclAddress(const Decl *V);
+  /// The address an assignment stores to.
+  llvm::Value *getLValueAddress(const Expr *E);
+  /// The pointer held in state.input / state.output: the one place where
+  /// the `input` and `output` globals are reached.
+  llvm::Value *emitGlobalIOPointer(NameKind K);
+  /// Loads/stores a value of type `T` from/to memory (bool: i8 <-> i1).
+  llvm::Value *emitLoad(const Type *T, llvm::Value *Addr,
+                        const llvm::Twine &Name = "");
+  void emitStore(const Type *T, llvm::Value *V, llvm::Value *Addr);
+
+  /// Evaluates a yield's value as an i32 task state.
+  llvm::Value *emitToTaskState(const Expr *E);
+
+  /// The enclosing task whose frame this function can reach: the task
+  /// itself, or the task a nested func is declared in.
+  const TaskDecl *getFrameTask() const;
+
+  ModuleEmitter &CGM;
+  const CallableDecl &D;
+  const TaskDecl *Task;     ///< Non-null when lowering a task body.
+  llvm::Function *Fn;
+  llvm::IRBuilder<> Builder;
+  llvm::Value *StatePtr;    ///< The first argument.
+  /// Allocas of a func's parameters and locals.
+  llvm::DenseMap<const Decl *, llvm::AllocaInst *> Slots;
+  /// Where `break` and `continue` of the innermost loops go.
+  struct LoopTargets {
+    llvm::BasicBlock *Break;
+    llvm::BasicBlock *Continue;
+  };
+  llvm::SmallVector<LoopTargets, 4> Loops;
+  /// Task bodies: the dispatch on frame.resume; a case is added per yield.
+  llvm::SwitchInst *ResumeSwitch = nullptr;
+  /// Funcs: where allocas go, so they stay in the entry block.
+  llvm::Instruction *AllocaPoint = nullptr;
+};
+
+} // namespace codegen
+} // namespace bsc
+
+#endif

@@ -1,0 +1,477 @@
+//===- CodeGenTest.cpp - IR generation from source to module ---------------===//
+//
+// These tests run the real front end on small programs and check the IR
+// generator's promises that lit/FileCheck cannot state well: every program
+// gives a module the verifier accepts, for the robot (i586) and the host
+// (x86_64) layouts; the state and frame sizes are a function of the
+// DataLayout alone, so running LLVM's -O2 pipeline over the module changes
+// none of them; and the generated code needs no libc (no memset/memcpy), no
+// coroutine intrinsics and nothing that traps, at -O0 and -O2.
+//
+//===----------------------------------------------------------------------===//
+#include "bsc/CodeGen/CodeGen.h"
+#include "bsc/Frontend/Frontend.h"
+#include "llvm/IR/Constants.h"
+#include "llvm/IR/GlobalVariable.h"
+#include "llvm/IR/Instructions.h"
+#include "llvm/IR/IntrinsicInst.h"
+#include "llvm/IR/Verifier.h"
+#include "llvm/Passes/PassBuilder.h"
+#include "llvm/Support/FileSystem.h"
+#include "llvm/Support/Path.h"
+#include "llvm/Support/raw_ostream.h"
+#include "gtest/gtest.h"
+#include <map>
+
+using namespace bsc;
+
+namespace {
+
+/// The DataLayout of `-target i586` (the robot: 4-byte pointers, f64
+/// aligned to 4) and of `-target x86_64`.
+const char *const I586Layout = "e-m:e-p:32:32-p270:32:32-p271:32:32-p272:64:64-"
+                               "i128:128-f64:32:64-f80:32-n8:16:32-S128";
+const char *const X86_64Layout = "e-m:e-p270:32:32-p271:32:32-p272:64:64-"
+                                 "i64:64-i128:128-f80:128-n8:16:32:64-S128";
+
+struct TargetCase {
+  const char *Triple;
+  const char *Layout;
+};
+const TargetCase Targets[] = {{"i586-unknown-linux-gnu", I586Layout},
+                              {"x86_64-unknown-linux-gnu", X86_64Layout}};
+
+/// A program: its files (the first is the input) by module name.
+using Sources = std::vector<std::pair<std::string, std::string>>;
+
+/// Programs that together use every statement and expression of the
+/// language; each must pass the front end.
+const std::map<std::string, Sources> &getPrograms() {
+  static const std::map<std::string, Sources> Programs = {
+      {"fib", {{"fib", R"(requires "io"
+
+task fib()
+    int a = 0
+    int b = 1
+    for(; true; yield)
+        io::printi(b)
+        int t = b
+        b += a
+        a = t
+
+func main()
+    for(int i = 0; i < 20; i+=1)
+        fib()
+)"}}},
+      {"tasks", {{"tasks", R"(requires "io"
+
+task count(int limit, float scale)
+    func scaled(int v) : float
+        return v * scale + limit
+    int i = 0
+    for(; i < limit; i += 1)
+        if(i == 2)
+            continue
+        io::printf(scaled(i))
+        yield
+        if(i > 5)
+            break
+    yield TaskState::failure
+    io::prints("after failure")
+    return
+
+task quiet()
+    io::printb(true)
+
+func main()
+    count(3, 0.5)
+    quiet()
+    if(taskState(count) == TaskState::running && taskState(quiet) != TaskState::failure)
+        io::prints("running")
+    else if(int(taskState(tasks::count)) < 0 || !(taskState(quiet) == TaskState::done))
+        io::prints("other")
+)"}}},
+      {"arith", {{"arith", R"(requires "io"
+
+func ops(int a, int b) : int
+    int q = a / b
+    int r = a % b
+    int w = a * b - -a + b
+    q /= b
+    r %= b
+    w -= 1
+    w *= 2
+    return q + r + w
+
+func fops(float x, int n) : float
+    float y = x / n + n
+    y += n
+    y -= 0.5
+    y *= x
+    y /= 2
+    return -y
+
+func conv(float f, bool b, int i) : bool
+    int a = int(f)
+    int c = int(b)
+    float g = float(i)
+    float h = i
+    bool d = bool(b)
+    return a < c || g <= h && d || f > 1.5 || f >= g || b == d || i != a
+
+func defaults() : int
+    int i
+    float f
+    bool b
+    if(b)
+        return 1
+    return i + int(f)
+
+func main()
+    io::printi(ops(7, 0))
+    io::printf(fops(1.5, 3))
+    io::printb(conv(2.5, true, 3))
+    io::printi(defaults())
+    io::printi(int(TaskState::failure))
+)"}}},
+      {"multi",
+       {{"multi", R"(requires "helper"
+requires "io"
+
+func main()
+    helper::step(2)
+    io::printi(helper::twice(21))
+)"},
+        {"helper", R"(requires "io"
+
+func twice(int x) : int
+    return x * 2
+
+task step(int n)
+    for(int k = 0; k < n; k += 1)
+        io::printi(k)
+        yield
+)"}}},
+      {"nested-loops", {{"loops", R"(requires "io"
+
+task walk()
+    for(int i = 0; i < 3; i += 1)
+        for(int j = 0; ; j += 1)
+            if(j >= i)
+                break
+            yield
+            if(j == 1)
+                continue
+            io::printi(i * 10 + j)
+        yield 2
+
+func main()
+    for(int c = 0; c < 10; c += 1)
+        walk()
+)"}}},
+  };
+  return Programs;
+}
+
+/// Runs the front end over one program and lowers it.
+class CodeGenTest : public ::testing::Test {
+protected:
+  std::unique_ptr<Compilation> C;
+  llvm::LLVMContext Ctx;
+  llvm::SmallString<128> Dir;
+
+  void SetUp() override {
+    ASSERT_FALSE(llvm::sys::fs::createUniqueDirectory("bsc-codegen", Dir));
+  }
+  void TearDown() override { llvm::sys::fs::remove_directories(Dir); }
+
+  /// Parses and checks `Files`; fails the test on any error.
+  bool check(const Sources &Files) {
+    C = std::make_unique<Compilation>();
+    FrontendOptions O;
+    for (const auto &[Name, Text] : Files) {
+      llvm::SmallString<128> Path(Dir);
+      llvm::sys::path::append(Path, Name + ".bs");
+      std::error_code EC;
+      llvm::raw_fd_ostream OS(Path, EC);
+      EXPECT_FALSE(EC);
+      OS << Text;
+      if (O.Inputs.empty())
+        O.Inputs.push_back(std::string(Path));
+    }
+    bool OK = runFrontend(*C, O);
+    std::string Msgs;
+    for (const Diagnostic &D : C->Diags.getDiagnostics())
+      Msgs += D.Message + "\n";
+    EXPECT_TRUE(OK) << Msgs;
+    return OK;
+  }
+
+  std::unique_ptr<llvm::Module> emit(const TargetCase &T, BehaviorLayout &L,
+                                     CodeGenOptions Opts = {}) {
+    if (Opts.BehaviorName.empty())
+      Opts.BehaviorName = "B";
+    return emitLLVM(C->Checked, Ctx, llvm::Triple(T.Triple),
+                    llvm::DataLayout(T.Layout), Opts, L);
+  }
+
+  const CallableDecl *findDecl(llvm::StringRef Module, llvm::StringRef Name) {
+    for (ModuleAST *M : C->Checked.Modules)
+      if (M->Name == Module)
+        for (CallableDecl *D : M->Decls)
+          if (D->getName().Name == Name)
+            return D;
+    return nullptr;
+  }
+};
+
+/// LLVM's default pipeline at `Level`, without a target machine.
+void optimize(llvm::Module &M, llvm::OptimizationLevel Level) {
+  llvm::LoopAnalysisManager LAM;
+  llvm::FunctionAnalysisManager FAM;
+  llvm::CGSCCAnalysisManager CGAM;
+  llvm::ModuleAnalysisManager MAM;
+  llvm::PassBuilder PB;
+  PB.registerModuleAnalyses(MAM);
+  PB.registerCGSCCAnalyses(CGAM);
+  PB.registerFunctionAnalyses(FAM);
+  PB.registerLoopAnalyses(LAM);
+  PB.crossRegisterProxies(LAM, FAM, CGAM, MAM);
+  llvm::ModulePassManager MPM =
+      Level == llvm::OptimizationLevel::O0
+          ? PB.buildO0DefaultPipeline(Level)
+          : PB.buildPerModuleDefaultPipeline(Level);
+  MPM.run(M, MAM);
+}
+
+/// Reports what the generated code must never contain.
+std::string findForbidden(const llvm::Module &M) {
+  std::string Problems;
+  for (const llvm::Function &F : M) {
+    llvm::StringRef N = F.getName();
+    if (F.isDeclaration() && !F.use_empty() &&
+        (N.contains("memset") || N.contains("memcpy") ||
+         N.contains("memmove") || N.starts_with("llvm.coro") ||
+         N == "llvm.trap" || N == "malloc" || N == "fmodf" || N == "truncf"))
+      Problems += "uses " + N.str() + "\n";
+    for (const llvm::BasicBlock &BB : F)
+      for (const llvm::Instruction &I : BB)
+        if (llvm::isa<llvm::UnreachableInst>(I))
+          Problems += "unreachable in " + N.str() + "\n";
+  }
+  return Problems;
+}
+
+TEST_F(CodeGenTest, EveryProgramVerifiesOnEveryTarget) {
+  for (const auto &[Name, Files] : getPrograms()) {
+    SCOPED_TRACE(Name);
+    ASSERT_TRUE(check(Files));
+    for (const TargetCase &T : Targets) {
+      SCOPED_TRACE(T.Triple);
+      BehaviorLayout L;
+      std::unique_ptr<llvm::Module> M = emit(T, L);
+      std::string Err;
+      llvm::raw_string_ostream OS(Err);
+      EXPECT_FALSE(llvm::verifyModule(*M, &OS)) << Err;
+      EXPECT_EQ(findForbidden(*M), "");
+      // The generator itself never emits flags that make overflow poison.
+      for (const llvm::Function &F : *M)
+        for (const llvm::BasicBlock &BB : F)
+          for (const llvm::Instruction &I : BB)
+            if (const auto *O = llvm::dyn_cast<llvm::OverflowingBinaryOperator>(&I))
+              EXPECT_FALSE(O->hasNoSignedWrap() || O->hasNoUnsignedWrap())
+                  << F.getName().str();
+    }
+  }
+}
+
+TEST_F(CodeGenTest, NoLibcNoCoroutinesNoTrapsAfterOptimisation) {
+  for (const auto &[Name, Files] : getPrograms()) {
+    SCOPED_TRACE(Name);
+    ASSERT_TRUE(check(Files));
+    for (const TargetCase &T : Targets) {
+      SCOPED_TRACE(T.Triple);
+      for (llvm::OptimizationLevel Level :
+           {llvm::OptimizationLevel::O0, llvm::OptimizationLevel::O2,
+            llvm::OptimizationLevel::O3}) {
+        BehaviorLayout L;
+        CodeGenOptions Opts;
+        Opts.ProgramEntry = findDecl(Files.front().first, "main");
+        Opts.ProgramCycles = 3;
+        std::unique_ptr<llvm::Module> M = emit(T, L, Opts);
+        optimize(*M, Level);
+        EXPECT_FALSE(llvm::verifyModule(*M, &llvm::errs()));
+        EXPECT_EQ(findForbidden(*M), "");
+      }
+    }
+  }
+}
+
+/// The state size the module's info struct advertises.
+uint64_t getInfoStateSize(const llvm::Module &M) {
+  const llvm::GlobalVariable *GV = M.getNamedGlobal("bs_B_info");
+  if (!GV || !GV->hasInitializer())
+    return 0;
+  return llvm::cast<llvm::ConstantInt>(
+             GV->getInitializer()->getAggregateElement(1u))
+      ->getZExtValue();
+}
+
+TEST_F(CodeGenTest, LayoutIsTheSameAtEveryOptLevel) {
+  for (const auto &[Name, Files] : getPrograms()) {
+    SCOPED_TRACE(Name);
+    ASSERT_TRUE(check(Files));
+    for (const TargetCase &T : Targets) {
+      SCOPED_TRACE(T.Triple);
+      BehaviorLayout Reference;
+      std::unique_ptr<llvm::Module> M0 = emit(T, Reference);
+      EXPECT_EQ(getInfoStateSize(*M0), Reference.StateSize);
+      for (llvm::OptimizationLevel Level :
+           {llvm::OptimizationLevel::O0, llvm::OptimizationLevel::O1,
+            llvm::OptimizationLevel::O2, llvm::OptimizationLevel::O3}) {
+        BehaviorLayout L;
+        std::unique_ptr<llvm::Module> M = emit(T, L);
+        optimize(*M, Level);
+        EXPECT_EQ(L.StateSize, Reference.StateSize);
+        EXPECT_EQ(L.StateAlign, Reference.StateAlign);
+        ASSERT_EQ(L.Tasks.size(), Reference.Tasks.size());
+        for (size_t I = 0; I < L.Tasks.size(); ++I)
+          EXPECT_EQ(L.Tasks[I].FrameOffset, Reference.Tasks[I].FrameOffset);
+        // What the object tells the embedding survives optimisation.
+        EXPECT_EQ(getInfoStateSize(*M), Reference.StateSize);
+      }
+    }
+  }
+}
+
+TEST_F(CodeGenTest, FibFrameLayout) {
+  ASSERT_TRUE(check(getPrograms().at("fib")));
+  // header {cycle, reserved, input, output}, then fib's frame {resume,
+  // state, last_cycle, a, b, t}: six i32.
+  BehaviorLayout L32, L64;
+  std::unique_ptr<llvm::Module> M32 = emit(Targets[0], L32);
+  std::unique_ptr<llvm::Module> M64 = emit(Targets[1], L64);
+  EXPECT_EQ(L32.StateSize, 16u + 24u);
+  EXPECT_EQ(L32.StateAlign, 4u);
+  ASSERT_EQ(L32.Tasks.size(), 1u);
+  EXPECT_EQ(L32.Tasks[0].FrameOffset, 16u);
+  EXPECT_EQ(L64.StateSize, 24u + 24u);
+  EXPECT_EQ(L64.StateAlign, 8u);
+  EXPECT_EQ(L64.Tasks[0].FrameOffset, 24u);
+
+  llvm::StructType *Frame =
+      llvm::StructType::getTypeByName(Ctx, "bs.frame.fib.fib");
+  ASSERT_TRUE(Frame);
+  EXPECT_EQ(Frame->getNumElements(), 6u);
+}
+
+TEST_F(CodeGenTest, FrameFieldTypes) {
+  ASSERT_TRUE(check({{"m", R"(task t(int i, float f, bool b)
+    bool local = b
+    string s = "x"
+    TaskState st = TaskState::running
+    yield
+)"}}));
+  BehaviorLayout L;
+  std::unique_ptr<llvm::Module> M = emit(Targets[0], L);
+  llvm::StructType *Frame = llvm::StructType::getTypeByName(Ctx, "bs.frame.m.t");
+  ASSERT_TRUE(Frame);
+  // resume, state, last_cycle, i, f, b (i8), local (i8), s (ptr), st (i32).
+  ASSERT_EQ(Frame->getNumElements(), 9u);
+  EXPECT_TRUE(Frame->getElementType(3)->isIntegerTy(32));
+  EXPECT_TRUE(Frame->getElementType(4)->isFloatTy());
+  EXPECT_TRUE(Frame->getElementType(5)->isIntegerTy(8));
+  EXPECT_TRUE(Frame->getElementType(6)->isIntegerTy(8));
+  EXPECT_TRUE(Frame->getElementType(7)->isPointerTy());
+  EXPECT_TRUE(Frame->getElementType(8)->isIntegerTy(32));
+  // 12 + 4 + 4 + 1 + 1 + 2 (pad) + 4 + 4 on i586.
+  EXPECT_EQ(L.StateSize, 16u + 32u);
+}
+
+TEST_F(CodeGenTest, EntriesAndInfo) {
+  ASSERT_TRUE(check(getPrograms().at("multi")));
+  BehaviorLayout L;
+  std::unique_ptr<llvm::Module> M = emit(Targets[0], L);
+  EXPECT_EQ(L.InfoSymbol, "bs_B_info");
+  const llvm::GlobalVariable *Info = M->getNamedGlobal("bs_B_info");
+  ASSERT_TRUE(Info);
+  EXPECT_TRUE(Info->isConstant());
+  EXPECT_TRUE(Info->hasExternalLinkage());
+  const llvm::Constant *Init = Info->getInitializer();
+  auto Field = [&](unsigned I) {
+    return llvm::cast<llvm::ConstantInt>(Init->getAggregateElement(I))
+        ->getZExtValue();
+  };
+  EXPECT_EQ(Field(0), 1u); // BS_ABI_VERSION
+  EXPECT_EQ(Field(1), L.StateSize);
+  EXPECT_EQ(Field(2), L.StateAlign);
+  EXPECT_EQ(Field(3), 1u); // helper::step
+
+  std::vector<std::string> Symbols;
+  for (const BehaviorLayout::Entry &E : L.Entries) {
+    Symbols.push_back(E.Symbol);
+    EXPECT_EQ(E.Symbol, getEntrySymbol("B", *E.Decl));
+    const llvm::Function *F = M->getFunction(E.Symbol);
+    ASSERT_TRUE(F) << E.Symbol;
+    EXPECT_TRUE(F->hasExternalLinkage());
+    EXPECT_FALSE(F->isDeclaration());
+  }
+  std::sort(Symbols.begin(), Symbols.end());
+  EXPECT_EQ(Symbols, (std::vector<std::string>{"bs_B__helper__step",
+                                               "bs_B__helper__twice",
+                                               "bs_B__multi__main"}));
+  // Everything else is internal.
+  for (const llvm::Function &F : *M)
+    if (!F.isDeclaration() && !F.getName().starts_with("bs_B__"))
+      EXPECT_TRUE(F.hasInternalLinkage()) << F.getName().str();
+}
+
+TEST_F(CodeGenTest, BoolEntriesTravelAsInt32) {
+  ASSERT_TRUE(check({{"m", R"(func flip(bool b, int i, float f) : bool
+    return !b
+func str(string s)
+    return
+)"}}));
+  BehaviorLayout L;
+  std::unique_ptr<llvm::Module> M = emit(Targets[0], L);
+  const llvm::Function *F = M->getFunction("bs_B__m__flip");
+  ASSERT_TRUE(F);
+  EXPECT_TRUE(F->getReturnType()->isIntegerTy(32));
+  ASSERT_EQ(F->arg_size(), 4u);
+  EXPECT_TRUE(F->getArg(0)->getType()->isPointerTy());
+  EXPECT_TRUE(F->getArg(1)->getType()->isIntegerTy(32));
+  EXPECT_TRUE(F->getArg(2)->getType()->isIntegerTy(32));
+  EXPECT_TRUE(F->getArg(3)->getType()->isFloatTy());
+  // A string parameter cannot come from C: no entry.
+  EXPECT_FALSE(M->getFunction("bs_B__m__str"));
+}
+
+TEST_F(CodeGenTest, ProgramMainRunsTheCycles) {
+  ASSERT_TRUE(check(getPrograms().at("fib")));
+  BehaviorLayout L;
+  CodeGenOptions Opts;
+  Opts.ProgramEntry = findDecl("fib", "main");
+  Opts.ProgramCycles = 5;
+  std::unique_ptr<llvm::Module> M = emit(Targets[0], L, Opts);
+  const llvm::Function *Main = M->getFunction("main");
+  ASSERT_TRUE(Main);
+  EXPECT_TRUE(Main->getReturnType()->isIntegerTy(32));
+  bool CallsInit = false, CallsBegin = false;
+  for (const llvm::BasicBlock &BB : *Main)
+    for (const llvm::Instruction &I : BB)
+      if (const auto *Call = llvm::dyn_cast<llvm::CallInst>(&I)) {
+        if (const llvm::Function *Callee = Call->getCalledFunction()) {
+          CallsInit |= Callee->getName() == "bs_state_init";
+          CallsBegin |= Callee->getName() == "bs_begin_cycle";
+        }
+      } else if (const auto *A = llvm::dyn_cast<llvm::AllocaInst>(&I)) {
+        EXPECT_EQ(A->getAlign().value(), L.StateAlign);
+      }
+  EXPECT_TRUE(CallsInit);
+  EXPECT_TRUE(CallsBegin);
+  // Without ProgramEntry there is no main.
+  BehaviorLayout L2;
+  EXPECT_FALSE(emit(Targets[0], L2)->getFunction("main"));
+}
+
+} // namespace
