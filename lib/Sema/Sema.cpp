@@ -115,7 +115,10 @@ void Sema::buildModuleTables(llvm::ArrayRef<ModuleAST *> Modules) {
 
     for (const RequireDecl &R : M->Requires) {
       Info->Requires.try_emplace(R.Name, &R);
-      KnownModules.insert(R.Name);
+      // An unknown module is not "known": naming it elsewhere without a
+      // `requires` should not suggest adding one.
+      if (R.Script || R.Native)
+        KnownModules.insert(R.Name);
       if (R.Native && llvm::find(AllNatives, R.Native) == AllNatives.end()) {
         AllNatives.push_back(R.Native);
         Out.NativeModules.push_back(R.Native);

@@ -166,9 +166,9 @@ const Type *Sema::checkName(NameExpr *E, Access A) {
 }
 
 const Type *Sema::checkMember(MemberExpr *E, Access A) {
-  // A part of input or output follows the rules of the whole.
-  const Type *BaseTy =
-      checkExpr(E->Base, A == Access::MethodBase ? Access::Read : A);
+  // A part of input or output follows the rules of the whole, so the use
+  // is passed down to the root of a member chain.
+  const Type *BaseTy = checkExpr(E->Base, A);
   if (BaseTy->isError())
     return Types.getError();
   // No registered classes yet: nothing has members.
