@@ -1,12 +1,15 @@
 //===- SemaTest.cpp - the typing and task rules of Sema -------------------===//
 //
-// These tests build small trees by hand instead of parsing source, so they
+// Most tests build small trees by hand instead of parsing source, so they
 // pin down Sema's rules (types, implicit conversions, poison, resume
-// points, the call graph) independently of the parser. The lit tests in
+// points, the call graph) independently of the parser; a few parse source
+// for what is tedious to build by hand (nested funcs, locals). The lit tests in
 // test/Sema cover the same rules end to end with source positions.
 //
 //===----------------------------------------------------------------------===//
+#include "bsc/Parse/Parser.h"
 #include "bsc/Sema/Sema.h"
+#include "llvm/Support/MemoryBuffer.h"
 #include "gtest/gtest.h"
 
 using namespace bsc;
@@ -318,6 +321,73 @@ TEST_F(SemaTest, InputHasNoTypeYet) {
             (Msgs{"no input type registered; 'input' needs a binding module "
                   "that declares it",
                   "'input' is read-only"}));
+}
+
+} // namespace
+
+namespace {
+
+/// Parses and checks one module from source text.
+struct Parsed {
+  llvm::SourceMgr SM;
+  ASTContext Ctx;
+  DiagnosticEngine Diags;
+  Behavior Out;
+  ModuleAST *M = nullptr;
+  bool OK = false;
+
+  explicit Parsed(llvm::StringRef Source) {
+    unsigned ID = SM.AddNewSourceBuffer(
+        llvm::MemoryBuffer::getMemBufferCopy(Source, "P.bs"), llvm::SMLoc());
+    M = parseModule(SM, ID, "P", Ctx, Diags);
+    OK = !Diags.hasErrors() && checkBehavior({M}, Ctx, Diags, Out);
+  }
+};
+
+TEST(SemaParsedTest, NestedFuncsOwnTheirLocalsAndComeInSourceOrder) {
+  Parsed P("func first()\n"
+           "    return\n"
+           "task t(int p)\n"
+           "    int a = p\n"
+           "    func inner() : int\n"
+           "        int b = a\n"
+           "        return b\n"
+           "    for(int i = 0; i < inner(); i += 1)\n"
+           "        int c = i\n"
+           "func last()\n"
+           "    t(1)\n");
+  ASSERT_TRUE(P.OK);
+  ASSERT_EQ(P.Out.Funcs.size(), 3u);
+  EXPECT_EQ(P.Out.Funcs[0]->getName().Name, "first");
+  FuncDecl *Inner = P.Out.Funcs[1];
+  EXPECT_EQ(Inner->getName().Name, "inner");
+  EXPECT_EQ(P.Out.Funcs[2]->getName().Name, "last");
+  ASSERT_EQ(P.Out.Tasks.size(), 1u);
+  TaskDecl *T = P.Out.Tasks[0];
+
+  std::vector<llvm::StringRef> TaskLocals;
+  for (VarDecl *V : T->Locals) {
+    TaskLocals.push_back(V->getName().Name);
+    EXPECT_EQ(V->Owner, T);
+  }
+  EXPECT_EQ(TaskLocals, (std::vector<llvm::StringRef>{"a", "i", "c"}));
+  ASSERT_EQ(Inner->Locals.size(), 1u);
+  EXPECT_EQ(Inner->Locals[0]->Owner, Inner);
+  EXPECT_TRUE(Inner->ResultTy->isInt());
+}
+
+TEST(SemaParsedTest, RecursionThroughATaskIsReported) {
+  Parsed P("task a()\n"
+           "    b()\n"
+           "task b()\n"
+           "    a()\n");
+  EXPECT_FALSE(P.OK);
+  std::vector<std::string> Msgs;
+  for (const Diagnostic &D : P.Diags.getDiagnostics())
+    Msgs.push_back(D.Message);
+  EXPECT_EQ(Msgs, (std::vector<std::string>{
+                      "task 'P::a' can reach itself: P::a -> P::b -> P::a",
+                      "'P::a' calls 'P::b' here", "'P::b' calls 'P::a' here"}));
 }
 
 } // namespace
