@@ -1,0 +1,222 @@
+//===- Bind.h - what compiled binding objects register ---------*- C++ -*-===//
+//
+// Robot code registers C++ types and functions with bscript/Bind.h; each
+// BS_MODULE becomes one constexpr descriptor `bs_module_<Name>` in section
+// `bs_modules` of the compiled binding object. This library reads those
+// descriptors back from ELF relocatable objects and archives (following the
+// relocations to the symbols of type keys and thunks) and hands the rest of
+// bsc a plain model: modules, classes with their target size and alignment,
+// members with their thunk symbols, field offsets and signatures, enums, and
+// the declared `input` and `output` types.
+//
+// Why read the object instead of an interface file: the object is what gets
+// linked, so the sizes, offsets and symbol names bsc compiles against are
+// exactly the ones of the code it will call (bindings.md "How bsc finds
+// modules"). The model never holds host pointers into the object.
+//
+//===----------------------------------------------------------------------===//
+#ifndef BSC_BIND_BIND_H
+#define BSC_BIND_BIND_H
+
+#include "llvm/ADT/ArrayRef.h"
+#include "llvm/ADT/StringRef.h"
+#include "llvm/Support/Error.h"
+#include "llvm/Support/MemoryBufferRef.h"
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace llvm {
+class raw_ostream;
+class Triple;
+} // namespace llvm
+
+namespace bsc {
+struct NativeRegistry;
+
+namespace bind {
+
+/// The descriptor version this reader understands (bs::DescriptorVersion).
+constexpr uint32_t SupportedVersion = 1;
+
+/// How a value travels through a thunk (bindings.md "Thunks"): Bool, Int and
+/// Enum as i32, Float as float, String as `const char *`, Class as a pointer.
+enum class TypeCode : uint8_t { Void, Bool, Int, Float, String, Enum, Class };
+
+/// Flags of a BoundType (bs::detail::TypeFlag).
+enum TypeFlags : unsigned {
+  TF_Const = 1,    ///< const-qualified (const T&, or a const field)
+  TF_Ref = 2,      ///< declared as a C++ reference
+  TF_Unsigned = 4, ///< unsigned integer, or enum with unsigned storage
+  TF_Pointer = 8,  ///< travels as a pointer: classes; int&/float&/bool& out
+};
+
+/// A parameter, result or field type.
+struct BoundType {
+  TypeCode Code = TypeCode::Void;
+  unsigned Flags = 0;
+  uint32_t StorageSize = 0; ///< sizeof the C++ type on the target.
+  /// Enum and Class: the symbol of bs::TypeKey<T>::id, and after resolution
+  /// the registering module and the index of the class or enum in it.
+  std::string Key;
+  int Module = -1;
+  int Index = -1;
+
+  bool isScalar() const { return Code != TypeCode::Enum && Code != TypeCode::Class; }
+  /// A non-const scalar reference parameter (int&, float&, bool&): the
+  /// argument is a pointer to storage of StorageSize bytes.
+  bool isOutPointer() const {
+    return Code != TypeCode::Class && (Flags & TF_Pointer);
+  }
+};
+
+enum class DefaultKind : uint8_t { None, Int, Float };
+
+struct BoundParam {
+  BoundType Type;
+  std::string Name; ///< Usually empty: C++ parameter names are not visible.
+  DefaultKind Default = DefaultKind::None;
+  int32_t DefaultInt = 0;
+  float DefaultFloat = 0;
+};
+
+enum class MemberKind : uint8_t { Field, Property, Method, Function };
+
+/// Flags of a BoundMember (bs::detail::MemberFlag).
+enum MemberFlags : unsigned {
+  MF_ConstSelf = 1, ///< Does not modify the object.
+  MF_ReadOnly = 2,  ///< Field or property without setter.
+  MF_ResultOut = 4, ///< Class result: the thunk's first parameter is `R *out`.
+};
+
+/// A field, property, method or function. The thunk shapes:
+///   Method/Function: wire(R) Thunk([T *self,] wire(A)...)
+///                    or void Thunk(R *out, [T *self,] wire(A)...)
+///   Field/Property:  wire(R) Thunk(const T *self) or void Thunk(R *out,
+///                    const T *self); void Setter(T *self, wire(R) value)
+///                    with a class value passed as `const R *`.
+struct BoundMember {
+  MemberKind Kind = MemberKind::Function;
+  std::string Name;    ///< b-script name.
+  std::string CppName; ///< For messages; may be empty.
+  std::string Thunk;   ///< Call or getter thunk symbol.
+  std::string Setter;  ///< Setter thunk symbol; empty if read-only.
+  std::optional<uint64_t> FieldOffset; ///< Fields: offset in the class.
+  BoundType Result;                    ///< Fields/properties: their type.
+  unsigned Flags = 0;
+  std::vector<BoundParam> Params;
+
+  bool isConstSelf() const { return Flags & MF_ConstSelf; }
+  bool isReadOnly() const { return Flags & MF_ReadOnly; }
+  bool resultViaOut() const { return Flags & MF_ResultOut; }
+  /// Methods, fields and properties take the object; functions do not.
+  bool hasSelf() const {
+    return Kind != MemberKind::Function;
+  }
+};
+
+/// Flags of a BoundClass (bs::detail::ClassFlag).
+enum ClassFlags : unsigned {
+  CF_TriviallyCopyable = 1,
+  CF_TriviallyDestructible = 2,
+  CF_DefaultConstructible = 4,
+  CF_CopyConstructible = 8,
+  CF_CopyAssignable = 16,
+  CF_StandardLayout = 32,
+  CF_CopyAsBytes = 64, ///< The registration allows memcpy copies.
+};
+
+struct BoundClass {
+  std::string Name;    ///< b-script name inside its module.
+  std::string CppName; ///< As registered; may be empty.
+  std::string Key;     ///< bs::TypeKey<T>::id symbol.
+  uint64_t Size = 0, Align = 1;
+  unsigned Flags = 0;
+  /// Life-cycle thunks (empty when C++ lacks the operation):
+  /// void construct(T *), copy(T *dst, const T *src),
+  /// assign(T *dst, const T *src), destroy(T *).
+  std::string Construct, Copy, Assign, Destroy;
+  std::vector<BoundMember> Members; ///< Fields, properties, methods and
+                                    ///< functions in the class's scope.
+
+  /// bsc may copy values with memcpy instead of calling Copy/Assign.
+  bool copiesAsBytes() const {
+    return Flags & (CF_TriviallyCopyable | CF_CopyAsBytes);
+  }
+  const BoundMember *findMember(llvm::StringRef N) const;
+};
+
+struct BoundEnum {
+  struct Value {
+    std::string Name;
+    int32_t Number;
+  };
+  std::string Name, CppName, Key;
+  uint32_t Size = 4;
+  bool Scoped = false, Signed = true;
+  std::vector<Value> Values;
+};
+
+struct BoundModule {
+  std::string Name;
+  std::string File;   ///< "x.o" or "lib.a(x.o)".
+  std::string Symbol; ///< bs_module_<Name>.
+  uint32_t Version = 0;
+  std::vector<BoundClass> Classes;
+  std::vector<BoundMember> Functions; ///< Module-level functions.
+  std::vector<BoundEnum> Enums;
+  int InputClass = -1;  ///< Index in Classes of the type of `input`.
+  int OutputClass = -1; ///< Index in Classes of the type of `output`.
+  /// bs::moduleHash of the descriptor: changes when a size, an offset or a
+  /// signature changes, even if no symbol name does.
+  uint64_t Hash = 0;
+
+  const BoundClass *findClass(llvm::StringRef N) const;
+  const BoundEnum *findEnum(llvm::StringRef N) const;
+  const BoundMember *findFunction(llvm::StringRef N) const;
+};
+
+/// Everything the binding objects of one compilation register.
+struct BindingModel {
+  unsigned PointerSize = 0;
+  std::vector<BoundModule> Modules;
+
+  const BoundModule *findModule(llvm::StringRef N) const;
+  /// The module declaring `input`/`output` (its names are visible
+  /// unqualified in scripts), or null.
+  const BoundModule *getWorldModule() const;
+  const BoundClass *getClass(const BoundType &T) const;
+  const BoundEnum *getEnum(const BoundType &T) const;
+  /// "Module::Name" of a resolved enum or class type.
+  std::string getQualifiedName(const BoundType &T) const;
+};
+
+/// Reads the binding objects or archives that will be linked into the
+/// program for `Target` (bindings.md "How bsc finds modules") and resolves
+/// every type across them. Errors name the file and the member path
+/// (`Vector2f.dot param 0`); all of them are reported, joined.
+llvm::Expected<BindingModel> readBindings(llvm::ArrayRef<std::string> Paths,
+                                          const llvm::Triple &Target);
+
+/// The same for buffers already in memory (tests); each buffer's
+/// identifier is used as its file name.
+llvm::Expected<BindingModel>
+readBindingBuffers(llvm::ArrayRef<llvm::MemoryBufferRef> Buffers,
+                   const llvm::Triple &Target);
+
+/// Prints what the model registers, one line per entity (bsc
+/// --dump-bindings).
+void dumpBindings(const BindingModel &Model, llvm::raw_ostream &OS);
+
+/// Adds what Native.h can express today to `Registry`: every module with
+/// its enums and the module functions whose parameters and result are
+/// scalars or enums passed by value. Returns the "Module::name"s of the
+/// functions left out (class types, out parameters, defaults).
+std::vector<std::string> addToNativeRegistry(const BindingModel &Model,
+                                             NativeRegistry &Registry);
+
+} // namespace bind
+} // namespace bsc
+
+#endif

@@ -1,0 +1,1032 @@
+//===- BindingReader.cpp - read bs_module_* descriptors from objects ------===//
+//
+// bindings.md "How bsc finds modules": every defined symbol `bs_module_*` in
+// section `bs_modules` of an ELF relocatable is one descriptor written by
+// bscript/Bind.h. Its pointer-sized fields ("P") are zero in the file and
+// filled by relocations, so the reader indexes the relocations of a section
+// by offset and maps each one back to the symbol it points at: type keys
+// directly, thunks through one more step, because a P field points at a
+// "holder" object whose single relocation names the thunk. Only R_386_32
+// (REL, addend in the data) and R_X86_64_64 (RELA) can appear in such data;
+// anything else means the object is not what this reader expects.
+//
+// Reading is two passes over all objects of a compilation: pass 1 collects
+// every module and the key symbol of every registered class and enum, pass
+// 2 resolves each signature's keys against that table, so a module may use
+// types that another module registers. Errors are collected, not returned
+// at the first, so that one run reports every broken binding.
+//
+// The record layout mirrors bs::detail::rec in include/bscript/Bind.h.
+//
+//===----------------------------------------------------------------------===//
+#include "bsc/Bind/Bind.h"
+#include "llvm/ADT/DenseMap.h"
+#include "llvm/ADT/StringExtras.h"
+#include "llvm/ADT/StringMap.h"
+#include "llvm/BinaryFormat/ELF.h"
+#include "llvm/BinaryFormat/Magic.h"
+#include "llvm/Demangle/Demangle.h"
+#include "llvm/Object/Archive.h"
+#include "llvm/Object/ELF.h"
+#include "llvm/Object/ELFObjectFile.h"
+#include "llvm/Support/Endian.h"
+#include "llvm/Support/MemoryBuffer.h"
+#include "llvm/TargetParser/Triple.h"
+
+using namespace llvm;
+using namespace llvm::object;
+using namespace bsc;
+using namespace bsc::bind;
+
+namespace {
+
+//===----------------------------------------------------------------------===//
+// The descriptor layout (bscript/Bind.h, bs::detail::rec)
+//===----------------------------------------------------------------------===//
+
+constexpr char Magic[8] = {'B', 'S', 'M', 'O', 'D', 0, 0, 1};
+constexpr uint32_t NoIndex = 0xffffffffu;
+constexpr uint32_t HeaderSize = 112;
+
+/// Byte offsets of the u32 fields of the header.
+enum HeaderField : unsigned {
+  H_Version = 8,
+  H_HeaderSize = 12,
+  H_PtrSize = 16,
+  H_Name = 20,
+  H_TotalSize = 24,
+  H_Flags = 28,
+  H_InputClass = 32,
+  H_OutputClass = 36,
+  H_Tables = 40, // 5 x {count, offset, size}: classes, members, params,
+                 // enums, values
+  H_StringOffset = 100,
+  H_StringSize = 104,
+};
+
+enum Table { T_Class, T_Member, T_Param, T_Enum, T_Value, NumTables };
+
+/// Number of P fields that start each record, and the u32 fields after
+/// them (the minimum record size is Ptrs * P + 4 * Words).
+constexpr unsigned TablePtrs[NumTables] = {2, 4, 1, 1, 0};
+constexpr unsigned TableWords[NumTables] = {6, 10, 8, 6, 2};
+const char *const TableNames[NumTables] = {"class", "member", "param", "enum",
+                                           "value"};
+
+//===----------------------------------------------------------------------===//
+// Errors
+//===----------------------------------------------------------------------===//
+
+/// Collects the messages of one readBindings call.
+struct BindErrors {
+  std::vector<std::string> Messages;
+  void add(StringRef File, StringRef Path, const Twine &Msg) {
+    std::string S = File.str() + ": ";
+    if (!Path.empty())
+      S += Path.str() + ": ";
+    S += Msg.str();
+    Messages.push_back(std::move(S));
+  }
+  void add(StringRef File, StringRef Path, Error E) {
+    add(File, Path, toString(std::move(E)));
+  }
+  bool empty() const { return Messages.empty(); }
+  Error take() {
+    if (Messages.empty())
+      return Error::success();
+    std::string All = join(Messages, "\n");
+    Messages.clear();
+    return createStringError(inconvertibleErrorCode(), All);
+  }
+};
+
+std::string demangled(StringRef Sym) { return demangle(Sym.str()); }
+
+/// The C++ type of a key symbol `bs::TypeKey<T>::id`.
+std::string typeOfKey(StringRef Key) {
+  std::string D = demangled(Key);
+  StringRef S(D);
+  if (S.consume_front("bs::TypeKey<") && S.consume_back(">::id"))
+    return S.rtrim().str();
+  return D;
+}
+
+bool hasExternalLinkage(uint8_t Binding) {
+  return Binding == ELF::STB_GLOBAL || Binding == ELF::STB_WEAK ||
+         Binding == ELF::STB_GNU_UNIQUE;
+}
+
+//===----------------------------------------------------------------------===//
+// One ELF relocatable
+//===----------------------------------------------------------------------===//
+
+/// Where a pointer field points: a symbol, and the place it is defined.
+struct Pointee {
+  std::string Name;
+  uint8_t Binding = ELF::STB_LOCAL;
+  bool Defined = false;
+  uint64_t SectionIndex = 0;
+  uint64_t Offset = 0; ///< In its section.
+};
+
+struct Reloc {
+  uint32_t Type = 0;
+  bool HasSym = false;
+  SymbolRef Sym;
+  int64_t Addend = 0;
+};
+
+class ObjectReader {
+public:
+  ObjectReader(const ELFObjectFileBase &Obj, StringRef File, BindErrors &Errs)
+      : Obj(Obj), File(File.str()), Errs(Errs),
+        P(Obj.getBytesInAddress()),
+        Is386(Obj.getEMachine() == ELF::EM_386) {}
+
+  /// Reads every descriptor of the object into `Out`.
+  void readModules(std::vector<BoundModule> &Out);
+
+private:
+  const ELFObjectFileBase &Obj;
+  std::string File;
+  BindErrors &Errs;
+  unsigned P;
+  bool Is386;
+
+  // Per section: relocations by offset, and contents.
+  DenseMap<uint64_t, DenseMap<uint64_t, Reloc>> RelocsBySection;
+  bool RelocsIndexed = false;
+  // Defined symbols by (section index, offset), for section-relative
+  // relocations; the best (external before local) wins.
+  DenseMap<std::pair<uint64_t, uint64_t>, SymbolRef> SymbolAt;
+
+  void indexRelocations();
+  Expected<StringRef> contents(uint64_t SectionIndex);
+  /// The pointer field at `Off` of section `Sec`: std::nullopt if null.
+  Expected<std::optional<Pointee>> pointerAt(uint64_t Sec, uint64_t Off);
+  Expected<Pointee> resolve(const Reloc &R);
+  /// Slot `Slot` of a holder object: the thunk it points at.
+  Expected<std::optional<Pointee>> followHolder(const Pointee &Holder,
+                                                unsigned Slot);
+  Expected<int64_t> readMemberPointer(const Pointee &Holder);
+
+  void readDescriptor(const ELFSymbolRef &Sym, uint64_t Sec, StringRef Data,
+                      std::vector<BoundModule> &Out);
+};
+
+void ObjectReader::indexRelocations() {
+  if (RelocsIndexed)
+    return;
+  RelocsIndexed = true;
+  for (const SectionRef &S : Obj.sections()) {
+    Expected<section_iterator> Target = S.getRelocatedSection();
+    if (!Target) {
+      consumeError(Target.takeError());
+      continue;
+    }
+    if (*Target == Obj.section_end())
+      continue;
+    uint64_t TargetIndex = (*Target)->getIndex();
+    auto &Map = RelocsBySection[TargetIndex];
+    bool IsRela = ELFSectionRef(S).getType() == ELF::SHT_RELA;
+    for (const RelocationRef &R : S.relocations()) {
+      int64_t Addend = 0;
+      if (IsRela) {
+        Expected<int64_t> A = ELFRelocationRef(R).getAddend();
+        if (A)
+          Addend = *A;
+        else
+          consumeError(A.takeError());
+      } else {
+        // REL: the addend is the value in the data. Only 32-bit fields can
+        // carry a REL relocation that this reader accepts.
+        Expected<StringRef> Data = (*Target)->getContents();
+        if (Data && R.getOffset() + 4 <= Data->size())
+          Addend = static_cast<int32_t>(
+              support::endian::read32le(Data->data() + R.getOffset()));
+        else if (!Data)
+          consumeError(Data.takeError());
+      }
+      Reloc &Rel = Map[R.getOffset()];
+      Rel.Type = static_cast<uint32_t>(R.getType());
+      symbol_iterator SI = R.getSymbol();
+      Rel.HasSym = SI != Obj.symbol_end();
+      if (Rel.HasSym)
+        Rel.Sym = *SI;
+      Rel.Addend = Addend;
+    }
+  }
+  for (const ELFSymbolRef &Sym : Obj.symbols()) {
+    uint8_t Type = Sym.getELFType();
+    if (Type == ELF::STT_SECTION || Type == ELF::STT_FILE)
+      continue;
+    Expected<section_iterator> Sec = Sym.getSection();
+    if (!Sec) {
+      consumeError(Sec.takeError());
+      continue;
+    }
+    if (*Sec == Obj.section_end())
+      continue;
+    Expected<uint64_t> Value = Sym.getValue();
+    if (!Value) {
+      consumeError(Value.takeError());
+      continue;
+    }
+    auto Key = std::make_pair((*Sec)->getIndex(), *Value);
+    auto It = SymbolAt.find(Key);
+    if (It == SymbolAt.end() ||
+        (!hasExternalLinkage(ELFSymbolRef(It->second).getBinding()) &&
+         hasExternalLinkage(Sym.getBinding())))
+      SymbolAt[Key] = Sym;
+  }
+}
+
+Expected<StringRef> ObjectReader::contents(uint64_t SectionIndex) {
+  for (const SectionRef &S : Obj.sections())
+    if (S.getIndex() == SectionIndex) {
+      if (ELFSectionRef(S).getType() == ELF::SHT_NOBITS)
+        return StringRef(); // zero-filled
+      return S.getContents();
+    }
+  return createStringError(inconvertibleErrorCode(),
+                           "no section with index " + Twine(SectionIndex));
+}
+
+static Pointee pointeeOf(const ELFSymbolRef &Sym, uint64_t SecIndex,
+                         uint64_t Offset) {
+  Pointee Pt;
+  if (Expected<StringRef> N = Sym.getName())
+    Pt.Name = N->str();
+  else
+    consumeError(N.takeError());
+  Pt.Binding = Sym.getBinding();
+  Pt.Defined = true;
+  Pt.SectionIndex = SecIndex;
+  Pt.Offset = Offset;
+  return Pt;
+}
+
+Expected<Pointee> ObjectReader::resolve(const Reloc &R) {
+  uint32_t Want = Is386 ? uint32_t(ELF::R_386_32) : uint32_t(ELF::R_X86_64_64);
+  if (R.Type != Want) {
+    StringRef Name = getELFRelocationTypeName(Obj.getEMachine(), R.Type);
+    return createStringError(
+        inconvertibleErrorCode(),
+        "unexpected relocation type " + Name + " (expected " +
+            (Is386 ? "R_386_32" : "R_X86_64_64") +
+            "); was the object built with Bind.h?");
+  }
+  if (!R.HasSym)
+    return createStringError(inconvertibleErrorCode(),
+                             "relocation without a symbol");
+  ELFSymbolRef Sym(R.Sym);
+  Expected<section_iterator> Sec = Sym.getSection();
+  if (!Sec)
+    return Sec.takeError();
+  bool Defined = *Sec != Obj.section_end();
+  if (Sym.getELFType() == ELF::STT_SECTION || (Defined && R.Addend != 0)) {
+    // Section-relative (or symbol + offset): find the symbol defined there.
+    if (!Defined)
+      return createStringError(inconvertibleErrorCode(),
+                               "relocation against an undefined section");
+    uint64_t Base = 0;
+    if (Sym.getELFType() != ELF::STT_SECTION) {
+      Expected<uint64_t> V = Sym.getValue();
+      if (!V)
+        return V.takeError();
+      Base = *V;
+    }
+    uint64_t Index = (*Sec)->getIndex();
+    uint64_t Off = Base + R.Addend;
+    auto It = SymbolAt.find({Index, Off});
+    if (It == SymbolAt.end())
+      return createStringError(inconvertibleErrorCode(),
+                               "no symbol is defined where a pointer points "
+                               "(section " +
+                                   Twine(Index) + " + " + Twine(Off) + ")");
+    return pointeeOf(ELFSymbolRef(It->second), Index, Off);
+  }
+  if (!Defined) {
+    Pointee Pt;
+    if (Expected<StringRef> N = Sym.getName())
+      Pt.Name = N->str();
+    else
+      return N.takeError();
+    Pt.Binding = Sym.getBinding();
+    return Pt;
+  }
+  Expected<uint64_t> V = Sym.getValue();
+  if (!V)
+    return V.takeError();
+  return pointeeOf(Sym, (*Sec)->getIndex(), *V);
+}
+
+Expected<std::optional<Pointee>> ObjectReader::pointerAt(uint64_t Sec,
+                                                         uint64_t Off) {
+  indexRelocations();
+  auto SI = RelocsBySection.find(Sec);
+  if (SI != RelocsBySection.end()) {
+    auto RI = SI->second.find(Off);
+    if (RI != SI->second.end()) {
+      Expected<Pointee> Pt = resolve(RI->second);
+      if (!Pt)
+        return Pt.takeError();
+      return std::optional<Pointee>(std::move(*Pt));
+    }
+  }
+  // No relocation: the field must be null.
+  Expected<StringRef> Data = contents(Sec);
+  if (!Data)
+    return Data.takeError();
+  if (Off + P <= Data->size())
+    for (unsigned I = 0; I < P; ++I)
+      if ((*Data)[Off + I] != 0)
+        return createStringError(inconvertibleErrorCode(),
+                                 "a pointer field has no relocation");
+  return std::optional<Pointee>();
+}
+
+Expected<std::optional<Pointee>>
+ObjectReader::followHolder(const Pointee &Holder, unsigned Slot) {
+  if (!Holder.Defined)
+    return createStringError(inconvertibleErrorCode(),
+                             "holder '" + Holder.Name +
+                                 "' is not defined in this object");
+  return pointerAt(Holder.SectionIndex, Holder.Offset + Slot * P);
+}
+
+Expected<int64_t> ObjectReader::readMemberPointer(const Pointee &Holder) {
+  if (!Holder.Defined)
+    return createStringError(inconvertibleErrorCode(),
+                             "member pointer '" + Holder.Name +
+                                 "' is not defined in this object");
+  Expected<StringRef> Data = contents(Holder.SectionIndex);
+  if (!Data)
+    return Data.takeError();
+  if (Data->empty())
+    return 0; // .bss: offset 0
+  if (Holder.Offset + P > Data->size())
+    return createStringError(inconvertibleErrorCode(),
+                             "member pointer outside its section");
+  const char *B = Data->data() + Holder.Offset;
+  return P == 4 ? int64_t(int32_t(support::endian::read32le(B)))
+                : int64_t(support::endian::read64le(B));
+}
+
+/// Bounds-checked little-endian access to one descriptor.
+class DescriptorView {
+public:
+  DescriptorView(StringRef Bytes) : Bytes(Bytes) {}
+  uint32_t u32(uint64_t Off) const {
+    return Off + 4 <= Bytes.size()
+               ? support::endian::read32le(Bytes.data() + Off)
+               : 0;
+  }
+  StringRef Bytes;
+};
+
+void ObjectReader::readDescriptor(const ELFSymbolRef &Sym, uint64_t Sec,
+                                  StringRef Data,
+                                  std::vector<BoundModule> &Out) {
+  std::string SymName = cantFail(Sym.getName()).str();
+  uint64_t Base = cantFail(Sym.getValue());
+  auto Fail = [&](const Twine &Msg) { Errs.add(File, SymName, Msg); };
+  if (Base + HeaderSize > Data.size()) {
+    Fail("descriptor is truncated");
+    return;
+  }
+  DescriptorView D(Data.substr(Base));
+  if (std::memcmp(D.Bytes.data(), Magic, sizeof Magic) != 0) {
+    Fail("bad descriptor magic: object built for another target, or not "
+         "by bscript/Bind.h");
+    return;
+  }
+  uint32_t Version = D.u32(H_Version);
+  if (Version == 0 || Version > SupportedVersion) {
+    Fail("descriptor version " + Twine(Version) + " is not supported (bsc "
+         "reads version " + Twine(SupportedVersion) +
+         "): object built for another target or with another bscript/Bind.h");
+    return;
+  }
+  if (D.u32(H_PtrSize) != P) {
+    Fail("descriptor pointer size " + Twine(D.u32(H_PtrSize)) +
+         " does not match the " + Twine(P * 8) +
+         "-bit object: object built for another target");
+    return;
+  }
+  uint32_t Total = D.u32(H_TotalSize);
+  if (D.u32(H_HeaderSize) < HeaderSize || Total > D.Bytes.size()) {
+    Fail("descriptor is truncated");
+    return;
+  }
+  D.Bytes = D.Bytes.take_front(Total);
+
+  // Tables.
+  uint32_t Count[NumTables], Offset[NumTables], Size[NumTables];
+  for (unsigned T = 0; T < NumTables; ++T) {
+    Count[T] = D.u32(H_Tables + 12 * T);
+    Offset[T] = D.u32(H_Tables + 12 * T + 4);
+    Size[T] = D.u32(H_Tables + 12 * T + 8);
+    uint32_t Min = TablePtrs[T] * P + 4 * TableWords[T];
+    if (Size[T] < Min || uint64_t(Offset[T]) + uint64_t(Count[T]) * Size[T] >
+                             Total) {
+      Fail(Twine("bad ") + TableNames[T] + " table in the descriptor");
+      return;
+    }
+  }
+  uint32_t StrOff = D.u32(H_StringOffset), StrSize = D.u32(H_StringSize);
+  if (uint64_t(StrOff) + StrSize > Total || StrSize == 0) {
+    Fail("bad string table in the descriptor");
+    return;
+  }
+  StringRef Strings = D.Bytes.substr(StrOff, StrSize);
+  bool BadString = false;
+  auto Str = [&](uint32_t Off) -> std::string {
+    if (Off >= Strings.size()) {
+      BadString = true;
+      return "";
+    }
+    size_t End = Strings.find('\0', Off);
+    if (End == StringRef::npos) {
+      BadString = true;
+      return "";
+    }
+    return Strings.slice(Off, End).str();
+  };
+  auto Rec = [&](Table T, uint32_t I) -> uint64_t {
+    return Offset[T] + uint64_t(I) * Size[T];
+  };
+  // Word W (0-based, after the P fields) of record I of table T.
+  auto Word = [&](Table T, uint32_t I, unsigned W) {
+    return D.u32(Rec(T, I) + TablePtrs[T] * P + 4 * W);
+  };
+  // P field K of record I of table T, as a pointee.
+  auto Ptr = [&](Table T, uint32_t I, unsigned K,
+                 const Twine &Path) -> std::optional<Pointee> {
+    Expected<std::optional<Pointee>> Pt =
+        pointerAt(Sec, Base + Rec(T, I) + K * P);
+    if (!Pt) {
+      Errs.add(File, Path.str(), Pt.takeError());
+      return std::nullopt;
+    }
+    return *Pt;
+  };
+
+  BoundModule M;
+  M.File = File;
+  M.Symbol = SymName;
+  M.Version = Version;
+  M.Name = Str(D.u32(H_Name));
+  StringRef Want = StringRef(SymName).drop_front(strlen("bs_module_"));
+  if (M.Name != Want) {
+    Fail("descriptor names module '" + M.Name + "'");
+    return;
+  }
+
+  // A key field: the symbol of bs::TypeKey<T>::id, which must be external.
+  auto Key = [&](std::optional<Pointee> Pt, const Twine &Path) -> std::string {
+    if (!Pt)
+      return "";
+    if (!hasExternalLinkage(Pt->Binding))
+      Errs.add(File, Path.str(),
+               "type '" + typeOfKey(Pt->Name) +
+                   "' has internal linkage (declared in an anonymous "
+                   "namespace or local to a function?); bsc cannot identify "
+                   "it across objects");
+    return Pt->Name;
+  };
+  // Once a class's key has internal linkage, so has every thunk of the
+  // class: report the class once.
+  bool QuietLinkage = false;
+  // A thunk through its holder: must be callable by name.
+  auto Thunk = [&](std::optional<Pointee> Holder, unsigned Slot,
+                   const Twine &Path) -> std::string {
+    if (!Holder)
+      return "";
+    Expected<std::optional<Pointee>> T = followHolder(*Holder, Slot);
+    if (!T) {
+      Errs.add(File, Path.str(), T.takeError());
+      return "";
+    }
+    if (!*T)
+      return "";
+    if (!hasExternalLinkage((*T)->Binding) && !QuietLinkage)
+      Errs.add(File, Path.str(),
+               "thunk '" + demangled((*T)->Name) +
+                   "' has internal linkage (a static function, a type in an "
+                   "anonymous namespace, or a lambda at namespace scope?); "
+                   "generated code cannot call it by name: give the callee "
+                   "external linkage or write the lambda inside BS_MODULE");
+    return (*T)->Name;
+  };
+
+  // Classes.
+  uint32_t NumClasses = Count[T_Class];
+  std::vector<bool> InternalClass;
+  for (uint32_t I = 0; I < NumClasses; ++I) {
+    BoundClass C;
+    C.Name = Str(Word(T_Class, I, 0));
+    C.CppName = Str(Word(T_Class, I, 1));
+    std::string Path = M.Name + "::" + C.Name;
+    C.Size = Word(T_Class, I, 2);
+    C.Align = Word(T_Class, I, 3);
+    C.Flags = Word(T_Class, I, 4);
+    size_t ErrorsBefore = Errs.Messages.size();
+    std::optional<Pointee> KeyPt = Ptr(T_Class, I, 0, Path);
+    C.Key = Key(KeyPt, Path);
+    if (C.Key.empty() && Errs.Messages.size() == ErrorsBefore)
+      Errs.add(File, Path, "class without a type key");
+    InternalClass.push_back(KeyPt && !hasExternalLinkage(KeyPt->Binding));
+    QuietLinkage = InternalClass.back();
+    if (std::optional<Pointee> Life = Ptr(T_Class, I, 1, Path)) {
+      C.Construct = Thunk(Life, 0, Path + " construct");
+      C.Copy = Thunk(Life, 1, Path + " copy");
+      C.Assign = Thunk(Life, 2, Path + " assign");
+      C.Destroy = Thunk(Life, 3, Path + " destroy");
+    }
+    if (C.Align == 0 || (C.Align & (C.Align - 1)))
+      Errs.add(File, Path, "alignment " + Twine(C.Align) +
+                               " is not a power of two");
+    M.Classes.push_back(std::move(C));
+    QuietLinkage = false;
+  }
+
+  // Members.
+  uint32_t NumParams = Count[T_Param];
+  for (uint32_t I = 0; I < Count[T_Member]; ++I) {
+    BoundMember Mb;
+    uint32_t Kind = Word(T_Member, I, 0);
+    uint32_t Owner = Word(T_Member, I, 1);
+    Mb.Name = Str(Word(T_Member, I, 2));
+    Mb.CppName = Str(Word(T_Member, I, 3));
+    std::string Path = M.Name + "::";
+    if (Owner != NoIndex) {
+      if (Owner >= NumClasses) {
+        Errs.add(File, Path + Mb.Name, "member of an unknown class");
+        continue;
+      }
+      Path += M.Classes[Owner].Name + ".";
+    }
+    Path += Mb.Name;
+    if (Kind > uint32_t(MemberKind::Function)) {
+      Errs.add(File, Path, "unknown member kind " + Twine(Kind));
+      continue;
+    }
+    Mb.Kind = MemberKind(Kind);
+    if (Owner == NoIndex && Mb.Kind != MemberKind::Function) {
+      Errs.add(File, Path, "a module member must be a function");
+      continue;
+    }
+    uint32_t RCode = Word(T_Member, I, 4);
+    if (RCode > uint32_t(TypeCode::Class)) {
+      Errs.add(File, Path, "unknown type code " + Twine(RCode));
+      continue;
+    }
+    Mb.Result.Code = TypeCode(RCode);
+    Mb.Result.Flags = Word(T_Member, I, 5);
+    Mb.Result.StorageSize = Word(T_Member, I, 6);
+    Mb.Flags = Word(T_Member, I, 7);
+    QuietLinkage = Owner != NoIndex && InternalClass[Owner];
+    uint32_t First = Word(T_Member, I, 8), N = Word(T_Member, I, 9);
+    Mb.Thunk = Thunk(Ptr(T_Member, I, 0, Path), 0, Path);
+    Mb.Setter = Thunk(Ptr(T_Member, I, 1, Path + " setter"), 0,
+                      Path + " setter");
+    if (Mb.Thunk.empty())
+      Errs.add(File, Path, "member without a thunk");
+    if (std::optional<Pointee> MP = Ptr(T_Member, I, 2, Path)) {
+      Expected<int64_t> Off = readMemberPointer(*MP);
+      if (!Off)
+        Errs.add(File, Path, Off.takeError());
+      else
+        Mb.FieldOffset = uint64_t(*Off);
+    }
+    if (Mb.Result.Code == TypeCode::Enum || Mb.Result.Code == TypeCode::Class)
+      Mb.Result.Key = Key(Ptr(T_Member, I, 3, Path), Path);
+    if (uint64_t(First) + N > NumParams) {
+      Errs.add(File, Path, "parameters outside the parameter table");
+      continue;
+    }
+    for (uint32_t J = 0; J < N; ++J) {
+      uint32_t PI = First + J;
+      std::string PPath = Path + " param " + std::to_string(J);
+      BoundParam Pm;
+      uint32_t Code = Word(T_Param, PI, 0);
+      if (Code == 0 || Code > uint32_t(TypeCode::Class)) {
+        Errs.add(File, PPath, "unknown type code " + Twine(Code));
+        continue;
+      }
+      Pm.Type.Code = TypeCode(Code);
+      Pm.Type.Flags = Word(T_Param, PI, 1);
+      Pm.Type.StorageSize = Word(T_Param, PI, 2);
+      Pm.Name = Str(Word(T_Param, PI, 3));
+      uint32_t DK = Word(T_Param, PI, 4);
+      Pm.Default = DK == 1   ? DefaultKind::Int
+                   : DK == 2 ? DefaultKind::Float
+                             : DefaultKind::None;
+      Pm.DefaultInt = int32_t(Word(T_Param, PI, 5));
+      uint32_t FBits = Word(T_Param, PI, 6);
+      std::memcpy(&Pm.DefaultFloat, &FBits, 4);
+      if (Pm.Type.Code == TypeCode::Enum || Pm.Type.Code == TypeCode::Class)
+        Pm.Type.Key = Key(Ptr(T_Param, PI, 0, PPath), PPath);
+      Mb.Params.push_back(std::move(Pm));
+    }
+    if (Owner == NoIndex)
+      M.Functions.push_back(std::move(Mb));
+    else
+      M.Classes[Owner].Members.push_back(std::move(Mb));
+  }
+
+  // Enums.
+  for (uint32_t I = 0; I < Count[T_Enum]; ++I) {
+    BoundEnum E;
+    E.Name = Str(Word(T_Enum, I, 0));
+    E.CppName = Str(Word(T_Enum, I, 1));
+    std::string Path = M.Name + "::" + E.Name;
+    E.Size = Word(T_Enum, I, 2);
+    uint32_t Flags = Word(T_Enum, I, 3);
+    E.Scoped = Flags & 1;
+    E.Signed = Flags & 2;
+    uint32_t First = Word(T_Enum, I, 4), N = Word(T_Enum, I, 5);
+    E.Key = Key(Ptr(T_Enum, I, 0, Path), Path);
+    if (uint64_t(First) + N > Count[T_Value]) {
+      Errs.add(File, Path, "values outside the value table");
+      continue;
+    }
+    for (uint32_t J = 0; J < N; ++J)
+      E.Values.push_back({Str(Word(T_Value, First + J, 0)),
+                          int32_t(Word(T_Value, First + J, 1))});
+    M.Enums.push_back(std::move(E));
+  }
+
+  uint32_t In = D.u32(H_InputClass), OutC = D.u32(H_OutputClass);
+  if (In != NoIndex && In >= NumClasses)
+    Fail("input class index out of range");
+  else if (In != NoIndex)
+    M.InputClass = int(In);
+  if (OutC != NoIndex && OutC >= NumClasses)
+    Fail("output class index out of range");
+  else if (OutC != NoIndex)
+    M.OutputClass = int(OutC);
+  if (BadString)
+    Fail("bad string offset in the descriptor");
+
+  // The hash: bs::moduleHash. FNV-1a 64 over the bytes up to the end of the
+  // string table with the P fields as zero, then each field offset.
+  uint64_t Hash = 0xcbf29ce484222325ull;
+  auto Add = [&](uint8_t C) {
+    Hash ^= C;
+    Hash *= 0x100000001b3ull;
+  };
+  std::string Bytes = D.Bytes.take_front(uint64_t(StrOff) + StrSize).str();
+  for (unsigned T = 0; T < NumTables; ++T)
+    for (uint32_t I = 0; I < Count[T]; ++I)
+      std::memset(&Bytes[Rec(Table(T), I)], 0, TablePtrs[T] * P);
+  for (char C : Bytes)
+    Add(uint8_t(C));
+  for (uint32_t I = 0; I < Count[T_Member]; ++I) {
+    // Field offsets in member order (read again: members of classes and
+    // module functions were split above).
+    Expected<std::optional<Pointee>> MP =
+        pointerAt(Sec, Base + Rec(T_Member, I) + 2 * P);
+    if (!MP) {
+      consumeError(MP.takeError());
+      continue;
+    }
+    if (!*MP)
+      continue;
+    Expected<int64_t> Off = readMemberPointer(**MP);
+    if (!Off) {
+      consumeError(Off.takeError());
+      continue;
+    }
+    for (int K = 0; K < 8; ++K)
+      Add(uint8_t(uint64_t(*Off) >> (8 * K)));
+  }
+  M.Hash = Hash;
+  Out.push_back(std::move(M));
+}
+
+void ObjectReader::readModules(std::vector<BoundModule> &Out) {
+  for (const ELFSymbolRef &Sym : Obj.symbols()) {
+    Expected<StringRef> Name = Sym.getName();
+    if (!Name) {
+      consumeError(Name.takeError());
+      continue;
+    }
+    if (!Name->starts_with("bs_module_"))
+      continue;
+    Expected<section_iterator> Sec = Sym.getSection();
+    if (!Sec) {
+      consumeError(Sec.takeError());
+      continue;
+    }
+    if (*Sec == Obj.section_end())
+      continue; // a reference, not a definition
+    Expected<StringRef> SecName = (*Sec)->getName();
+    if (!SecName || *SecName != "bs_modules") {
+      if (!SecName)
+        consumeError(SecName.takeError());
+      Errs.add(File, *Name, "descriptor is not in section 'bs_modules'");
+      continue;
+    }
+    Expected<StringRef> Data = (*Sec)->getContents();
+    if (!Data) {
+      Errs.add(File, *Name, Data.takeError());
+      continue;
+    }
+    readDescriptor(Sym, (*Sec)->getIndex(), *Data, Out);
+  }
+}
+
+//===----------------------------------------------------------------------===//
+// Files and archives
+//===----------------------------------------------------------------------===//
+
+class Reader {
+public:
+  Reader(const Triple &Target) : Target(Target) {}
+
+  void readBuffer(MemoryBufferRef Buf, StringRef Name);
+  Expected<BindingModel> finish();
+
+private:
+  const Triple &Target;
+  BindErrors Errs;
+  std::vector<BoundModule> Modules;
+
+  void readBinary(Binary &Bin, StringRef Name);
+  void resolve(BindingModel &Model);
+};
+
+void Reader::readBuffer(MemoryBufferRef Buf, StringRef Name) {
+  file_magic Magic = identify_magic(Buf.getBuffer());
+  if (Magic == file_magic::bitcode) {
+    Errs.add(Name, "",
+             "is LLVM bitcode, not an ELF object (compiled with -flto?); "
+             "build the binding objects without -flto");
+    return;
+  }
+  Expected<std::unique_ptr<Binary>> Bin = createBinary(Buf);
+  if (!Bin) {
+    Errs.add(Name, "",
+             "not an ELF relocatable object or archive (" +
+                 toString(Bin.takeError()) + ")");
+    return;
+  }
+  readBinary(**Bin, Name);
+}
+
+void Reader::readBinary(Binary &Bin, StringRef Name) {
+  if (auto *Ar = dyn_cast<Archive>(&Bin)) {
+    Error Err = Error::success();
+    for (const Archive::Child &C : Ar->children(Err)) {
+      Expected<StringRef> CName = C.getName();
+      std::string Member =
+          Name.str() + "(" + (CName ? CName->str() : std::string("?")) + ")";
+      if (!CName)
+        consumeError(CName.takeError());
+      Expected<MemoryBufferRef> CBuf = C.getMemoryBufferRef();
+      if (!CBuf) {
+        Errs.add(Member, "", CBuf.takeError());
+        continue;
+      }
+      readBuffer(*CBuf, Member);
+    }
+    if (Err)
+      Errs.add(Name, "", std::move(Err));
+    return;
+  }
+  auto *Obj = dyn_cast<ELFObjectFileBase>(&Bin);
+  if (!Obj || Obj->getEType() != ELF::ET_REL) {
+    Errs.add(Name, "", "not an ELF relocatable object (bsc reads the "
+                       "binding objects that will be linked, built with -c)");
+    return;
+  }
+  uint16_t WantMachine =
+      Target.getArch() == Triple::x86_64 ? ELF::EM_X86_64 : ELF::EM_386;
+  unsigned WantBytes = Target.isArch64Bit() ? 8 : 4;
+  if (Obj->getEMachine() != WantMachine ||
+      Obj->getBytesInAddress() != WantBytes) {
+    Errs.add(Name, "",
+             "object built for another target (" +
+                 Triple::getArchTypeName(Obj->getArch()) + ", " +
+                 Twine(Obj->getBytesInAddress() * 8) + "-bit; bsc compiles for " +
+                 Target.str() + ")");
+    return;
+  }
+  // GCC's -flto objects hold GIMPLE, not the descriptor's bytes.
+  for (const SectionRef &S : Obj->sections()) {
+    Expected<StringRef> SName = S.getName();
+    if (SName && SName->starts_with(".gnu.lto_")) {
+      Errs.add(Name, "",
+               "is a GCC LTO object without object code (compiled with "
+               "-flto?); build the binding objects without -flto or with "
+               "-ffat-lto-objects");
+      return;
+    }
+    if (!SName)
+      consumeError(SName.takeError());
+  }
+  ObjectReader(*Obj, Name, Errs).readModules(Modules);
+}
+
+void Reader::resolve(BindingModel &Model) {
+  // Pass 1: module names and the keys of every class and enum.
+  struct Where {
+    int Module, Index;
+    bool IsEnum;
+  };
+  StringMap<Where> Keys;
+  StringMap<int> Names;
+  int InputModule = -1, OutputModule = -1;
+  for (int MI = 0, E = int(Model.Modules.size()); MI != E; ++MI) {
+    const BoundModule &M = Model.Modules[MI];
+    auto [NI, NewName] = Names.try_emplace(M.Name, MI);
+    if (!NewName)
+      Errs.add(M.File, M.Symbol,
+               "module '" + M.Name + "' is also registered by '" +
+                   Model.Modules[NI->second].File + "'");
+    auto AddKey = [&](StringRef Key, int Index, bool IsEnum, StringRef Name) {
+      if (Key.empty())
+        return;
+      auto [It, New] = Keys.try_emplace(Key, Where{MI, Index, IsEnum});
+      if (New)
+        return;
+      const BoundModule &Other = Model.Modules[It->second.Module];
+      StringRef OtherName =
+          It->second.IsEnum ? StringRef(Other.Enums[It->second.Index].Name)
+                            : StringRef(Other.Classes[It->second.Index].Name);
+      Errs.add(M.File, M.Name + "::" + Name.str(),
+               Twine(IsEnum ? "enum" : "class") + " '" + typeOfKey(Key) +
+                   "' is registered twice: also as '" + Other.Name + "::" +
+                   OtherName + "' in '" + Other.File + "'");
+    };
+    for (int I = 0, N = int(M.Classes.size()); I != N; ++I)
+      AddKey(M.Classes[I].Key, I, false, M.Classes[I].Name);
+    for (int I = 0, N = int(M.Enums.size()); I != N; ++I)
+      AddKey(M.Enums[I].Key, I, true, M.Enums[I].Name);
+    auto World = [&](int Cls, int &Seen, StringRef What) {
+      if (Cls < 0)
+        return;
+      if (Seen >= 0)
+        Errs.add(M.File, M.Name,
+                 "the '" + What + "' type is also declared by module '" +
+                     Model.Modules[Seen].Name + "' ('" +
+                     Model.Modules[Seen].File + "')");
+      else
+        Seen = MI;
+    };
+    World(M.InputClass, InputModule, "input");
+    World(M.OutputClass, OutputModule, "output");
+  }
+
+  // Pass 2: every signature's types.
+  auto Resolve = [&](const BoundModule &M, BoundType &T, const Twine &Path) {
+    if (T.Code != TypeCode::Enum && T.Code != TypeCode::Class)
+      return;
+    auto It = Keys.find(T.Key);
+    if (It == Keys.end() ||
+        It->second.IsEnum != (T.Code == TypeCode::Enum)) {
+      Errs.add(M.File, Path.str(),
+               "type '" + typeOfKey(T.Key) +
+                   "' is not registered in any loaded module" +
+                   (StringRef(T.Key).contains("MatrixBase") ||
+                            StringRef(T.Key).contains("DenseBase")
+                        ? " (an Eigen expression base: wrap the function in "
+                          "a lambda that takes the registered type)"
+                        : ""));
+      return;
+    }
+    T.Module = It->second.Module;
+    T.Index = It->second.Index;
+  };
+  auto ResolveMember = [&](const BoundModule &M, BoundMember &Mb,
+                           const std::string &Path) {
+    Resolve(M, Mb.Result, Path);
+    for (size_t J = 0; J < Mb.Params.size(); ++J)
+      Resolve(M, Mb.Params[J].Type, Path + " param " + std::to_string(J));
+  };
+  for (BoundModule &M : Model.Modules) {
+    for (BoundClass &C : M.Classes)
+      for (BoundMember &Mb : C.Members)
+        ResolveMember(M, Mb, M.Name + "::" + C.Name + "." + Mb.Name);
+    for (BoundMember &Mb : M.Functions)
+      ResolveMember(M, Mb, M.Name + "::" + Mb.Name);
+  }
+}
+
+Expected<BindingModel> Reader::finish() {
+  BindingModel Model;
+  Model.PointerSize = Target.isArch64Bit() ? 8 : 4;
+  Model.Modules = std::move(Modules);
+  resolve(Model);
+  if (!Errs.empty())
+    return Errs.take();
+  return Model;
+}
+
+} // namespace
+
+Expected<BindingModel> bind::readBindings(ArrayRef<std::string> Paths,
+                                          const Triple &Target) {
+  Reader R(Target);
+  std::vector<std::unique_ptr<MemoryBuffer>> Buffers;
+  BindErrors OpenErrs;
+  for (const std::string &Path : Paths) {
+    ErrorOr<std::unique_ptr<MemoryBuffer>> Buf =
+        MemoryBuffer::getFile(Path, /*IsText=*/false,
+                              /*RequiresNullTerminator=*/false);
+    if (!Buf) {
+      OpenErrs.add(Path, "", "cannot open: " + Buf.getError().message());
+      continue;
+    }
+    R.readBuffer((*Buf)->getMemBufferRef(), Path);
+    Buffers.push_back(std::move(*Buf));
+  }
+  Expected<BindingModel> Model = R.finish();
+  if (!OpenErrs.empty()) {
+    Error E = OpenErrs.take();
+    if (!Model)
+      return joinErrors(std::move(E), Model.takeError());
+    return E;
+  }
+  return Model;
+}
+
+Expected<BindingModel>
+bind::readBindingBuffers(ArrayRef<MemoryBufferRef> Buffers,
+                         const Triple &Target) {
+  Reader R(Target);
+  for (MemoryBufferRef B : Buffers)
+    R.readBuffer(B, B.getBufferIdentifier());
+  return R.finish();
+}
+
+//===----------------------------------------------------------------------===//
+// Model queries
+//===----------------------------------------------------------------------===//
+
+const BoundMember *BoundClass::findMember(StringRef N) const {
+  for (const BoundMember &M : Members)
+    if (M.Name == N)
+      return &M;
+  return nullptr;
+}
+
+const BoundClass *BoundModule::findClass(StringRef N) const {
+  for (const BoundClass &C : Classes)
+    if (C.Name == N)
+      return &C;
+  return nullptr;
+}
+
+const BoundEnum *BoundModule::findEnum(StringRef N) const {
+  for (const BoundEnum &E : Enums)
+    if (E.Name == N)
+      return &E;
+  return nullptr;
+}
+
+const BoundMember *BoundModule::findFunction(StringRef N) const {
+  for (const BoundMember &F : Functions)
+    if (F.Name == N)
+      return &F;
+  return nullptr;
+}
+
+const BoundModule *BindingModel::findModule(StringRef N) const {
+  for (const BoundModule &M : Modules)
+    if (M.Name == N)
+      return &M;
+  return nullptr;
+}
+
+const BoundModule *BindingModel::getWorldModule() const {
+  for (const BoundModule &M : Modules)
+    if (M.InputClass >= 0)
+      return &M;
+  for (const BoundModule &M : Modules)
+    if (M.OutputClass >= 0)
+      return &M;
+  return nullptr;
+}
+
+const BoundClass *BindingModel::getClass(const BoundType &T) const {
+  if (T.Code != TypeCode::Class || T.Module < 0)
+    return nullptr;
+  return &Modules[T.Module].Classes[T.Index];
+}
+
+const BoundEnum *BindingModel::getEnum(const BoundType &T) const {
+  if (T.Code != TypeCode::Enum || T.Module < 0)
+    return nullptr;
+  return &Modules[T.Module].Enums[T.Index];
+}
+
+std::string BindingModel::getQualifiedName(const BoundType &T) const {
+  if (const BoundClass *C = getClass(T))
+    return Modules[T.Module].Name + "::" + C->Name;
+  if (const BoundEnum *E = getEnum(T))
+    return Modules[T.Module].Name + "::" + E->Name;
+  return "";
+}
