@@ -27,6 +27,15 @@ static bool getAssignOp(tok::Kind K, AssignOp &Op) {
   return false;
 }
 
+/// Whether a token can begin an expression (and so a simple statement).
+static bool startsExpression(tok::Kind K) {
+  return K == tok::identifier || K == tok::int_literal ||
+         K == tok::float_literal || K == tok::string_literal ||
+         K == tok::kw_true || K == tok::kw_false || K == tok::kw_taskState ||
+         K == tok::l_paren || K == tok::minus || K == tok::exclaim ||
+         K == tok::error;
+}
+
 /// statement ::= if-stmt | for-stmt | 'break' NEWLINE | 'continue' NEWLINE
 ///             | ('return' | 'yield') expr? NEWLINE
 ///             | func-decl (top level of a task body only)
@@ -69,6 +78,10 @@ Stmt *Parser::parseStatement() {
   }
   if (Tok.is(tok::kw_requires)) {
     diag(Start, diag::err_requires_after_decl);
+    return recoverStatement(nullptr, Start);
+  }
+  if (!startsExpression(Tok.Kind)) {
+    diag(Start, diag::err_expected_statement);
     return recoverStatement(nullptr, Start);
   }
   return finishLine(parseSimpleStatement(), Start);

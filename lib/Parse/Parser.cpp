@@ -46,6 +46,13 @@ DiagnosticBuilder Parser::diag(llvm::SMLoc Loc, diag::Kind K) {
 }
 
 void Parser::reportTooDeep(llvm::SMLoc Loc) {
+  // Once per declaration: the constructs around the first one that is too
+  // deep are just as deep.
+  if (ReportedTooDeep) {
+    InError = true;
+    return;
+  }
+  ReportedTooDeep = true;
   diag(Loc, diag::err_nesting_too_deep) << MaxNestingDepth;
 }
 
@@ -100,6 +107,7 @@ ModuleAST *Parser::parseModule(llvm::StringRef Name) {
   bool SeenDecl = false;
   while (Tok.isNot(tok::eof) && !Diags.tooManyErrors()) {
     InError = false;
+    ReportedTooDeep = false;
     Heights.clear();
     const char *Before = Tok.Loc.getPointer();
     tok::Kind BeforeKind = Tok.Kind;

@@ -120,6 +120,7 @@ private:
 
   unsigned Depth = 0;
   bool InError = false;
+  bool ReportedTooDeep = false;
   /// Heights of the composite expressions of the current statement.
   llvm::DenseMap<const Expr *, unsigned> Heights;
 };
