@@ -6,6 +6,9 @@
 #   %python       the Python that runs lit
 #   %conformance  ../shared/conformance (programs written by others)
 #   %bsc_src      the source tree (for scripts in utils/)
+#   %bsc_libdir   the runtime shim libraries (libbscript_rt.a, _i586.a)
+#   %bsc_include  the public headers (bscript/bscript.h for C embeddings)
+#   %run-i586     runs a 32-bit x86 program (natively, else qemu-i386)
 import os
 import lit.formats
 
@@ -17,6 +20,9 @@ config.test_source_root = os.path.dirname(__file__)
 config.test_exec_root = os.path.join(config.bsc_obj_root, "test")
 
 config.substitutions.append(("%bsc_src", config.bsc_src_root))
+# Before %bsc, which is a prefix of these.
+config.substitutions.append(("%bsc_libdir", os.path.join(config.bsc_obj_root, "lib")))
+config.substitutions.append(("%bsc_include", os.path.join(config.bsc_src_root, "include")))
 config.substitutions.append(("%bsc", os.path.join(config.bsc_tools_dir, "bsc")))
 config.substitutions.append(("%python", config.python_executable))
 config.substitutions.append(("%conformance", os.path.join(config.shared_dir, "conformance")))
@@ -26,3 +32,9 @@ config.environment["PATH"] = os.pathsep.join(
     [config.llvm_tools_dir, config.bsc_tools_dir, config.environment.get("PATH", "")])
 if os.path.isdir(os.path.join(config.shared_dir, "conformance")):
     config.available_features.add("conformance")
+
+# 32-bit programs run through utils/run-i586: natively where the kernel can,
+# else in qemu-i386 (see the script).
+config.substitutions.append(
+    ("%run-i586", config.python_executable + " " +
+     os.path.join(config.bsc_src_root, "utils", "run-i586")))

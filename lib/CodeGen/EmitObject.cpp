@@ -13,10 +13,9 @@
 
 using namespace bsc;
 
-bool bsc::emitMachineCode(llvm::Module &M, llvm::TargetMachine &TM,
-                          llvm::CodeGenFileType Kind,
-                          llvm::raw_pwrite_stream &OS,
-                          DiagnosticEngine &Diags) {
+llvm::Error bsc::emitMachineCode(llvm::Module &M, llvm::TargetMachine &TM,
+                                 llvm::CodeGenFileType Kind,
+                                 llvm::raw_pwrite_stream &OS) {
   M.setDataLayout(TM.createDataLayout());
   M.setTargetTriple(TM.getTargetTriple().str());
 
@@ -24,13 +23,13 @@ bool bsc::emitMachineCode(llvm::Module &M, llvm::TargetMachine &TM,
   llvm::TargetLibraryInfoImpl TLII(TM.getTargetTriple());
   TLII.disableAllFunctions();
   PM.add(new llvm::TargetLibraryInfoWrapperPass(TLII));
-  if (TM.addPassesToEmitFile(PM, OS, nullptr, Kind)) {
-    Diags.report(llvm::SMLoc(), diag::err_cannot_emit)
-        << TM.getTargetTriple().str()
-        << (Kind == llvm::CodeGenFileType::AssemblyFile ? "assembly"
-                                                         : "object files");
-    return false;
-  }
+  if (TM.addPassesToEmitFile(PM, OS, nullptr, Kind))
+    return llvm::createStringError(
+        "LLVM cannot emit " +
+        llvm::StringRef(Kind == llvm::CodeGenFileType::AssemblyFile
+                            ? "assembly"
+                            : "object files") +
+        " for " + TM.getTargetTriple().str());
   PM.run(M);
-  return true;
+  return llvm::Error::success();
 }

@@ -98,6 +98,38 @@ bsc::createTargetMachine(const TargetOptions &Opts, DiagnosticEngine &Diags) {
         << Spelled << "bsc is built with the X86 back end only";
     return nullptr;
   }
+  switch (T.getObjectFormat()) {
+  case llvm::Triple::ELF:
+  case llvm::Triple::COFF:
+  case llvm::Triple::MachO:
+    break;
+  case llvm::Triple::UnknownObjectFormat:
+  case llvm::Triple::DXContainer:
+  case llvm::Triple::GOFF:
+  case llvm::Triple::SPIRV:
+  case llvm::Triple::Wasm:
+  case llvm::Triple::XCOFF:
+    Diags.report(llvm::SMLoc(), diag::err_unsupported_object_format)
+        << Spelled
+        << llvm::Triple::getObjectFormatTypeName(T.getObjectFormat());
+    return nullptr;
+  }
+  // Operating systems whose object format the X86 MC layer writes
+  // consistently (with ELF for UEFI, for one, LLVM 19 prints COFF
+  // directives into an ELF file and crashes).
+  bool KnownOS = T.isOSLinux() || T.getOS() == llvm::Triple::UnknownOS ||
+                 T.isOSFreeBSD() || T.isOSNetBSD() || T.isOSOpenBSD();
+  bool Consistent =
+      (KnownOS && T.isOSBinFormatELF()) ||
+      (T.isOSWindows() && T.isOSBinFormatCOFF()) ||
+      (T.isOSDarwin() && T.isOSBinFormatMachO());
+  if (!Consistent) {
+    Diags.report(llvm::SMLoc(), diag::err_unknown_target)
+        << Spelled
+        << "bsc supports x86 Linux, BSD and bare-metal (ELF), Windows (COFF) "
+           "and Darwin (Mach-O) triples";
+    return nullptr;
+  }
   std::string CPU = Opts.CPU.empty() ? getDefaultCPU(T) : Opts.CPU;
   // LLVM only warns (on stderr) about an unknown CPU and then generates code
   // for a generic one; for a robot that is a silent miscompile, so check.
@@ -117,14 +149,13 @@ bsc::createTargetMachine(const TargetOptions &Opts, DiagnosticEngine &Diags) {
   return TM;
 }
 
-bool bsc::verifyGeneratedModule(const llvm::Module &M,
-                                DiagnosticEngine &Diags) {
+llvm::Error bsc::verifyGeneratedModule(const llvm::Module &M) {
   std::string Message;
   llvm::raw_string_ostream OS(Message);
   if (!llvm::verifyModule(M, &OS))
-    return true;
+    return llvm::Error::success();
   OS.flush();
-  llvm::StringRef FirstLine = llvm::StringRef(Message).split('\n').first;
-  Diags.report(llvm::SMLoc(), diag::err_invalid_generated_ir) << FirstLine;
-  return false;
+  return llvm::createStringError(
+      "the generated LLVM IR is invalid: " +
+      llvm::StringRef(Message).split('\n').first);
 }

@@ -14,38 +14,31 @@
 #include "llvm/ExecutionEngine/Orc/JITTargetMachineBuilder.h"
 #include "llvm/ExecutionEngine/Orc/LLJIT.h"
 #include "llvm/ExecutionEngine/Orc/ThreadSafeModule.h"
+#include "llvm/ADT/ScopeExit.h"
+#include "llvm/MC/TargetRegistry.h"
 #include "llvm/Support/MemAlloc.h"
-#include "llvm/Support/raw_ostream.h"
 #include <cstdio>
 
 using namespace bsc;
 
 BehaviorJIT::~BehaviorJIT() = default;
 
-std::unique_ptr<BehaviorJIT> BehaviorJIT::create(DiagnosticEngine &Diags) {
+llvm::Expected<std::unique_ptr<BehaviorJIT>> BehaviorJIT::create() {
   initializeTargets();
   auto JTMB = llvm::orc::JITTargetMachineBuilder::detectHost();
-  if (!JTMB) {
-    Diags.report(llvm::SMLoc(), diag::err_jit_failed)
-        << llvm::toString(JTMB.takeError());
-    return nullptr;
-  }
+  if (!JTMB)
+    return JTMB.takeError();
   JTMB->setRelocationModel(llvm::Reloc::PIC_);
   auto DL = JTMB->getDefaultDataLayoutForTarget();
-  if (!DL) {
-    Diags.report(llvm::SMLoc(), diag::err_jit_failed)
-        << llvm::toString(DL.takeError());
-    return nullptr;
-  }
+  if (!DL)
+    return DL.takeError();
   std::unique_ptr<BehaviorJIT> Result(new BehaviorJIT());
   Result->Triple = JTMB->getTargetTriple();
   Result->DL = *DL;
   Result->CPU = JTMB->getCPU();
   auto J = llvm::orc::LLJITBuilder().setJITTargetMachineBuilder(*JTMB).create();
-  if (!J) {
-    Diags.report(llvm::SMLoc(), diag::err_jit_failed) << llvm::toString(J.takeError());
-    return nullptr;
-  }
+  if (!J)
+    return J.takeError();
   Result->J = std::move(*J);
 
   // The runtime shim, by address (see the file comment).
@@ -65,71 +58,58 @@ std::unique_ptr<BehaviorJIT> BehaviorJIT::create(DiagnosticEngine &Diags) {
   Add("bs_io_printb", &bs_io_printb);
   Add("bs_io_prints", &bs_io_prints);
   if (llvm::Error E = Result->J->getMainJITDylib().define(
-          llvm::orc::absoluteSymbols(std::move(Runtime)))) {
-    Diags.report(llvm::SMLoc(), diag::err_jit_failed) << llvm::toString(std::move(E));
-    return nullptr;
-  }
-  return Result;
+          llvm::orc::absoluteSymbols(std::move(Runtime))))
+    return std::move(E);
+  return std::move(Result);
 }
 
-bool BehaviorJIT::addModule(std::unique_ptr<llvm::Module> M,
-                            std::unique_ptr<llvm::LLVMContext> Ctx,
-                            unsigned OptLevel, DiagnosticEngine &Diags) {
-  TargetOptions TO;
-  TO.Target = Triple.str();
-  TO.CPU = CPU;
-  TO.OptLevel = OptLevel;
-  std::unique_ptr<llvm::TargetMachine> TM = createTargetMachine(TO, Diags);
-  if (!TM)
-    return false;
+llvm::Error BehaviorJIT::addModule(std::unique_ptr<llvm::Module> M,
+                                   std::unique_ptr<llvm::LLVMContext> Ctx,
+                                   unsigned OptLevel) {
+  initializeTargets();
+  std::string Error;
+  const llvm::Target *T =
+      llvm::TargetRegistry::lookupTarget(Triple.str(), Error);
+  if (!T)
+    return llvm::createStringError(Error);
+  // The same pipeline as compiled programs, tuned for this CPU.
+  std::unique_ptr<llvm::TargetMachine> TM(T->createTargetMachine(
+      Triple.str(), CPU, "", llvm::TargetOptions(), llvm::Reloc::PIC_));
   M->setDataLayout(DL);
   M->setTargetTriple(Triple.str());
   optimizeModule(*M, TM.get(), OptLevel);
-  if (llvm::Error E = J->addIRModule(
-          llvm::orc::ThreadSafeModule(std::move(M), std::move(Ctx)))) {
-    Diags.report(llvm::SMLoc(), diag::err_jit_failed) << llvm::toString(std::move(E));
-    return false;
-  }
-  return true;
+  return J->addIRModule(
+      llvm::orc::ThreadSafeModule(std::move(M), std::move(Ctx)));
 }
 
-void *BehaviorJIT::lookup(llvm::StringRef Symbol, DiagnosticEngine &Diags) {
-  auto Addr = J->lookup(Symbol);
-  if (!Addr) {
-    Diags.report(llvm::SMLoc(), diag::err_jit_failed)
-        << llvm::toString(Addr.takeError());
-    return nullptr;
-  }
-  return Addr->toPtr<void *>();
-}
-
-bool BehaviorJIT::runCycles(llvm::StringRef InfoSymbol,
-                            llvm::StringRef EntrySymbol, unsigned Cycles,
-                            DiagnosticEngine &Diags) {
-  auto *Info =
-      static_cast<const bs_behavior_info *>(lookup(InfoSymbol, Diags));
-  if (!Info)
-    return false;
+llvm::Error BehaviorJIT::runCycles(llvm::StringRef InfoSymbol,
+                                   llvm::StringRef EntrySymbol,
+                                   unsigned Cycles) {
+  auto InfoAddr = J->lookup(InfoSymbol);
+  if (!InfoAddr)
+    return InfoAddr.takeError();
+  auto EntryAddr = J->lookup(EntrySymbol);
+  if (!EntryAddr)
+    return EntryAddr.takeError();
+  const auto *Info = InfoAddr->toPtr<const bs_behavior_info *>();
   // Entries without parameters: a func's result (if any) is returned in a
   // register and ignored, as the program's main does.
-  auto *Entry = reinterpret_cast<void (*)(void *)>(lookup(EntrySymbol, Diags));
-  if (!Entry)
-    return false;
+  auto *Entry = EntryAddr->toPtr<void (*)(void *)>();
 
   // The embedding provides the state; here it is one aligned heap block.
   size_t Align = Info->state_align ? Info->state_align : 1;
   size_t Size = Info->state_size ? Info->state_size : 1;
   void *State = llvm::allocate_buffer(Size, Align);
-  bool OK = bs_state_init(State, Info) == 0;
-  if (!OK)
-    Diags.report(llvm::SMLoc(), diag::err_jit_failed)
-        << "bs_state_init refused the behavior's state (ABI version " +
-               std::to_string(Info->abi_version) + ")";
-  for (unsigned I = 0; OK && I < Cycles; ++I) {
+  auto Free =
+      llvm::make_scope_exit([&] { llvm::deallocate_buffer(State, Size, Align); });
+  if (bs_state_init(State, Info) != 0)
+    return llvm::createStringError(
+        "bs_state_init refused the state of ABI version " +
+        std::to_string(Info->abi_version));
+  for (unsigned I = 0; I < Cycles; ++I) {
     bs_begin_cycle(State, nullptr, nullptr);
     Entry(State);
   }
   std::fflush(stdout);
-  llvm::deallocate_buffer(State, Size, Align);
-  return OK;
+  return llvm::Error::success();
 }

@@ -128,6 +128,15 @@ int finish(Compilation &C) {
   return C.Diags.hasErrors() ? 1 : 0;
 }
 
+/// Prints the diagnostics so far, then an internal error (a bug in bsc, not
+/// in the program: see Target.h), and returns the exit status 1.
+int finishWithInternalError(Compilation &C, llvm::Error E) {
+  finish(C);
+  llvm::WithColor::error(llvm::errs(), "bsc")
+      << "internal error: " << llvm::toString(std::move(E)) << "\n";
+  return 1;
+}
+
 int emitTokens(Compilation &C) {
   if (InputFiles.empty())
     C.Diags.report(llvm::SMLoc(), diag::err_no_input_files);
@@ -336,8 +345,8 @@ int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
   std::unique_ptr<llvm::Module> M =
       emitLLVM(C.Checked, Ctx, TM->getTargetTriple(), TM->createDataLayout(),
                CGOpts, Layout);
-  if (!verifyGeneratedModule(*M, C.Diags))
-    return finish(C);
+  if (llvm::Error E = verifyGeneratedModule(*M))
+    return finishWithInternalError(C, std::move(E));
 
   if (Kind == OutputKind::Header) {
     auto Out = openOutput(C, OutputFile.empty() ? "-" : OutputFile.getValue(), true);
@@ -371,11 +380,13 @@ int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
     auto Out = openOutput(C, Path, IsAsm);
     if (!Out)
       return finish(C);
-    if (emitMachineCode(*M, *TM,
-                        IsAsm ? llvm::CodeGenFileType::AssemblyFile
-                              : llvm::CodeGenFileType::ObjectFile,
-                        Out->os(), C.Diags))
-      Out->keep();
+    if (llvm::Error E = emitMachineCode(
+            *M, *TM,
+            IsAsm ? llvm::CodeGenFileType::AssemblyFile
+                  : llvm::CodeGenFileType::ObjectFile,
+            Out->os()))
+      return finishWithInternalError(C, std::move(E));
+    Out->keep();
     return finish(C);
   }
   case OutputKind::Program: {
@@ -396,9 +407,9 @@ int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
         llvm::make_scope_exit([&] { llvm::sys::fs::remove(ObjPath); });
     {
       llvm::raw_fd_ostream ObjOS(FD, /*shouldClose=*/true);
-      if (!emitMachineCode(*M, *TM, llvm::CodeGenFileType::ObjectFile, ObjOS,
-                           C.Diags))
-        return finish(C);
+      if (llvm::Error E = emitMachineCode(
+              *M, *TM, llvm::CodeGenFileType::ObjectFile, ObjOS))
+        return finishWithInternalError(C, std::move(E));
     }
     if (!linkProgram(C, TM->getTargetTriple(), ObjPath, Path, Argv0))
       llvm::sys::fs::remove(Path);
@@ -419,22 +430,26 @@ int runJIT(Compilation &C, const FrontendOptions &FOpts) {
   const CallableDecl *Entry = findProgramEntry(C);
   if (!Entry)
     return finish(C);
-  std::unique_ptr<BehaviorJIT> JIT = BehaviorJIT::create(C.Diags);
-  if (!JIT)
-    return finish(C);
+  auto JITOrErr = BehaviorJIT::create();
+  if (!JITOrErr)
+    return finishWithInternalError(C, JITOrErr.takeError());
+  BehaviorJIT &JIT = **JITOrErr;
 
   CodeGenOptions CGOpts;
   CGOpts.BehaviorName = C.Modules.front()->Name;
   auto Ctx = std::make_unique<llvm::LLVMContext>();
   BehaviorLayout Layout;
   std::unique_ptr<llvm::Module> M = emitLLVM(
-      C.Checked, *Ctx, JIT->getTriple(), JIT->getDataLayout(), CGOpts, Layout);
-  if (!verifyGeneratedModule(*M, C.Diags))
-    return finish(C);
+      C.Checked, *Ctx, JIT.getTriple(), JIT.getDataLayout(), CGOpts, Layout);
+  if (llvm::Error E = verifyGeneratedModule(*M))
+    return finishWithInternalError(C, std::move(E));
   std::string EntrySymbol = getEntrySymbol(CGOpts.BehaviorName, *Entry);
-  if (JIT->addModule(std::move(M), std::move(Ctx), BOpts.Target.OptLevel,
-                     C.Diags))
-    JIT->runCycles(Layout.InfoSymbol, EntrySymbol, BOpts.Cycles, C.Diags);
+  if (llvm::Error E =
+          JIT.addModule(std::move(M), std::move(Ctx), BOpts.Target.OptLevel))
+    return finishWithInternalError(C, std::move(E));
+  if (llvm::Error E =
+          JIT.runCycles(Layout.InfoSymbol, EntrySymbol, BOpts.Cycles))
+    return finishWithInternalError(C, std::move(E));
   return finish(C);
 }
 

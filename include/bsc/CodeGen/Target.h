@@ -19,6 +19,7 @@
 
 #include "bsc/Basic/Diagnostic.h"
 #include "llvm/ADT/StringRef.h"
+#include "llvm/Support/Error.h"
 #include "llvm/Target/TargetMachine.h"
 #include "llvm/TargetParser/Triple.h"
 #include <memory>
@@ -62,14 +63,16 @@ std::string getDefaultCPU(const llvm::Triple &T);
 std::optional<unsigned> parseOptLevel(llvm::StringRef Value);
 
 /// Creates the machine for `Opts`, PIC, with the CPU checked against the
-/// target's list. Reports an unknown triple or CPU into `Diags` and returns
-/// null.
+/// target's list and an object format the X86 back end can write (LLVM
+/// crashes on, e.g., x86 wasm). Reports an unknown triple or CPU into
+/// `Diags` and returns null.
 std::unique_ptr<llvm::TargetMachine>
 createTargetMachine(const TargetOptions &Opts, DiagnosticEngine &Diags);
 
-/// Checks `M` with the IR verifier and reports an internal error if it is
-/// broken (a bug in bsc, never in the user's program). Returns false then.
-bool verifyGeneratedModule(const llvm::Module &M, DiagnosticEngine &Diags);
+/// Checks `M` with the IR verifier. A broken module is a bug in bsc, never
+/// in the user's program, so it is an llvm::Error (the driver prints it as
+/// an internal error) rather than a diagnostic of the table.
+llvm::Error verifyGeneratedModule(const llvm::Module &M);
 
 /// Runs the new pass manager's default pipeline for `OptLevel` over `M`.
 /// Library-call recognition is disabled (the generated object must not call
@@ -79,11 +82,11 @@ void optimizeModule(llvm::Module &M, llvm::TargetMachine *TM,
                     unsigned OptLevel);
 
 /// Writes `M` as assembly or as an object file through the legacy code
-/// generation pass manager. Reports into `Diags` and returns false if the
-/// target cannot emit that kind of file.
-bool emitMachineCode(llvm::Module &M, llvm::TargetMachine &TM,
-                     llvm::CodeGenFileType Kind, llvm::raw_pwrite_stream &OS,
-                     DiagnosticEngine &Diags);
+/// generation pass manager. createTargetMachine only accepts machines that
+/// can, so a failure here is an internal error.
+llvm::Error emitMachineCode(llvm::Module &M, llvm::TargetMachine &TM,
+                            llvm::CodeGenFileType Kind,
+                            llvm::raw_pwrite_stream &OS);
 
 } // namespace bsc
 

@@ -10,10 +10,10 @@
 #ifndef BSC_JIT_JIT_H
 #define BSC_JIT_JIT_H
 
-#include "bsc/Basic/Diagnostic.h"
 #include "llvm/IR/DataLayout.h"
 #include "llvm/IR/LLVMContext.h"
 #include "llvm/IR/Module.h"
+#include "llvm/Support/Error.h"
 #include "llvm/TargetParser/Triple.h"
 #include <memory>
 #include <string>
@@ -28,28 +28,28 @@ namespace bsc {
 /// module to run.
 class BehaviorJIT {
 public:
-  /// Creates the JIT for the host CPU. Reports into `Diags` and returns null
-  /// if the host cannot JIT.
-  static std::unique_ptr<BehaviorJIT> create(DiagnosticEngine &Diags);
+  /// Creates the JIT for the host CPU. Failures here and below are not the
+  /// user's mistakes (the program was checked), so they are llvm::Errors
+  /// that the driver prints as internal errors.
+  static llvm::Expected<std::unique_ptr<BehaviorJIT>> create();
   ~BehaviorJIT();
 
   const llvm::Triple &getTriple() const { return Triple; }
   const llvm::DataLayout &getDataLayout() const { return DL; }
 
-  /// Optimises `M` at `OptLevel` and adds it. Returns false after reporting.
-  bool addModule(std::unique_ptr<llvm::Module> M,
-                 std::unique_ptr<llvm::LLVMContext> Ctx, unsigned OptLevel,
-                 DiagnosticEngine &Diags);
+  /// Optimises `M` at `OptLevel` and adds it.
+  llvm::Error addModule(std::unique_ptr<llvm::Module> M,
+                        std::unique_ptr<llvm::LLVMContext> Ctx,
+                        unsigned OptLevel);
 
   /// Initialises a state for the behavior whose info struct is `InfoSymbol`,
   /// then `Cycles` times begins a cycle (no input or output) and calls the
-  /// parameterless entry `EntrySymbol`. Returns false after reporting.
-  bool runCycles(llvm::StringRef InfoSymbol, llvm::StringRef EntrySymbol,
-                 unsigned Cycles, DiagnosticEngine &Diags);
+  /// parameterless entry `EntrySymbol`.
+  llvm::Error runCycles(llvm::StringRef InfoSymbol,
+                        llvm::StringRef EntrySymbol, unsigned Cycles);
 
 private:
   BehaviorJIT() = default;
-  void *lookup(llvm::StringRef Symbol, DiagnosticEngine &Diags);
 
   std::unique_ptr<llvm::orc::LLJIT> J;
   llvm::Triple Triple;
