@@ -24,10 +24,10 @@ using namespace bsc::codegen;
 
 llvm::Value *FunctionEmitter::emitLoad(const Type *T, llvm::Value *Addr,
                                        const llvm::Twine &Name) {
-  llvm::Value *V = Builder.CreateLoad(CGM.getMemoryType(T), Addr, Name);
-  if (T->isBool())
-    return Builder.CreateTrunc(V, Builder.getInt1Ty());
-  return V;
+  if (!T->isBool())
+    return Builder.CreateLoad(CGM.getMemoryType(T), Addr, Name);
+  llvm::Value *V = Builder.CreateLoad(CGM.getMemoryType(T), Addr);
+  return Builder.CreateTrunc(V, Builder.getInt1Ty(), Name);
 }
 
 void FunctionEmitter::emitStore(const Type *T, llvm::Value *V,
@@ -181,7 +181,9 @@ llvm::Value *FunctionEmitter::emitCall(const CallExpr &E) {
         V = Builder.CreateSIToFP(V, PTy);
       Args.push_back(V);
     }
-    return Builder.CreateCall(Callee, Args);
+    if (Callee->getReturnType()->isVoidTy())
+      return Builder.CreateCall(Callee, Args);
+    return Builder.CreateCall(Callee, Args, E.Target->getName().Name);
   }
   case CallKind::NativeFunction: {
     assert(llvm::isa<NameExpr>(E.Callee) &&
@@ -199,9 +201,11 @@ llvm::Value *FunctionEmitter::emitCall(const CallExpr &E) {
         V = Builder.CreateSIToFP(V, PTy);
       Args.push_back(V);
     }
-    llvm::CallInst *Call = Builder.CreateCall(Callee, Args);
+    if (NF.Result.TheCode == NativeType::Void)
+      return Builder.CreateCall(Callee, Args);
+    llvm::CallInst *Call = Builder.CreateCall(Callee, Args, NF.Name);
     if (NF.Result.TheCode == NativeType::Bool)
-      return Builder.CreateICmpNE(Call, Builder.getInt32(0));
+      return Builder.CreateICmpNE(Call, Builder.getInt32(0), "tobool");
     return Call;
   }
   case CallKind::Unresolved:
@@ -271,13 +275,15 @@ llvm::Value *FunctionEmitter::emitSafeIntDivRem(bool IsRem, llvm::Value *L,
   llvm::Value *Zero = Builder.getInt32(0);
   llvm::Value *One = Builder.getInt32(1);
   llvm::Value *IsZero = Builder.CreateICmpEQ(R, Zero, "div.zero");
-  llvm::Value *Overflow = Builder.CreateAnd(
-      Builder.CreateICmpEQ(L, Builder.getInt32(INT32_MIN)),
-      Builder.CreateICmpEQ(R, Builder.getInt32(-1)), "div.ovf");
+  llvm::Value *IsIntMin =
+      Builder.CreateICmpEQ(L, Builder.getInt32(INT32_MIN), "div.intmin");
+  llvm::Value *IsMinus1 =
+      Builder.CreateICmpEQ(R, Builder.getInt32(-1), "div.minus1");
+  llvm::Value *Overflow = Builder.CreateAnd(IsIntMin, IsMinus1, "div.ovf");
   // Dividing by 1 instead is always defined and, for INT_MIN / -1, already
   // gives the wrapped quotient INT_MIN and the remainder 0.
   llvm::Value *Divisor = Builder.CreateSelect(
-      Builder.CreateOr(IsZero, Overflow), One, R, "div.safe");
+      Builder.CreateOr(IsZero, Overflow, "div.unsafe"), One, R, "div.safe");
   if (IsRem) {
     llvm::Value *Rem = Builder.CreateSRem(L, Divisor, "rem");
     // x % 0 == x keeps a == (a / b) * b + a % b true for b == 0.

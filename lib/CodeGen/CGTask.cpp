@@ -32,27 +32,27 @@
 using namespace bsc;
 using namespace bsc::codegen;
 
-llvm::Value *FunctionEmitter::getFramePtr(const TaskDecl *T) {
-  const FrameInfo &FI = CGM.getFrame(T);
-  return Builder.CreateConstInBoundsGEP2_32(CGM.getStateType(), StatePtr, 0,
-                                            FI.StateFieldNo,
-                                            T->getName().Name + ".frame");
-}
-
 llvm::Value *FunctionEmitter::getFrameFieldPtr(const TaskDecl *T,
                                                unsigned Field) {
+  llvm::Value *&Addr = FieldAddrs[{T, Field}];
+  if (Addr)
+    return Addr;
   const FrameInfo &FI = CGM.getFrame(T);
-  // One GEP from the state: {0, frame, field}, a constant offset.
-  llvm::Value *Idx[] = {Builder.getInt32(0), Builder.getInt32(FI.StateFieldNo),
-                        Builder.getInt32(Field)};
-  return Builder.CreateInBoundsGEP(CGM.getStateType(), StatePtr, Idx);
+  // One GEP from the state, {0, frame, field}: a constant offset, computed
+  // once at the top of the entry block so every use shares one name.
+  llvm::IRBuilder<> EntryBuilder(EntryPoint);
+  llvm::Value *Idx[] = {EntryBuilder.getInt32(0),
+                        EntryBuilder.getInt32(FI.StateFieldNo),
+                        EntryBuilder.getInt32(Field)};
+  Addr = EntryBuilder.CreateInBoundsGEP(CGM.getStateType(), StatePtr, Idx,
+                                        FI.FieldNames[Field]);
+  return Addr;
 }
 
 llvm::Value *FunctionEmitter::emitTaskState(const TaskDecl *T) {
   // A never-called task reports done: the state starts zeroed.
   return Builder.CreateLoad(Builder.getInt32Ty(),
-                            getFrameFieldPtr(T, FrameState),
-                            T->getName().Name + ".state");
+                            getFrameFieldPtr(T, FrameState), "taskstate");
 }
 
 void FunctionEmitter::emitTaskPrologue() {
@@ -72,7 +72,7 @@ void FunctionEmitter::emitTaskPrologue() {
       Builder.CreateICmpSLE(State, Builder.getInt32(TaskDone), "finished");
   llvm::Value *Gap = Builder.CreateSub(Cycle, Last, "gap");
   llvm::Value *Missed = Builder.CreateICmpUGT(Gap, Builder.getInt32(1), "missed");
-  llvm::Value *Reset = Builder.CreateOr(Finished, Missed, "reset");
+  llvm::Value *Reset = Builder.CreateOr(Finished, Missed, "must.reset");
 
   llvm::BasicBlock *ResetBB = llvm::BasicBlock::Create(Ctx, "reset", Fn);
   llvm::BasicBlock *DispatchBB = llvm::BasicBlock::Create(Ctx, "dispatch", Fn);

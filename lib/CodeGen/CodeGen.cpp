@@ -12,6 +12,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "CodeGenImpl.h"
+#include "llvm/ADT/DenseSet.h"
 #include "llvm/IR/Constants.h"
 #include "llvm/IR/DerivedTypes.h"
 #include "llvm/IR/Function.h"
@@ -172,14 +173,18 @@ void ModuleEmitter::layoutState() {
     FrameInfo &FI = Frames[T];
     // bs_frame_header: resume, state, last_cycle; then params, then locals.
     llvm::SmallVector<llvm::Type *, 8> Fields = {I32, I32, I32};
-    for (const ParamDecl *P : T->Params) {
-      FI.Fields[P] = Fields.size();
-      Fields.push_back(getMemoryType(P->Ty));
-    }
-    for (const VarDecl *V : T->Locals) {
-      FI.Fields[V] = Fields.size();
-      Fields.push_back(getMemoryType(V->Ty));
-    }
+    std::string Prefix = T->getName().Name.str() + ".";
+    FI.FieldNames = {Prefix + "resume", Prefix + "state",
+                     Prefix + "last_cycle"};
+    auto Add = [&](const Decl *D, const Type *Ty) {
+      FI.Fields[D] = Fields.size();
+      Fields.push_back(getMemoryType(Ty));
+      FI.FieldNames.push_back(Prefix + D->getName().Name.str());
+    };
+    for (const ParamDecl *P : T->Params)
+      Add(P, P->Ty);
+    for (const VarDecl *V : T->Locals)
+      Add(V, V->Ty);
     std::string Name = "bs.frame.";
     if (T->Module)
       Name += T->Module->Name + ".";
@@ -215,10 +220,37 @@ void ModuleEmitter::declareFunctions() {
       F->getArg(P->Index + 1)->setName(P->getName().Name);
     Functions[D] = F;
   };
+  for (const CallableDecl *D : getSourceOrder()) {
+    if (const auto *F = llvm::dyn_cast<FuncDecl>(D))
+      Declare(F, getValueType(F->ResultTy));
+    else
+      Declare(D, llvm::Type::getVoidTy(Ctx));
+  }
+}
+
+std::vector<const CallableDecl *> ModuleEmitter::getSourceOrder() const {
+  // Module by module, each task followed by its nested funcs, so the IR
+  // reads like the source (and FileCheck tests can follow it).
+  std::vector<const CallableDecl *> Order;
+  llvm::DenseSet<const CallableDecl *> Seen;
+  auto Add = [&](const CallableDecl *D) {
+    if (Seen.insert(D).second)
+      Order.push_back(D);
+  };
+  for (const ModuleAST *Mod : B.Modules)
+    for (const CallableDecl *D : Mod->Decls) {
+      Add(D);
+      if (const auto *T = llvm::dyn_cast<TaskDecl>(D))
+        for (const FuncDecl *F : T->NestedFuncs)
+          Add(F);
+    }
+  // Behavior::Tasks/Funcs are the definitive lists; anything the walk did
+  // not meet still gets its function.
   for (const TaskDecl *T : B.Tasks)
-    Declare(T, llvm::Type::getVoidTy(Ctx));
+    Add(T);
   for (const FuncDecl *F : B.Funcs)
-    Declare(F, getValueType(F->ResultTy));
+    Add(F);
+  return Order;
 }
 
 void ModuleEmitter::emitEntries() {
@@ -249,16 +281,19 @@ void ModuleEmitter::emitEntries() {
         llvm::Value *A = F->getArg(P->Index + 1);
         A->setName(P->getName().Name);
         if (P->Ty->isBool())
-          A = IRB.CreateICmpNE(A, llvm::ConstantInt::get(I32, 0));
+          A = IRB.CreateICmpNE(A, llvm::ConstantInt::get(I32, 0),
+                               P->getName().Name + ".bool");
         Args.push_back(A);
       }
-      llvm::CallInst *Call = IRB.CreateCall(Impl, Args);
-      if (Result->isVoidTy())
+      if (Result->isVoidTy()) {
+        IRB.CreateCall(Impl, Args);
         IRB.CreateRetVoid();
-      else if (Impl->getReturnType()->isIntegerTy(1))
-        IRB.CreateRet(IRB.CreateZExt(Call, I32));
-      else
-        IRB.CreateRet(Call);
+      } else {
+        llvm::Value *R = IRB.CreateCall(Impl, Args, "result");
+        if (R->getType()->isIntegerTy(1))
+          R = IRB.CreateZExt(R, I32, "result.int");
+        IRB.CreateRet(R);
+      }
       Layout.Entries.push_back({D, Symbol});
     }
   }
@@ -314,18 +349,25 @@ void ModuleEmitter::emitProgramMain() {
                                       "main", M);
   addCommonAttributes(Main);
   llvm::BasicBlock *EntryBB = llvm::BasicBlock::Create(Ctx, "entry", Main);
-  llvm::BasicBlock *Loop = llvm::BasicBlock::Create(Ctx, "cycle", Main);
+  llvm::BasicBlock *Cond = llvm::BasicBlock::Create(Ctx, "cycle.cond", Main);
+  llvm::BasicBlock *Body = llvm::BasicBlock::Create(Ctx, "cycle", Main);
   llvm::BasicBlock *Done = llvm::BasicBlock::Create(Ctx, "done", Main);
   llvm::IRBuilder<> IRB(EntryBB);
   llvm::AllocaInst *State = IRB.CreateAlloca(StateTy, nullptr, "state");
   State->setAlignment(llvm::Align(Layout.StateAlign));
   IRB.CreateCall(Init, {State, Info});
-  IRB.CreateBr(Loop);
+  IRB.CreateBr(Cond);
 
-  // for (i = 0; i != cycles; ++i) { bs_begin_cycle(...); entry(state); }
-  IRB.SetInsertPoint(Loop);
+  // for (i = 0; i < cycles; ++i) { bs_begin_cycle(...); entry(state); }
+  // (zero cycles run nothing).
+  IRB.SetInsertPoint(Cond);
   llvm::PHINode *I = IRB.CreatePHI(I32, 2, "i");
   I->addIncoming(llvm::ConstantInt::get(I32, 0), EntryBB);
+  IRB.CreateCondBr(
+      IRB.CreateICmpULT(I, llvm::ConstantInt::get(I32, Opts.ProgramCycles)),
+      Body, Done);
+
+  IRB.SetInsertPoint(Body);
   llvm::Constant *Null = llvm::ConstantPointerNull::get(
       llvm::PointerType::getUnqual(Ctx));
   IRB.CreateCall(Begin, {State, Null, Null});
@@ -335,11 +377,10 @@ void ModuleEmitter::emitProgramMain() {
   for (unsigned A = 1; A < Callee->arg_size(); ++A)
     Args.push_back(llvm::Constant::getNullValue(Callee->getArg(A)->getType()));
   IRB.CreateCall(Callee, Args);
-  llvm::Value *Next = IRB.CreateAdd(I, llvm::ConstantInt::get(I32, 1), "i.next");
-  I->addIncoming(Next, Loop);
-  IRB.CreateCondBr(
-      IRB.CreateICmpULT(Next, llvm::ConstantInt::get(I32, Opts.ProgramCycles)),
-      Loop, Done);
+  I->addIncoming(IRB.CreateAdd(I, llvm::ConstantInt::get(I32, 1), "i.next"),
+                 Body);
+  IRB.CreateBr(Cond);
+
   IRB.SetInsertPoint(Done);
   IRB.CreateRet(llvm::ConstantInt::get(I32, 0));
 }
@@ -347,10 +388,8 @@ void ModuleEmitter::emitProgramMain() {
 void ModuleEmitter::run() {
   layoutState();
   declareFunctions();
-  for (const TaskDecl *T : B.Tasks)
-    FunctionEmitter(*this, *T).run();
-  for (const FuncDecl *F : B.Funcs)
-    FunctionEmitter(*this, *F).run();
+  for (const CallableDecl *D : getSourceOrder())
+    FunctionEmitter(*this, *D).run();
   emitEntries();
   emitInfo();
   if (Opts.ProgramEntry)
@@ -374,6 +413,12 @@ const TaskDecl *FunctionEmitter::getFrameTask() const {
 
 void FunctionEmitter::run() {
   Builder.SetInsertPoint(llvm::BasicBlock::Create(CGM.getContext(), "entry", Fn));
+  // Allocas and frame-field addresses go before this marker, so they all
+  // sit at the top of the entry block whatever control flow the body adds:
+  // mem2reg promotes only entry-block allocas, and an address computed in
+  // the entry block dominates every use, including the resume blocks.
+  EntryPoint =
+      Builder.CreateAlloca(Builder.getInt8Ty(), nullptr, "entry.point");
   if (Task)
     emitTaskPrologue();
   else
@@ -387,21 +432,20 @@ void FunctionEmitter::run() {
   // Statements after `return`, `break` or `continue` were emitted into
   // blocks nothing branches to; drop them so -O0 code has no dead blocks.
   llvm::EliminateUnreachableBlocks(*Fn);
+  EntryPoint->eraseFromParent();
+  EntryPoint = nullptr;
 }
 
 void FunctionEmitter::emitFuncPrologue() {
-  // Allocas go before this marker so they all stay in the entry block,
-  // whatever control flow the body adds (mem2reg only promotes those).
-  AllocaPoint = Builder.CreateAlloca(Builder.getInt8Ty(), nullptr, "allocapt");
   for (const ParamDecl *P : D.Params) {
     llvm::AllocaInst *Slot = new llvm::AllocaInst(
-        CGM.getMemoryType(P->Ty), 0, P->getName().Name + ".addr", AllocaPoint);
+        CGM.getMemoryType(P->Ty), 0, P->getName().Name + ".addr", EntryPoint);
     Slots[P] = Slot;
     emitStore(P->Ty, Fn->getArg(P->Index + 1), Slot);
   }
   for (const VarDecl *V : D.Locals)
     Slots[V] = new llvm::AllocaInst(CGM.getMemoryType(V->Ty), 0,
-                                    V->getName().Name, AllocaPoint);
+                                    V->getName().Name, EntryPoint);
 }
 
 void FunctionEmitter::emitFuncEpilogue() {
@@ -417,8 +461,6 @@ void FunctionEmitter::emitFuncEpilogue() {
     else
       Builder.CreateRet(llvm::Constant::getNullValue(Fn->getReturnType()));
   }
-  AllocaPoint->eraseFromParent();
-  AllocaPoint = nullptr;
 }
 
 //===----------------------------------------------------------------------===//

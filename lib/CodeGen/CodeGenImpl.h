@@ -61,6 +61,8 @@ struct FrameInfo {
   unsigned StateFieldNo = 0; ///< Field of %bs.state holding this frame.
   /// ParamDecl or VarDecl of the task -> field of the frame struct.
   llvm::DenseMap<const Decl *, unsigned> Fields;
+  /// Per field, the name its address gets in the IR (`fib.b`).
+  llvm::SmallVector<std::string, 8> FieldNames;
 };
 
 /// What the whole behavior shares while it is being lowered.
@@ -108,6 +110,8 @@ public:
   llvm::LLVMContext &getContext() { return Ctx; }
 
 private:
+  /// Every func and task of the behavior, in source order.
+  std::vector<const CallableDecl *> getSourceOrder() const;
   void layoutState();
   void declareFunctions();
   void emitEntries();
@@ -147,8 +151,6 @@ private:
   /// frame.resume = 0; frame.state = done; ret void.
   void emitTaskFinish();
   void emitYield(const YieldStmt &S);
-  /// A pointer to the frame of `T` inside the state.
-  llvm::Value *getFramePtr(const TaskDecl *T);
   /// A pointer to field `Field` of the frame of `T`.
   llvm::Value *getFrameFieldPtr(const TaskDecl *T, unsigned Field);
   llvm::Value *emitTaskState(const TaskDecl *T);
@@ -226,8 +228,11 @@ private:
   llvm::SmallVector<LoopTargets, 4> Loops;
   /// Task bodies: the dispatch on frame.resume; a case is added per yield.
   llvm::SwitchInst *ResumeSwitch = nullptr;
-  /// Funcs: where allocas go, so they stay in the entry block.
-  llvm::Instruction *AllocaPoint = nullptr;
+  /// Where allocas and frame-field addresses go: the top of the entry block.
+  llvm::Instruction *EntryPoint = nullptr;
+  /// The address of each frame field used, computed once (task, field).
+  llvm::DenseMap<std::pair<const TaskDecl *, unsigned>, llvm::Value *>
+      FieldAddrs;
 };
 
 } // namespace codegen
