@@ -248,8 +248,24 @@ static llvm::StringRef getCallKindName(CallKind K) {
     return "task";
   case CallKind::NativeFunction:
     return "native";
+  case CallKind::Method:
+    return "method";
   }
   llvm_unreachable("unknown call kind");
+}
+
+static llvm::StringRef getMemberKindName(NativeFunction::MemberKind K) {
+  switch (K) {
+  case NativeFunction::Function:
+    return "function";
+  case NativeFunction::Method:
+    return "method";
+  case NativeFunction::Field:
+    return "field";
+  case NativeFunction::Property:
+    return "property";
+  }
+  llvm_unreachable("unknown member kind");
 }
 
 void Dumper::dumpExpr(const Expr *E) {
@@ -281,19 +297,35 @@ void Dumper::dumpExpr(const Expr *E) {
       OS << ' ' << N->EnumValue;
     break;
   }
-  case NodeKind::MemberExpr:
-    OS << " '." << llvm::cast<MemberExpr>(E)->Member.Name << "'";
+  case NodeKind::MemberExpr: {
+    auto *ME = llvm::cast<MemberExpr>(E);
+    OS << " '." << ME->Member.Name << "'";
+    if (ME->Resolved)
+      OS << " -> " << getMemberKindName(ME->Resolved->Kind);
     break;
-  case NodeKind::CallExpr:
-    if (llvm::cast<CallExpr>(E)->Kind != CallKind::Unresolved)
-      OS << ' ' << getCallKindName(llvm::cast<CallExpr>(E)->Kind);
+  }
+  case NodeKind::CallExpr: {
+    auto *C = llvm::cast<CallExpr>(E);
+    if (C->Kind != CallKind::Unresolved)
+      OS << ' ' << getCallKindName(C->Kind);
+    if (C->NumDefaultArgs)
+      OS << " defaults " << C->NumDefaultArgs;
     break;
-  case NodeKind::UnaryExpr:
-    OS << " '" << getSpelling(llvm::cast<UnaryExpr>(E)->Op) << "'";
+  }
+  case NodeKind::UnaryExpr: {
+    auto *U = llvm::cast<UnaryExpr>(E);
+    OS << " '" << getSpelling(U->Op) << "'";
+    if (U->Operator)
+      OS << " -> " << U->Operator->Name;
     break;
-  case NodeKind::BinaryExpr:
-    OS << " '" << getSpelling(llvm::cast<BinaryExpr>(E)->Op) << "'";
+  }
+  case NodeKind::BinaryExpr: {
+    auto *B = llvm::cast<BinaryExpr>(E);
+    OS << " '" << getSpelling(B->Op) << "'";
+    if (B->Operator)
+      OS << " -> " << (B->NegateOperator ? "!" : "") << B->Operator->Name;
     break;
+  }
   case NodeKind::TaskStateExpr:
     OS << " '" << llvm::cast<TaskStateExpr>(E)->TaskName.str() << "'";
     break;

@@ -1,5 +1,6 @@
 //===- Type.cpp - the static types of b-script ----------------------------===//
 #include "bsc/AST/Type.h"
+#include "bsc/AST/Native.h"
 
 using namespace bsc;
 
@@ -14,5 +15,12 @@ const Type *TypeContext::getEnum(const NativeEnum *E,
   std::unique_ptr<Type> &Slot = Enums[E];
   if (!Slot)
     Slot = std::make_unique<Type>(TypeKind::Enum, QualifiedName.str(), E);
+  return Slot.get();
+}
+
+const Type *TypeContext::getClass(const NativeClass *C) {
+  std::unique_ptr<Type> &Slot = Classes[C];
+  if (!Slot)
+    Slot = std::make_unique<Type>(TypeKind::Class, C->QualifiedName, nullptr, C);
   return Slot.get();
 }

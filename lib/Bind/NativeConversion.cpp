@@ -1,12 +1,19 @@
 //===- NativeConversion.cpp - binding model -> Native.h registry ----------===//
 //
-// Sema consumes native modules through Native.h (NativeModule, NativeEnum,
-// NativeFunction). That description can say today what the built-in `io`
-// needs: module functions whose parameters and result are scalars or enums
-// passed by value. This adds exactly that part of a binding model, so that
-// `requires "Math"` with `Math::fabs` works before Sema learns classes; the
-// rest (classes, members, out parameters, defaults, input/output) stays in
-// the BindingModel for the Sema/CodeGen integration.
+// Sema and CodeGen consume native modules through Native.h, the one
+// description shared with the built-in `io`. This converts a whole binding
+// model into it: every module with its classes (sizes, alignments,
+// life-cycle thunks, fields with offsets, properties, methods, class-scope
+// functions), module functions, enums, and the `input`/`output` classes.
+//
+// It runs in two passes so that types can point at their classes and enums:
+// first every module, class and enum is created (and the vectors are never
+// resized afterwards), then members and functions are filled in with
+// resolved pointers. The model's module/index pairs map one to one onto the
+// new NativeModules.
+//
+// Left out (and returned by name): members with `int&`, `float&` or `bool&`
+// out parameters, which b-script has no way to pass.
 //
 //===----------------------------------------------------------------------===//
 #include "bsc/AST/Native.h"
@@ -17,72 +24,164 @@ using namespace bsc::bind;
 
 namespace {
 
-/// The Native.h form of a by-value scalar or enum, or false.
-bool convertType(const BindingModel &Model, const BoundType &T,
-                 NativeType &Out) {
-  if (T.Flags & TF_Pointer)
-    return false;
-  switch (T.Code) {
-  case TypeCode::Void:
-    Out.TheCode = NativeType::Void;
-    return true;
-  case TypeCode::Bool:
-    Out.TheCode = NativeType::Bool;
-    return true;
-  case TypeCode::Int:
-    Out.TheCode = NativeType::Int;
-    return true;
-  case TypeCode::Float:
-    Out.TheCode = NativeType::Float;
-    return true;
-  case TypeCode::String:
-    Out.TheCode = NativeType::String;
-    return true;
-  case TypeCode::Enum:
-    Out.TheCode = NativeType::Enum;
-    Out.Name = Model.getQualifiedName(T);
-    return !Out.Name.empty();
-  case TypeCode::Class:
+class Converter {
+public:
+  Converter(const BindingModel &Model) : Model(Model) {}
+
+  std::vector<std::string> run(NativeRegistry &Registry) {
+    for (const BoundModule &M : Model.Modules)
+      Mods.push_back(createModule(M));
+    for (size_t I = 0; I != Model.Modules.size(); ++I)
+      fillModule(Model.Modules[I], *Mods[I]);
+    for (auto &M : Mods)
+      Registry.Modules.push_back(std::move(M));
+    return std::move(Skipped);
+  }
+
+private:
+  std::unique_ptr<NativeModule> createModule(const BoundModule &M) {
+    auto NM = std::make_unique<NativeModule>();
+    NM->Name = M.Name;
+    NM->File = M.File;
+    NM->Hash = M.Hash;
+    for (const BoundEnum &E : M.Enums) {
+      NativeEnum NE;
+      NE.Name = E.Name;
+      NE.Module = NM.get();
+      for (const BoundEnum::Value &V : E.Values)
+        NE.Values.push_back({V.Name, V.Number});
+      NM->Enums.push_back(std::move(NE));
+    }
+    for (const BoundClass &C : M.Classes) {
+      NativeClass NC;
+      NC.Name = C.Name;
+      NC.QualifiedName = M.Name + "::" + C.Name;
+      NC.CppName = C.CppName;
+      NC.Module = NM.get();
+      NC.Size = C.Size;
+      NC.Align = C.Align;
+      NC.DefaultConstructible = C.Flags & CF_DefaultConstructible;
+      NC.TriviallyDestructible = C.Flags & CF_TriviallyDestructible;
+      NC.CopiesAsBytes = C.copiesAsBytes();
+      NC.Construct = C.Construct;
+      NC.Copy = C.Copy;
+      NC.Assign = C.Assign;
+      NC.Destroy = C.Destroy;
+      NM->Classes.push_back(std::move(NC));
+    }
+    if (M.InputClass >= 0)
+      NM->Input = &NM->Classes[M.InputClass];
+    if (M.OutputClass >= 0)
+      NM->Output = &NM->Classes[M.OutputClass];
+    return NM;
+  }
+
+  void fillModule(const BoundModule &M, NativeModule &NM) {
+    for (const BoundMember &F : M.Functions) {
+      NativeFunction NF;
+      if (convertMember(F, nullptr, NF))
+        NM.Functions.push_back(std::move(NF));
+      else
+        Skipped.push_back(M.Name + "::" + F.Name);
+    }
+    for (size_t I = 0; I != M.Classes.size(); ++I) {
+      NativeClass &NC = NM.Classes[I];
+      for (const BoundMember &Mb : M.Classes[I].Members) {
+        NativeFunction NF;
+        if (convertMember(Mb, &NC, NF))
+          NC.Members.push_back(std::move(NF));
+        else
+          Skipped.push_back(NC.QualifiedName + "." + Mb.Name);
+      }
+    }
+  }
+
+  /// False for what b-script cannot express (out parameters).
+  bool convertType(const BoundType &T, NativeType &Out) {
+    Out.StorageSize = T.StorageSize;
+    switch (T.Code) {
+    case TypeCode::Void:
+      Out.TheCode = NativeType::Void;
+      return true;
+    case TypeCode::Bool:
+      Out.TheCode = NativeType::Bool;
+      return !T.isOutPointer();
+    case TypeCode::Int:
+      Out.TheCode = NativeType::Int;
+      return !T.isOutPointer();
+    case TypeCode::Float:
+      Out.TheCode = NativeType::Float;
+      return !T.isOutPointer();
+    case TypeCode::String:
+      Out.TheCode = NativeType::String;
+      return true;
+    case TypeCode::Enum:
+      Out.TheCode = NativeType::Enum;
+      Out.Name = Model.getQualifiedName(T);
+      if (T.Module < 0 || T.Index < 0)
+        return false;
+      Out.TheEnum = &Mods[T.Module]->Enums[T.Index];
+      return !T.isOutPointer();
+    case TypeCode::Class:
+      Out.TheCode = NativeType::Class;
+      Out.Name = Model.getQualifiedName(T);
+      if (T.Module < 0 || T.Index < 0)
+        return false;
+      Out.TheClass = &Mods[T.Module]->Classes[T.Index];
+      Out.MutableRef = (T.Flags & TF_Ref) && !(T.Flags & TF_Const);
+      return true;
+    }
     return false;
   }
-  return false;
-}
+
+  bool convertMember(const BoundMember &B, const NativeClass *Owner,
+                     NativeFunction &NF) {
+    switch (B.Kind) {
+    case MemberKind::Field:
+      NF.Kind = NativeFunction::Field;
+      break;
+    case MemberKind::Property:
+      NF.Kind = NativeFunction::Property;
+      break;
+    case MemberKind::Method:
+      NF.Kind = NativeFunction::Method;
+      break;
+    case MemberKind::Function:
+      NF.Kind = NativeFunction::Function;
+      break;
+    }
+    NF.Name = B.Name;
+    NF.Symbol = B.Thunk;
+    NF.Setter = B.Setter;
+    NF.FieldOffset = B.FieldOffset;
+    NF.Owner = Owner;
+    NF.ConstSelf = B.isConstSelf();
+    NF.ReadOnly = B.isReadOnly();
+    NF.ResultViaOut = B.resultViaOut();
+    bool Ok = convertType(B.Result, NF.Result);
+    for (const BoundParam &P : B.Params) {
+      NativeType T;
+      Ok = convertType(P.Type, T) && Ok;
+      NF.Params.push_back(std::move(T));
+      if (P.Default != DefaultKind::None) {
+        NativeDefault D;
+        D.IsFloat = P.Default == DefaultKind::Float;
+        D.Int = P.DefaultInt;
+        D.Float = P.DefaultFloat;
+        NF.Defaults.push_back(D);
+      }
+    }
+    return Ok;
+  }
+
+  const BindingModel &Model;
+  std::vector<std::unique_ptr<NativeModule>> Mods;
+  std::vector<std::string> Skipped;
+};
 
 } // namespace
 
 std::vector<std::string> bind::addToNativeRegistry(const BindingModel &Model,
                                                    NativeRegistry &Registry) {
-  std::vector<std::string> Skipped;
-  for (const BoundModule &M : Model.Modules) {
-    auto NM = std::make_unique<NativeModule>();
-    NM->Name = M.Name;
-    for (const BoundEnum &E : M.Enums) {
-      NativeEnum NE;
-      NE.Name = E.Name;
-      for (const BoundEnum::Value &V : E.Values)
-        NE.Values.push_back({V.Name, V.Number});
-      NM->Enums.push_back(std::move(NE));
-    }
-    for (const BoundMember &F : M.Functions) {
-      NativeFunction NF;
-      NF.Name = F.Name;
-      NF.Symbol = F.Thunk;
-      bool Ok = !F.resultViaOut() && convertType(Model, F.Result, NF.Result);
-      for (const BoundParam &P : F.Params) {
-        NativeType T;
-        Ok = Ok && P.Default == DefaultKind::None &&
-             convertType(Model, P.Type, T);
-        NF.Params.push_back(std::move(T));
-      }
-      if (Ok)
-        NM->Functions.push_back(std::move(NF));
-      else
-        Skipped.push_back(M.Name + "::" + F.Name);
-    }
-    for (const BoundClass &C : M.Classes)
-      for (const BoundMember &Mb : C.Members)
-        Skipped.push_back(M.Name + "::" + C.Name + "." + Mb.Name);
-    Registry.Modules.push_back(std::move(NM));
-  }
-  return Skipped;
+  return Converter(Model).run(Registry);
 }

@@ -11,6 +11,7 @@
 #include "llvm/ADT/StringSet.h"
 #include "llvm/Support/FileSystem.h"
 #include "llvm/Support/MemoryBuffer.h"
+#include "llvm/TargetParser/Host.h"
 #include "llvm/Support/Path.h"
 
 using namespace bsc;
@@ -143,12 +144,40 @@ private:
 };
 } // namespace
 
+bool bsc::readBindingObjects(Compilation &C, const FrontendOptions &Opts) {
+  if (Opts.BindObjects.empty())
+    return true;
+  llvm::Triple Target = Opts.Target;
+  if (Target.str().empty())
+    Target = llvm::Triple(llvm::sys::getProcessTriple());
+  llvm::Expected<bind::BindingModel> Model =
+      bind::readBindings(Opts.BindObjects, Target);
+  if (!Model) {
+    // The reader joins its messages with newlines: one diagnostic each.
+    llvm::handleAllErrors(Model.takeError(), [&](const llvm::ErrorInfoBase &E) {
+      std::string Msg = E.message();
+      llvm::SmallVector<llvm::StringRef, 4> Lines;
+      llvm::StringRef(Msg).split(Lines, '\n', -1, false);
+      for (llvm::StringRef L : Lines)
+        C.Diags.report(llvm::SMLoc(), diag::err_bind_read) << L;
+    });
+    return false;
+  }
+  C.Bindings = std::move(*Model);
+  // Members b-script cannot call (out parameters) are left out; naming one
+  // is then an unknown member.
+  bind::addToNativeRegistry(C.Bindings, C.Natives);
+  return true;
+}
+
 bool bsc::loadModules(Compilation &C, const FrontendOptions &Opts) {
   unsigned ErrorsBefore = C.Diags.getNumErrors();
   if (Opts.Inputs.empty()) {
     C.Diags.report(llvm::SMLoc(), diag::err_no_input_files);
     return false;
   }
+  if (!readBindingObjects(C, Opts))
+    return false;
   ModuleLoader(C, Opts).loadInputs();
   return C.Diags.getNumErrors() == ErrorsBefore;
 }
@@ -159,6 +188,7 @@ bool bsc::runFrontend(Compilation &C, const FrontendOptions &Opts) {
     return false;
   // Sema runs even after parse errors (they left error nodes, which are
   // poison) so that one run reports as many independent mistakes as it can.
-  bool Checked = checkBehavior(C.Modules, C.Ctx, C.Diags, C.Checked);
+  bool Checked =
+      checkBehavior(C.Modules, C.Ctx, C.Diags, C.Checked, &C.Natives);
   return Loaded && Checked;
 }

@@ -15,14 +15,18 @@
 //   the nested funcs of the current task, the module's funcs and tasks, and
 //   `input`/`output`. `M::name` needs M to be this module or a required one;
 //   `TaskState::done|running|failure` are 0, 1, -1; `E::value` names a value
-//   of an enum E of a required native module, `M::E::value` too. Nested funcs
+//   of an enum E of a required native module, `M::E::value` too. The world
+//   module (the native module declaring `input`/`output`) counts as
+//   required everywhere, and its classes and enums are also visible
+//   unqualified (`MotionType::kick`, as in the paper). Nested funcs
 //   are not visible outside their task. Names of an unknown module (already
 //   diagnosed by the loader) are poison.
 // - Scopes. Blocks and `for` heads open scopes; a local is visible from its
 //   declaration to the end of its block. Redeclaring a visible local or
 //   parameter is an error (shadowing and same-scope redeclaration alike); a
 //   local named like a func or task is fine and wins.
-// - Types: int, float, bool, string, TaskState, registered enums. `int`
+// - Types: int, float, bool, string, TaskState, registered enums and
+//   classes (`M::Class`; world classes also unqualified). `int`
 //   converts implicitly to `float` (arithmetic, comparison, assignment,
 //   initialisation, arguments, return); everything else is explicit:
 //   `int(x)` from float, bool, enum, TaskState, int; `float(x)` from int,
@@ -30,7 +34,11 @@
 // - Operators: arithmetic on int/float (promoting), `%` on ints only,
 //   ordering on int/float, `==`/`!=` on same-typed int/float/bool/enum/
 //   TaskState (never strings), `&&` `||` `!` on bool, unary `-` on int/float.
-//   Conditions are bool.
+//   On a class-typed left operand an operator calls the class's operator
+//   method (`+` is `_plus_`, ...; SemaClass.cpp). Conditions are bool.
+// - Members: `v.f` reads a field or property of a class value, `v.m(...)`
+//   calls a method; arguments are checked like those of functions, and
+//   `.defaults(...)` of the binding fill in missing trailing ones.
 // - Statements: an expression statement must be a call; a task call is a
 //   statement only. Task parameters are read-only (also from nested funcs),
 //   `input` is read-only and `output` write-only. A func with a result
@@ -41,8 +49,11 @@
 // - No recursion at all: any cycle in the call graph of funcs and tasks is an
 //   error that names the cycle (tasks have one context each; funcs get a
 //   statically bounded stack).
-// - `input`/`output` have no type until a binding module registers one;
-//   checkIO is the one place that decides, so every use reports that once.
+// - `input`/`output` are typed by the world module's classes (without a
+//   world module every use reports the missing type once). `input` is
+//   read-only (no assignment to any part, no non-const method on any part),
+//   `output` write-only (no read of any part: no method call, no argument,
+//   no compound assignment). checkIOAccess is the one place for these rules.
 // - One mistake, one message: the error type is poison.
 //
 //===----------------------------------------------------------------------===//
@@ -52,8 +63,14 @@
 using namespace bsc;
 using namespace bsc::sema;
 
-Sema::Sema(ASTContext &Ctx, DiagnosticEngine &Diags, Behavior &Out)
-    : Ctx(Ctx), Types(Ctx.getTypes()), Diags(Diags), Out(Out) {}
+Sema::Sema(ASTContext &Ctx, DiagnosticEngine &Diags, Behavior &Out,
+           const NativeRegistry *Natives)
+    : Ctx(Ctx), Types(Ctx.getTypes()), Diags(Diags), Out(Out),
+      Natives(Natives) {
+  if (Natives)
+    World = Natives->getWorld();
+  Out.World = World;
+}
 
 DiagnosticBuilder Sema::diag(llvm::SMLoc Loc, diag::Kind K) {
   if (getSeverity(K) == Severity::Error)
@@ -103,7 +120,7 @@ bool Sema::run(llvm::ArrayRef<ModuleAST *> Modules) {
 
 void Sema::buildModuleTables(llvm::ArrayRef<ModuleAST *> Modules) {
   NativeRegistry Builtins = makeBuiltinNativeRegistry();
-  for (const auto &NM : Builtins.Modules)
+  for (const auto &NM : (Natives ? Natives : &Builtins)->Modules)
     KnownModules.insert(NM->Name);
 
   for (ModuleAST *M : Modules) {
@@ -154,8 +171,18 @@ const Type *Sema::getEnumType(const NativeModule &M, const NativeEnum &E) {
 const Type *Sema::findRequiredEnum(llvm::StringRef Name) {
   for (const RequireDecl &R : CurModule->AST->Requires)
     if (R.Native)
-      if (const NativeEnum *E = R.Native->findEnum(Name.str()))
+      if (const NativeEnum *E = R.Native->findEnum(Name))
         return getEnumType(*R.Native, *E);
+  if (World)
+    if (const NativeEnum *E = World->findEnum(Name))
+      return getEnumType(*World, *E);
+  return nullptr;
+}
+
+const Type *Sema::findWorldClass(llvm::StringRef Name) {
+  if (World)
+    if (const NativeClass *C = World->findClass(Name))
+      return Types.getClass(C);
   return nullptr;
 }
 
@@ -218,6 +245,11 @@ LookupResult Sema::lookupUnqualified(const Ident &Id, LookupMode Mode) {
   if (const Type *E = findRequiredEnum(Name)) {
     R.Kind = LookupKind::TypeName;
     R.Ty = E;
+    return R;
+  }
+  if (const Type *C = findWorldClass(Name)) {
+    R.Kind = LookupKind::TypeName;
+    R.Ty = C;
     return R;
   }
   if (Mode == LookupMode::Value && Name == "TaskState") {
@@ -301,6 +333,9 @@ LookupResult Sema::lookupQualified(const QualifiedName &N) {
       } else {
         QM.Kind = QualifierModule::Poison;
       }
+    } else if (World && Q.Name == World->Name) {
+      QM.Kind = QualifierModule::Native;
+      QM.NativeMod = World;
     }
   }
 
@@ -330,7 +365,16 @@ LookupResult Sema::lookupQualified(const QualifiedName &N) {
     return R;
   }
   case QualifierModule::Native: {
-    std::string Member = Second.Name.str();
+    llvm::StringRef Member = Second.Name;
+    if (const NativeClass *Cls = QM.NativeMod->findClass(Member)) {
+      if (N.Parts.size() == 3) {
+        diag(Q.Loc, diag::err_unknown_qualifier) << Join(2);
+        return R;
+      }
+      R.Kind = LookupKind::TypeName;
+      R.Ty = Types.getClass(Cls);
+      return R;
+    }
     if (const NativeEnum *E = QM.NativeMod->findEnum(Member)) {
       const Type *Ty = getEnumType(*QM.NativeMod, *E);
       if (N.Parts.size() == 3)
@@ -375,7 +419,8 @@ LookupResult Sema::lookupQualified(const QualifiedName &N) {
 }
 
 bool bsc::checkBehavior(llvm::ArrayRef<ModuleAST *> Modules, ASTContext &Ctx,
-                        DiagnosticEngine &Diags, Behavior &Out) {
-  Sema S(Ctx, Diags, Out);
+                        DiagnosticEngine &Diags, Behavior &Out,
+                        const NativeRegistry *Natives) {
+  Sema S(Ctx, Diags, Out, Natives);
   return S.run(Modules);
 }

@@ -1,7 +1,8 @@
 //===- SemaDecl.cpp - types, signatures, locals and callable bodies -------===//
 //
 // Types are resolved by name at module level only (built-ins, TaskState,
-// enums of required native modules); locals never name types. Signatures
+// enums of required native modules, classes and enums of native modules by
+// `M::Name`, and the world module's unqualified); locals never name types. Signatures
 // are resolved in a pass of their own before any body, so a call can be
 // checked against a callee declared later or in another module.
 //
@@ -24,6 +25,8 @@ const Type *Sema::resolveType(const QualifiedName &N) {
   case LookupKind::Error:
     return Types.getError();
   case LookupKind::TypeName:
+    if (L.Ty->isClass())
+      Out.UsesClasses = true;
     return L.Ty;
   case LookupKind::Local:
   case LookupKind::Param:
@@ -52,18 +55,22 @@ const Type *Sema::resolveNativeType(const NativeType &T) {
   case NativeType::String:
     return Types.getString();
   case NativeType::Enum: {
+    if (T.TheEnum && T.TheEnum->Module)
+      return getEnumType(*T.TheEnum->Module, *T.TheEnum);
     llvm::StringRef Name = T.Name;
     auto [ModName, EnumName] = Name.rsplit("::");
     for (const NativeModule *M : AllNatives)
       if (M->Name == ModName)
-        if (const NativeEnum *E = M->findEnum(EnumName.str()))
+        if (const NativeEnum *E = M->findEnum(EnumName))
           return getEnumType(*M, *E);
     // An enum of a module this behavior does not load: unusable, but the
     // binding was checked when it was registered, so stay silent.
     return Types.getError();
   }
   case NativeType::Class:
-    // Registered classes are not supported yet.
+    // Binding modules always resolve their class types (lib/Bind).
+    if (T.TheClass)
+      return Types.getClass(T.TheClass);
     return Types.getError();
   }
   llvm_unreachable("unknown native type code");

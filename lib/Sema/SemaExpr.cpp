@@ -49,6 +49,8 @@ const Type *Sema::checkExpr(Expr *E, Access A) {
     return Types.getError();
   const Type *T = checkExprImpl(E, A);
   E->Ty = T;
+  if (T->isClass())
+    Out.UsesClasses = true;
   return T;
 }
 
@@ -103,23 +105,67 @@ const Type *Sema::checkExprImpl(Expr *E, Access A) {
 // Names, input and output, members
 //===----------------------------------------------------------------------===//
 
+bool Sema::checkIOAccess(NameExpr *E, bool IsInput, Access A,
+                         llvm::StringRef Method) {
+  // The direction rules do not depend on the type: input is read-only,
+  // output write-only. A use of a part is a use of the whole (the access
+  // is passed down member chains), and calling any method reads.
+  bool Reads = false, Writes = false;
+  switch (A) {
+  case Access::Read:
+  case Access::MethodBase:
+    Reads = true;
+    break;
+  case Access::Write:
+    Writes = true;
+    break;
+  case Access::Modify:
+  case Access::MutatingMethodBase:
+    Reads = Writes = true;
+    break;
+  }
+  if (IsInput && A == Access::MutatingMethodBase) {
+    diag(E->getLoc(), diag::err_non_const_method_on_input)
+        << Method << E->getRange();
+    return false;
+  }
+  if (IsInput && Writes) {
+    diag(E->getLoc(), diag::err_assign_to_input) << E->getRange();
+    return false;
+  }
+  if (!IsInput && Reads) {
+    diag(E->getLoc(), diag::err_read_of_output) << E->getRange();
+    return false;
+  }
+  return true;
+}
+
 const Type *Sema::checkIO(NameExpr *E, bool IsInput, Access A) {
   E->Kind = IsInput ? NameKind::Input : NameKind::Output;
-  // The direction rules do not depend on the type: input is read-only,
-  // output write-only.
-  if (IsInput && (A == Access::Write || A == Access::Modify)) {
-    diag(E->getLoc(), diag::err_assign_to_input) << E->getRange();
+  if (!checkIOAccess(E, IsInput, A))
+    return Types.getError();
+  // The one place that decides the types of input and output: the classes
+  // the world module registers.
+  const NativeClass *C =
+      World ? (IsInput ? World->Input : World->Output) : nullptr;
+  if (!C) {
+    diag(E->getLoc(),
+         IsInput ? diag::err_no_input_type : diag::err_no_output_type)
+        << E->getRange();
     return Types.getError();
   }
-  if (!IsInput && (A == Access::Read || A == Access::Modify)) {
-    diag(E->getLoc(), diag::err_read_of_output) << E->getRange();
-    return Types.getError();
-  }
-  // The one place that decides the types of input and output: no binding
-  // module declares them yet.
-  diag(E->getLoc(), IsInput ? diag::err_no_input_type : diag::err_no_output_type)
-      << E->getRange();
-  return Types.getError();
+  return Types.getClass(C);
+}
+
+bool Sema::checkParamAccess(NameExpr *E, ParamDecl *P, Access A) {
+  if (A == Access::Read || A == Access::MethodBase)
+    return true;
+  auto *Task = llvm::dyn_cast_or_null<TaskDecl>(P->Owner);
+  if (!Task)
+    return true;
+  diag(E->getLoc(), diag::err_assign_to_task_param)
+      << E->Name.str() << Task->getName().Name << E->getRange();
+  return false;
 }
 
 const Type *Sema::applyLookup(NameExpr *E, const LookupResult &L, Access A) {
@@ -134,6 +180,8 @@ const Type *Sema::applyLookup(NameExpr *E, const LookupResult &L, Access A) {
   case LookupKind::Param:
     E->Kind = NameKind::Param;
     E->Param = L.Param;
+    if (!checkParamAccess(E, L.Param, A))
+      return Types.getError();
     return L.Param->Ty ? L.Param->Ty : Types.getError();
   case LookupKind::EnumValue:
     E->Kind = NameKind::EnumValue;
@@ -166,15 +214,31 @@ const Type *Sema::checkName(NameExpr *E, Access A) {
 }
 
 const Type *Sema::checkMember(MemberExpr *E, Access A) {
-  // A part of input or output follows the rules of the whole, so the use
-  // is passed down to the root of a member chain.
+  // A part of input or output (or of a task parameter) follows the rules of
+  // the whole, so the use is passed down to the root of a member chain.
   const Type *BaseTy = checkExpr(E->Base, A);
   if (BaseTy->isError())
     return Types.getError();
-  // No registered classes yet: nothing has members.
-  diag(E->Base->getLoc(), diag::err_member_of_non_class)
-      << getText(E->Base) << BaseTy->getName() << E->Base->getRange();
-  return Types.getError();
+  if (!BaseTy->isClass()) {
+    diag(E->Base->getLoc(), diag::err_member_of_non_class)
+        << getText(E->Base) << BaseTy->getName() << E->Base->getRange();
+    return Types.getError();
+  }
+  const NativeFunction *M = findValueMember(BaseTy, E->Member);
+  if (!M)
+    return Types.getError();
+  E->Resolved = M;
+  if (!M->isData()) {
+    diag(E->getLoc(), diag::err_not_a_value)
+        << getText(E) << "method" << E->getRange();
+    return Types.getError();
+  }
+  if (M->ReadOnly && A != Access::Read && A != Access::MethodBase) {
+    diag(E->Member.Loc, diag::err_read_only_member)
+        << M->Name << BaseTy->getName() << E->getRange();
+    return Types.getError();
+  }
+  return resolveNativeType(M->Result);
 }
 
 //===----------------------------------------------------------------------===//
@@ -185,6 +249,8 @@ const Type *Sema::checkUnary(UnaryExpr *E) {
   const Type *T = checkExpr(E->Operand);
   if (T->isError())
     return T;
+  if (T->isClass() && E->Op == UnaryOp::Neg)
+    return checkClassUnary(E);
   switch (E->Op) {
   case UnaryOp::Neg:
     if (T->isArithmetic())
@@ -216,6 +282,8 @@ const Type *Sema::checkBinary(BinaryExpr *E) {
   const Type *R = checkExpr(E->RHS);
   if (L->isError() || R->isError())
     return Types.getError();
+  if (L->isClass())
+    return checkClassBinary(E);
   bool Arith = L->isArithmetic() && R->isArithmetic();
   switch (E->Op) {
   case BinaryOp::Add:
@@ -281,6 +349,7 @@ const Type *Sema::checkConversion(ConversionExpr *E) {
   case TypeKind::String:
   case TypeKind::TaskState:
   case TypeKind::Enum:
+  case TypeKind::Class:
     break;
   }
   if (!OK) {
@@ -319,17 +388,14 @@ const Type *Sema::checkCall(CallExpr *C, bool AsStatement) {
       N->NativeFn = L.NativeFn;
       C->Kind = CallKind::NativeFunction;
       C->NativeFn = L.NativeFn;
-      for (const NativeType &P : L.NativeFn->Params)
-        ParamTys.push_back(resolveNativeType(P));
-      ResultTy = resolveNativeType(L.NativeFn->Result);
     } else if (L.Kind != LookupKind::Error) {
       diag(N->getLoc(), diag::err_not_callable) << Name << N->getRange();
     }
     N->Ty = ResultTy ? ResultTy : Types.getError();
   } else if (auto *M = llvm::dyn_cast_or_null<MemberExpr>(C->Callee)) {
-    // A method call; methods come with registered classes.
-    checkMember(M, Access::MethodBase);
-    M->Ty = Types.getError();
+    Name = getText(M);
+    if (!resolveMethodCallee(C, M))
+      M->Ty = Types.getError();
   } else {
     const Type *T = checkExpr(C->Callee);
     if (!T->isError() && C->Callee)
@@ -337,15 +403,40 @@ const Type *Sema::checkCall(CallExpr *C, bool AsStatement) {
           << getText(C->Callee) << C->Callee->getRange();
   }
 
-  for (Expr *Arg : C->Args)
-    checkExpr(Arg);
+  // A native callee (module function or method): its registered signature.
+  size_t MinArgs = ParamTys.size();
+  const NativeFunction *NF = C->NativeFn;
+  if (NF) {
+    for (const NativeType &P : NF->Params)
+      ParamTys.push_back(resolveNativeType(P));
+    ResultTy = resolveNativeType(NF->Result);
+    MinArgs = NF->getMinArgs();
+    C->Callee->Ty = ResultTy;
+  }
+
+  for (size_t I = 0, E = C->Args.size(); I != E; ++I) {
+    // An argument for a non-const `T&` parameter may be modified.
+    bool Modified = NF && I < NF->Params.size() && NF->Params[I].MutableRef;
+    checkExpr(C->Args[I], Modified ? Access::Modify : Access::Read);
+  }
   if (!ResultTy)
     return Types.getError();
 
-  if (ParamTys.size() != C->Args.size()) {
-    diag(C->getLoc(), diag::err_call_arity)
-        << Name << ParamTys.size() << C->Args.size() << C->getRange();
+  size_t NumArgs = C->Args.size();
+  if (NumArgs > ParamTys.size() || NumArgs < MinArgs) {
+    if (MinArgs == ParamTys.size())
+      diag(C->getLoc(), diag::err_call_arity)
+          << Name << ParamTys.size() << NumArgs << C->getRange();
+    else
+      diag(C->getLoc(), diag::err_call_arity_range)
+          << Name << MinArgs << ParamTys.size() << NumArgs << C->getRange();
   } else {
+    // Missing trailing arguments come from the binding's `.defaults(...)`.
+    for (size_t I = NumArgs; I != ParamTys.size(); ++I) {
+      C->Args.push_back(makeDefaultArg(NF->Defaults[I - MinArgs], ParamTys[I],
+                                       C->getRange().End));
+      ++C->NumDefaultArgs;
+    }
     for (size_t I = 0, E = C->Args.size(); I != E; ++I) {
       if (!C->Args[I])
         continue;
@@ -383,19 +474,10 @@ const Type *Sema::checkAssignTarget(Expr *T, Access A) {
     switch (L.Kind) {
     case LookupKind::Error:
     case LookupKind::Local:
+    case LookupKind::Param: // applyLookup keeps task parameters read-only.
     case LookupKind::Input:
     case LookupKind::Output:
       return N->Ty = applyLookup(N, L, A);
-    case LookupKind::Param: {
-      const Type *Ty = applyLookup(N, L, A);
-      N->Ty = Ty;
-      if (auto *Task = llvm::dyn_cast_or_null<TaskDecl>(L.Param->Owner)) {
-        diag(N->getLoc(), diag::err_assign_to_task_param)
-            << N->Name.str() << Task->getName().Name << N->getRange();
-        return Types.getError();
-      }
-      return Ty;
-    }
     case LookupKind::Callable:
     case LookupKind::NativeFn:
     case LookupKind::EnumValue:

@@ -3,7 +3,8 @@
 // Private to lib/Sema. One Sema object checks one behavior; its members are
 // split over files by construct (Sema.cpp: module tables and name lookup,
 // SemaDecl.cpp: types, signatures and declarations, SemaStmt.cpp, SemaExpr.cpp,
-// SemaTask.cpp: yields, taskState and the call graph). Keeping all state in
+// SemaTask.cpp: yields, taskState and the call graph, SemaClass.cpp: members,
+// method calls and operators of registered classes). Keeping all state in
 // one class lets each file stay a plain walk over the tree without threading
 // a context parameter through every function.
 //
@@ -36,7 +37,8 @@ enum class LookupKind {
   Input,       ///< The `input` global.
   Output,      ///< The `output` global.
   Module,      ///< A module name on its own.
-  TypeName,    ///< A type: a built-in, TaskState or a registered enum (Ty).
+  TypeName,    ///< A type: a built-in, TaskState, a registered enum or
+               ///< class (Ty).
 };
 
 /// The answer of a lookup: a kind and the fields that kind names.
@@ -54,12 +56,17 @@ struct LookupResult {
 /// names only; an unknown name is then an unknown type).
 enum class LookupMode { Value, Type };
 
-/// How an expression is used; decides what `input` and `output` allow.
+/// How an expression is used; decides what `input` and `output` (and
+/// read-only members and task parameters) allow. A member chain passes its
+/// use down to its root: `output.walkTarget.x = 1` writes `output`.
 enum class Access {
   Read,       ///< Its value is read.
   Write,      ///< It is the target of `=`.
-  Modify,     ///< It is the target of `+=` etc. (read and written).
-  MethodBase, ///< A method is called on it.
+  Modify,     ///< It is the target of `+=` etc., or the argument of a
+              ///< non-const `T&` parameter (read and written).
+  MethodBase, ///< A method is called on it (read; checkMutatingMethodBase
+              ///< adds the write of a non-const method).
+  MutatingMethodBase, ///< A non-const method is called on it.
 };
 
 /// The name tables of one module.
@@ -80,7 +87,8 @@ struct CallEdge {
 /// The checker. See Sema.cpp for the rules it implements.
 class Sema {
 public:
-  Sema(ASTContext &Ctx, DiagnosticEngine &Diags, Behavior &Out);
+  Sema(ASTContext &Ctx, DiagnosticEngine &Diags, Behavior &Out,
+       const NativeRegistry *Natives);
   /// Checks every module; returns false if an error was reported.
   bool run(llvm::ArrayRef<ModuleAST *> Modules);
 
@@ -94,8 +102,11 @@ public:
                                const Ident &Value);
   /// The type of a registered enum (`M::E`).
   const Type *getEnumType(const NativeModule &M, const NativeEnum &E);
-  /// The enum named `E` of a native module the current module requires.
+  /// The enum named `E` of a native module the current module requires,
+  /// or of the world module.
   const Type *findRequiredEnum(llvm::StringRef E);
+  /// The class named `C` of the world module (visible unqualified).
+  const Type *findWorldClass(llvm::StringRef C);
 
   //--- SemaDecl.cpp: types, signatures, declarations, bodies ----------------
   const Type *resolveType(const QualifiedName &N);
@@ -128,6 +139,13 @@ public:
   const Type *checkName(NameExpr *E, Access A);
   const Type *applyLookup(NameExpr *E, const LookupResult &L, Access A);
   const Type *checkIO(NameExpr *E, bool IsInput, Access A);
+  /// The direction rules of `input` (read-only) and `output` (write-only),
+  /// the one place that decides them. `Method` names a non-const method
+  /// for MutatingMethodBase. Returns false after reporting.
+  bool checkIOAccess(NameExpr *E, bool IsInput, Access A,
+                     llvm::StringRef Method = "");
+  /// Task parameters are read-only; false after reporting.
+  bool checkParamAccess(NameExpr *E, ParamDecl *P, Access A);
   const Type *checkMember(MemberExpr *E, Access A);
   const Type *checkUnary(UnaryExpr *E);
   const Type *checkBinary(BinaryExpr *E);
@@ -142,6 +160,24 @@ public:
   void promoteToFloat(Expr *&E);
   /// The source text of an expression, for messages.
   std::string getText(const Expr *E) const;
+
+  //--- SemaClass.cpp: registered classes -----------------------------------
+  /// The field, property or method `Name` of class `C`, or null after
+  /// reporting err_no_member.
+  const NativeFunction *findValueMember(const Type *ClassTy, const Ident &Name);
+  /// `base.method` as a callee: resolves the method and records it on the
+  /// call; returns false after reporting (or for poison).
+  bool resolveMethodCallee(CallExpr *C, MemberExpr *M);
+  /// A non-const method (or operator) is called on `Base`: its root must
+  /// not be `input` or a task parameter, nor any member on the way read-only.
+  void checkMutatingMethodBase(Expr *Base, const NativeFunction &Method);
+  /// `a op b` and `-a` on class values; the operator methods of
+  /// docs/bindings.md. Only called with a class-typed (left) operand.
+  const Type *checkClassBinary(BinaryExpr *E);
+  const Type *checkClassUnary(UnaryExpr *E);
+  /// A literal for a default argument, typed as the parameter.
+  Expr *makeDefaultArg(const NativeDefault &D, const Type *ParamTy,
+                       llvm::SMLoc Loc);
 
   //--- SemaTask.cpp ---------------------------------------------------------
   void checkYield(YieldStmt *S);
@@ -162,6 +198,10 @@ public:
   llvm::StringSet<> KnownModules;
   /// Every native module some module requires (for native enum types).
   std::vector<const NativeModule *> AllNatives;
+  /// The compilation's native modules (null: the built-in ones only).
+  const NativeRegistry *Natives = nullptr;
+  /// The module declaring `input`/`output`, or null.
+  const NativeModule *World = nullptr;
 
   ModuleInfo *CurModule = nullptr;
   /// The func or task whose body is being checked (a nested func when

@@ -110,6 +110,15 @@ cl::opt<std::string> BehaviorNameArg(
     cl::desc("Prefix of the exported symbols (default: the first file's "
              "module name)"),
     cl::value_desc("name"), cl::cat(BscCategory));
+cl::list<std::string>
+    BindObjects("bind",
+                cl::desc("A binding object or archive registering C++ for "
+                         "the scripts (repeatable; read for -target)"),
+                cl::value_desc("obj"), cl::cat(BscCategory), BSC_BOTH);
+cl::opt<bool> DumpBindings("dump-bindings",
+                           cl::desc("Print what the --bind objects register "
+                                    "and exit"),
+                           cl::cat(BscCategory));
 cl::opt<bool> DebugInfo("g",
                         cl::desc("Accepted for compatibility; bsc does not "
                                  "emit debug information yet"),
@@ -323,8 +332,20 @@ bool linkProgram(Compilation &C, const llvm::Triple &T, llvm::StringRef Object,
 /// What the top-level command produces when it goes past the front end.
 enum class OutputKind { LLVM, Asm, Obj, Header, Program };
 
+/// Reports what the checked behavior uses that code generation cannot
+/// lower yet (registered classes); false if it did.
+bool checkBackendSupport(Compilation &C) {
+  if (!C.Checked.UsesClasses)
+    return true;
+  C.Diags.report(llvm::SMLoc(), diag::err_codegen_unsupported)
+      << "registered C++ classes ('input', 'output' and class values)";
+  return false;
+}
+
 int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
             const char *Argv0) {
+  if (!checkBackendSupport(C))
+    return finish(C);
   std::unique_ptr<llvm::TargetMachine> TM =
       createTargetMachine(BOpts.Target, C.Diags);
   if (!TM)
@@ -428,7 +449,7 @@ int runJIT(Compilation &C, const FrontendOptions &FOpts) {
   if (!runFrontend(C, FOpts) || !OptionsOK)
     return finish(C);
   const CallableDecl *Entry = findProgramEntry(C);
-  if (!Entry)
+  if (!Entry || !checkBackendSupport(C))
     return finish(C);
   auto JITOrErr = BehaviorJIT::create();
   if (!JITOrErr)
@@ -494,6 +515,14 @@ int main(int argc, char **argv) {
   FrontendOptions Opts;
   Opts.Inputs.assign(InputFiles.begin(), InputFiles.end());
   Opts.IncludeDirs.assign(IncludeDirs.begin(), IncludeDirs.end());
+  Opts.BindObjects.assign(BindObjects.begin(), BindObjects.end());
+  Opts.Target = RunCmd ? resolveTargetTriple("") : resolveTargetTriple(TargetArg);
+
+  if (DumpBindings) {
+    if (readBindingObjects(C, Opts))
+      bind::dumpBindings(C.Bindings, llvm::outs());
+    return finish(C);
+  }
 
   if (RunCmd)
     return runJIT(C, Opts);

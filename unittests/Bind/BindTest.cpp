@@ -388,8 +388,17 @@ TEST(BindTest, SoccerBindings) {
     const NativeModule *NW = Reg.find("World");
     ASSERT_TRUE(NW && NW->findEnum("MotionType"));
     EXPECT_EQ(NW->findEnum("MotionType")->Values[1].Number, 1);
-    EXPECT_NE(std::find(Skipped.begin(), Skipped.end(), "Math::Vector2f.abs"),
-              Skipped.end());
+    EXPECT_TRUE(Skipped.empty());
+    const NativeClass *NV = NM->findClass("Vector2f");
+    ASSERT_TRUE(NV && NV->findMember("abs"));
+    EXPECT_EQ(NV->findMember("abs")->Kind, NativeFunction::Method);
+    EXPECT_TRUE(NV->findMember("abs")->ConstSelf);
+    EXPECT_EQ(NV->Size, V->Size);
+    ASSERT_TRUE(NW->Input && NW->Output);
+    EXPECT_EQ(NW->Input->findMember("oppGoal")->Result.TheClass, NV);
+    EXPECT_EQ(NW->Output->findMember("motion")->Result.TheEnum,
+              NW->findEnum("MotionType"));
+    EXPECT_EQ(Reg.getWorld(), NW);
   }
 }
 

@@ -439,20 +439,31 @@ public:
   }
 };
 
-/// `base.member` (fields of registered classes; a method when called).
+/// `base.member`: a field or property of a registered class value, or the
+/// method of a method call (then the CallExpr's callee).
 class MemberExpr : public Expr {
 public:
   MemberExpr(llvm::SMRange R, Expr *Base, Ident Member)
       : Expr(NodeKind::MemberExpr, R), Base(Base), Member(Member) {}
   Expr *Base;
   Ident Member;
+  /// Sema: the member of the base's class it names (Field, Property or
+  /// Method; the class is Resolved->Owner). Ty is the field's or
+  /// property's type, or for a method callee its result type.
+  const NativeFunction *Resolved = nullptr;
   static bool classof(const Node *N) {
     return N->getKind() == NodeKind::MemberExpr;
   }
 };
 
 /// What a call calls (Sema).
-enum class CallKind { Unresolved, Func, Task, NativeFunction };
+enum class CallKind {
+  Unresolved,
+  Func,           ///< Target, a FuncDecl.
+  Task,           ///< Target, a TaskDecl.
+  NativeFunction, ///< NativeFn, a module function (`io::printi`, `Math::fabs`).
+  Method,         ///< NativeFn, a method of the callee MemberExpr's base.
+};
 
 /// `callee(args)`; the callee is a NameExpr (or a MemberExpr for methods).
 class CallExpr : public Expr {
@@ -463,7 +474,12 @@ public:
   std::vector<Expr *> Args;
   CallKind Kind = CallKind::Unresolved;   ///< Sema.
   CallableDecl *Target = nullptr;         ///< Sema, for Func and Task.
-  const NativeFunction *NativeFn = nullptr; ///< Sema, for NativeFunction.
+  /// Sema, for NativeFunction and Method: the registered member.
+  const NativeFunction *NativeFn = nullptr;
+  /// Sema: how many of the trailing Args Sema appended from the callee's
+  /// `.defaults(...)` (literals typed as the parameters); the source wrote
+  /// Args.size() - NumDefaultArgs of them.
+  unsigned NumDefaultArgs = 0;
   static bool classof(const Node *N) {
     return N->getKind() == NodeKind::CallExpr;
   }
@@ -475,6 +491,8 @@ public:
       : Expr(NodeKind::UnaryExpr, R), Op(Op), Operand(Operand) {}
   UnaryOp Op;
   Expr *Operand;
+  /// Sema: for `-` on a class value, the method `_neg_` it calls.
+  const NativeFunction *Operator = nullptr;
   static bool classof(const Node *N) {
     return N->getKind() == NodeKind::UnaryExpr;
   }
@@ -487,6 +505,13 @@ public:
   BinaryOp Op;
   Expr *LHS;
   Expr *RHS;
+  /// Sema: for a class-typed LHS, the method of the LHS's class that the
+  /// operator calls with RHS as its argument (`+` is `_plus_`, ...;
+  /// docs/bindings.md "Operator names"). Ty is its result type.
+  const NativeFunction *Operator = nullptr;
+  /// Sema: `!=` through `_eq_` (the class registers no `_ne_`): the result
+  /// of Operator is negated.
+  bool NegateOperator = false;
   static bool classof(const Node *N) {
     return N->getKind() == NodeKind::BinaryExpr;
   }

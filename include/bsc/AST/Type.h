@@ -4,6 +4,10 @@
 // type is poison: an expression of error type has already been diagnosed,
 // and every check that sees it stays silent (one mistake, one message).
 //
+// Registered enums and classes point at their Native.h description, which
+// is where Sema finds enum values and class members and CodeGen finds sizes,
+// alignments and thunks; the type itself only adds identity and a name.
+//
 //===----------------------------------------------------------------------===//
 #ifndef BSC_AST_TYPE_H
 #define BSC_AST_TYPE_H
@@ -15,9 +19,20 @@
 
 namespace bsc {
 
+struct NativeClass;
 struct NativeEnum;
 
-enum class TypeKind { Error, Void, Int, Float, Bool, String, TaskState, Enum };
+enum class TypeKind {
+  Error,
+  Void,
+  Int,
+  Float,
+  Bool,
+  String,
+  TaskState,
+  Enum,  ///< A registered enum (getEnum()).
+  Class, ///< A registered C++ class, a value type (getClass()).
+};
 
 class Type {
 public:
@@ -25,6 +40,7 @@ public:
   /// The name as the user writes it (`int`, `TaskState`, `MotionType`).
   llvm::StringRef getName() const { return Name; }
   const NativeEnum *getEnum() const { return Enum; }
+  const NativeClass *getClass() const { return Class; }
 
   bool isError() const { return Kind == TypeKind::Error; }
   bool isVoid() const { return Kind == TypeKind::Void; }
@@ -34,15 +50,18 @@ public:
   bool isString() const { return Kind == TypeKind::String; }
   bool isTaskState() const { return Kind == TypeKind::TaskState; }
   bool isEnum() const { return Kind == TypeKind::Enum; }
+  bool isClass() const { return Kind == TypeKind::Class; }
   bool isArithmetic() const { return isInt() || isFloat(); }
 
-  Type(TypeKind K, std::string Name, const NativeEnum *E = nullptr)
-      : Kind(K), Name(std::move(Name)), Enum(E) {}
+  Type(TypeKind K, std::string Name, const NativeEnum *E = nullptr,
+       const NativeClass *C = nullptr)
+      : Kind(K), Name(std::move(Name)), Enum(E), Class(C) {}
 
 private:
   TypeKind Kind;
   std::string Name;
   const NativeEnum *Enum;
+  const NativeClass *Class;
 };
 
 /// Owns and uniques every type of one compilation.
@@ -58,10 +77,13 @@ public:
   const Type *getTaskState() const { return &TaskStateTy; }
   /// The type of a registered enum, named by its qualified b-script name.
   const Type *getEnum(const NativeEnum *E, llvm::StringRef QualifiedName);
+  /// The type of a registered class (named by its QualifiedName).
+  const Type *getClass(const NativeClass *C);
 
 private:
   Type ErrorTy, VoidTy, IntTy, FloatTy, BoolTy, StringTy, TaskStateTy;
   std::map<const NativeEnum *, std::unique_ptr<Type>> Enums;
+  std::map<const NativeClass *, std::unique_ptr<Type>> Classes;
 };
 
 } // namespace bsc

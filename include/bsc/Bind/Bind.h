@@ -209,10 +209,12 @@ readBindingBuffers(llvm::ArrayRef<llvm::MemoryBufferRef> Buffers,
 /// --dump-bindings).
 void dumpBindings(const BindingModel &Model, llvm::raw_ostream &OS);
 
-/// Adds what Native.h can express today to `Registry`: every module with
-/// its enums and the module functions whose parameters and result are
-/// scalars or enums passed by value. Returns the "Module::name"s of the
-/// functions left out (class types, out parameters, defaults).
+/// Adds every module of `Model` to `Registry` in the Native.h form that
+/// Sema and CodeGen read: classes with their members, module functions,
+/// enums, and the `input`/`output` classes, with types resolved to
+/// pointers. Returns the "Module::name" / "Module::Class.member" of the
+/// members left out: those with `int&`, `float&` or `bool&` out
+/// parameters, which b-script cannot pass.
 std::vector<std::string> addToNativeRegistry(const BindingModel &Model,
                                              NativeRegistry &Registry);
 

@@ -1,8 +1,9 @@
 //===- Frontend.h - from source files to a checked behavior ----*- C++ -*-===//
 //
 // The front end of one compilation: read the files named on the command
-// line, parse them, follow their `requires` to sibling `.bs` files (or
-// native modules), and check the whole behavior. The driver, the JIT runner
+// line, read the binding objects (--bind) into native modules, parse the
+// files, follow their `requires` to sibling `.bs` files (or native
+// modules), and check the whole behavior. The driver, the JIT runner
 // and the REPL all start here. Nothing here prints; diagnostics collect in
 // the Compilation's DiagnosticEngine.
 //
@@ -12,8 +13,10 @@
 
 #include "bsc/AST/AST.h"
 #include "bsc/Basic/Diagnostic.h"
+#include "bsc/Bind/Bind.h"
 #include "bsc/Sema/Sema.h"
 #include "llvm/Support/SourceMgr.h"
+#include "llvm/TargetParser/Triple.h"
 #include <map>
 #include <string>
 #include <vector>
@@ -27,6 +30,11 @@ constexpr unsigned MaxSourceFileMiB = 64;
 struct FrontendOptions {
   std::vector<std::string> Inputs;      ///< The .bs files named by the user.
   std::vector<std::string> IncludeDirs; ///< -I: searched after the requiring file's folder.
+  /// --bind: binding objects or archives (bindings.md), read for Target.
+  std::vector<std::string> BindObjects;
+  /// The compilation's target: sizes, offsets and the descriptor's pointer
+  /// size depend on it. An empty triple means the host.
+  llvm::Triple Target;
 };
 
 /// Everything one compilation owns, alive until code generation is done.
@@ -34,7 +42,11 @@ struct Compilation {
   llvm::SourceMgr SM;
   ASTContext Ctx;
   DiagnosticEngine Diags;
+  /// The built-in `io`, then the modules of the binding objects.
   NativeRegistry Natives = makeBuiltinNativeRegistry();
+  /// What the binding objects register, as lib/Bind read it (the module
+  /// hashes and files for the back end; Natives holds the converted form).
+  bind::BindingModel Bindings;
   /// Every module, the inputs first, then required ones as found.
   std::vector<ModuleAST *> Modules;
   Behavior Checked;
@@ -47,7 +59,13 @@ unsigned addSourceFile(Compilation &C, llvm::StringRef Path);
 /// The module name of a file: its name without the `.bs` extension.
 std::string moduleNameForPath(llvm::StringRef Path);
 
-/// Parses the inputs and, transitively, the modules they require. A script
+/// Reads Opts.BindObjects for Opts.Target into C.Bindings and adds their
+/// modules to C.Natives. Each reader error becomes one `bsc: error: ...`
+/// diagnostic (err_bind_read); returns false if there was one.
+bool readBindingObjects(Compilation &C, const FrontendOptions &Opts);
+
+/// Reads the binding objects (readBindingObjects), then parses the inputs
+/// and, transitively, the modules they require. A script
 /// module is looked up as `<Name>.bs` in the requiring file's folder, then
 /// in each -I folder; failing that, a native module of that name is used.
 /// Cyclic `requires` are allowed: a behavior is compiled as a whole.

@@ -17,14 +17,29 @@ struct Behavior {
   std::vector<FuncDecl *> Funcs;
   /// The native modules some module requires.
   std::vector<const NativeModule *> NativeModules;
+  /// The module declaring `input`/`output`, if the registry has one.
+  const NativeModule *World = nullptr;
+  /// Whether some local, parameter, result or expression has a registered
+  /// class type (`input` and `output` included): the back end must then
+  /// lay out and call class values.
+  bool UsesClasses = false;
 };
 
 /// Checks the modules (their `requires` already resolved by the module
 /// loader): names, types, the task rules and the call graph. Fills in the
 /// "Sema:" fields of the AST and `Out`. Returns false if it reported an
 /// error to `Diags`.
+///
+/// `Natives` is every native module of the compilation (the built-in `io`
+/// and the --bind modules, see Native.h); null means the built-in ones
+/// only. It decides which module names are known and which module is the
+/// world module (the one declaring `input`/`output`), whose classes and
+/// enums are visible unqualified in every module and whose name works as a
+/// qualifier without `requires`. Other native modules are reached through
+/// the `requires` the loader resolved.
 bool checkBehavior(llvm::ArrayRef<ModuleAST *> Modules, ASTContext &Ctx,
-                   DiagnosticEngine &Diags, Behavior &Out);
+                   DiagnosticEngine &Diags, Behavior &Out,
+                   const NativeRegistry *Natives = nullptr);
 
 } // namespace bsc
 
