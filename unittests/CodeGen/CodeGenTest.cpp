@@ -278,9 +278,11 @@ TEST_F(CodeGenTest, EveryProgramVerifiesOnEveryTarget) {
       for (const llvm::Function &F : *M)
         for (const llvm::BasicBlock &BB : F)
           for (const llvm::Instruction &I : BB)
-            if (const auto *O = llvm::dyn_cast<llvm::OverflowingBinaryOperator>(&I))
+            if (const auto *O =
+                    llvm::dyn_cast<llvm::OverflowingBinaryOperator>(&I)) {
               EXPECT_FALSE(O->hasNoSignedWrap() || O->hasNoUnsignedWrap())
                   << F.getName().str();
+            }
     }
   }
 }
@@ -365,6 +367,41 @@ TEST_F(CodeGenTest, FibFrameLayout) {
   EXPECT_EQ(Frame->getNumElements(), 6u);
 }
 
+TEST_F(CodeGenTest, StateHeaderMatchesBscriptH) {
+  ASSERT_TRUE(check(getPrograms().at("tasks")));
+  // bs_state_header {u32 cycle, u32 reserved, const void *input, void
+  // *output} and bs_frame_header {i32 resume, i32 state, u32 last_cycle}
+  // as a C compiler lays them out for each target.
+  const uint64_t InputOffset[] = {8, 8}, OutputOffset[] = {12, 16};
+  for (unsigned I = 0; I < 2; ++I) {
+    SCOPED_TRACE(Targets[I].Triple);
+    llvm::LLVMContext LocalCtx;
+    BehaviorLayout L;
+    std::unique_ptr<llvm::Module> M =
+        emitLLVM(C->Checked, LocalCtx, llvm::Triple(Targets[I].Triple),
+                 llvm::DataLayout(Targets[I].Layout), CodeGenOptions(), L);
+    llvm::StructType *State =
+        llvm::StructType::getTypeByName(LocalCtx, "bs.state");
+    ASSERT_TRUE(State);
+    const llvm::StructLayout *SL =
+        M->getDataLayout().getStructLayout(State);
+    EXPECT_EQ(SL->getElementOffset(0), 0u);
+    EXPECT_EQ(SL->getElementOffset(1), 4u);
+    EXPECT_EQ(SL->getElementOffset(2), InputOffset[I]);
+    EXPECT_EQ(SL->getElementOffset(3), OutputOffset[I]);
+    ASSERT_EQ(L.Tasks.size(), 2u);
+    for (unsigned T = 0; T < L.Tasks.size(); ++T) {
+      auto *Frame = llvm::cast<llvm::StructType>(State->getElementType(4 + T));
+      EXPECT_EQ(L.Tasks[T].FrameOffset, SL->getElementOffset(4 + T));
+      for (unsigned F = 0; F < 3; ++F)
+        EXPECT_TRUE(Frame->getElementType(F)->isIntegerTy(32));
+      EXPECT_EQ(L.Tasks[T].FrameOffset % 4, 0u);
+    }
+    // Without a name, the first module's name prefixes the exports.
+    EXPECT_EQ(L.InfoSymbol, "bs_tasks_info");
+  }
+}
+
 TEST_F(CodeGenTest, FrameFieldTypes) {
   ASSERT_TRUE(check({{"m", R"(task t(int i, float f, bool b)
     bool local = b
@@ -422,8 +459,9 @@ TEST_F(CodeGenTest, EntriesAndInfo) {
                                                "bs_B__multi__main"}));
   // Everything else is internal.
   for (const llvm::Function &F : *M)
-    if (!F.isDeclaration() && !F.getName().starts_with("bs_B__"))
+    if (!F.isDeclaration() && !F.getName().starts_with("bs_B__")) {
       EXPECT_TRUE(F.hasInternalLinkage()) << F.getName().str();
+    }
 }
 
 TEST_F(CodeGenTest, BoolEntriesTravelAsInt32) {
