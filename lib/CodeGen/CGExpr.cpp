@@ -208,6 +208,7 @@ llvm::Value *FunctionEmitter::emitCall(const CallExpr &E) {
       return Builder.CreateICmpNE(Call, Builder.getInt32(0), "tobool");
     return Call;
   }
+  case CallKind::Method: // Class values: the driver stops before.
   case CallKind::Unresolved:
     break;
   }

@@ -78,6 +78,10 @@ llvm::Type *ModuleEmitter::getValueType(const Type *T) {
     return llvm::Type::getInt1Ty(Ctx);
   case TypeKind::String:
     return llvm::PointerType::getUnqual(Ctx);
+  case TypeKind::Class:
+    // The driver stops before code generation when a behavior uses
+    // registered classes (err_codegen_unsupported), until they are lowered.
+    llvm_unreachable("class values are not lowered yet");
   case TypeKind::Error:
     break;
   }
