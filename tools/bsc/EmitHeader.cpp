@@ -26,6 +26,7 @@ static llvm::StringRef getCType(const Type *T) {
   case TypeKind::TaskState:
   case TypeKind::Enum:
   case TypeKind::Error:
+  case TypeKind::Class: // Not lowered yet: the driver stops before.
     return "int32_t";
   }
   return "int32_t";

@@ -391,3 +391,183 @@ TEST(SemaParsedTest, RecursionThroughATaskIsReported) {
 }
 
 } // namespace
+
+//===----------------------------------------------------------------------===//
+// Registered classes, from a hand-made Native.h registry (no binding object)
+//===----------------------------------------------------------------------===//
+
+namespace {
+
+NativeType scalar(NativeType::Code C) {
+  NativeType T;
+  T.TheCode = C;
+  return T;
+}
+
+NativeType classType(const NativeClass &C) {
+  NativeType T;
+  T.TheCode = NativeType::Class;
+  T.Name = C.QualifiedName;
+  T.TheClass = &C;
+  return T;
+}
+
+NativeFunction member(NativeFunction::MemberKind K, const char *Name,
+                      const NativeClass &Owner, NativeType Result,
+                      std::vector<NativeType> Params = {},
+                      bool ConstSelf = true) {
+  NativeFunction F;
+  F.Kind = K;
+  F.Name = Name;
+  F.Symbol = std::string("thunk_") + Name;
+  F.Owner = &Owner;
+  F.Result = std::move(Result);
+  F.Params = std::move(Params);
+  F.ConstSelf = ConstSelf;
+  return F;
+}
+
+/// A world module `W` with class `Vec` (field x, const method len, non-const
+/// method move(float, float = 2), operators _plus_ and _eq_) and the input
+/// and output classes `In` and `Out`, each with a field `v : W::Vec`.
+NativeRegistry makeWorld() {
+  NativeRegistry R = makeBuiltinNativeRegistry();
+  auto W = std::make_unique<NativeModule>();
+  W->Name = "W";
+  W->Classes.resize(3);
+  const char *Names[] = {"Vec", "In", "Out"};
+  for (int I = 0; I != 3; ++I) {
+    W->Classes[I].Name = Names[I];
+    W->Classes[I].QualifiedName = std::string("W::") + Names[I];
+    W->Classes[I].Module = W.get();
+    W->Classes[I].Size = 8;
+    W->Classes[I].Align = 4;
+  }
+  NativeClass &Vec = W->Classes[0];
+  NativeType Float = scalar(NativeType::Float);
+  Vec.Members.push_back(member(NativeFunction::Field, "x", Vec, Float));
+  Vec.Members.back().FieldOffset = 0;
+  Vec.Members.push_back(member(NativeFunction::Method, "len", Vec, Float));
+  Vec.Members.push_back(member(NativeFunction::Method, "move", Vec,
+                               scalar(NativeType::Void), {Float, Float},
+                               /*ConstSelf=*/false));
+  NativeDefault Two;
+  Two.IsFloat = true;
+  Two.Float = 2;
+  Vec.Members.back().Defaults.push_back(Two);
+  Vec.Members.push_back(member(NativeFunction::Method, "_plus_", Vec,
+                               classType(Vec), {classType(Vec)}));
+  Vec.Members.push_back(member(NativeFunction::Method, "_eq_", Vec,
+                               scalar(NativeType::Bool), {classType(Vec)}));
+  for (int I = 1; I != 3; ++I)
+    W->Classes[I].Members.push_back(
+        member(NativeFunction::Field, "v", W->Classes[I], classType(Vec)));
+  W->Input = &W->Classes[1];
+  W->Output = &W->Classes[2];
+  R.Modules.push_back(std::move(W));
+  return R;
+}
+
+/// Parses and checks one module against the world registry.
+struct ParsedWithWorld {
+  llvm::SourceMgr SM;
+  ASTContext Ctx;
+  DiagnosticEngine Diags;
+  Behavior Out;
+  NativeRegistry Natives = makeWorld();
+  ModuleAST *M = nullptr;
+  bool OK = false;
+
+  explicit ParsedWithWorld(llvm::StringRef Source) {
+    unsigned ID = SM.AddNewSourceBuffer(
+        llvm::MemoryBuffer::getMemBufferCopy(Source, "P.bs"), llvm::SMLoc());
+    M = parseModule(SM, ID, "P", Ctx, Diags);
+    OK = !Diags.hasErrors() && checkBehavior({M}, Ctx, Diags, Out, &Natives);
+  }
+  std::vector<std::string> messages() const {
+    std::vector<std::string> Result;
+    for (const Diagnostic &D : Diags.getDiagnostics())
+      Result.push_back(D.Message);
+    return Result;
+  }
+  /// The statements of the first declaration's body.
+  std::vector<Stmt *> &body() { return M->Decls[0]->Body->Stmts; }
+};
+
+TEST(SemaClassTest, FieldChainsResolveToMembersAndTypes) {
+  ParsedWithWorld P("task t()\n"
+                    "    float f = input.v.x\n"
+                    "    output.v.x = f\n");
+  ASSERT_TRUE(P.OK) << P.messages().front();
+  EXPECT_TRUE(P.Out.UsesClasses);
+  EXPECT_EQ(P.Out.World, P.Natives.getWorld());
+  auto *D = llvm::cast<DeclStmt>(P.body()[0]);
+  auto *X = llvm::cast<MemberExpr>(D->Var->Init);
+  auto *V = llvm::cast<MemberExpr>(X->Base);
+  auto *In = llvm::cast<NameExpr>(V->Base);
+  EXPECT_EQ(In->Kind, NameKind::Input);
+  ASSERT_TRUE(In->Ty->isClass());
+  EXPECT_EQ(In->Ty->getClass(), P.Natives.getWorld()->Input);
+  EXPECT_EQ(V->Ty->getName(), "W::Vec");
+  EXPECT_EQ(V->Resolved->Name, "v");
+  EXPECT_EQ(X->Resolved->Kind, NativeFunction::Field);
+  EXPECT_TRUE(X->Ty->isFloat());
+  // Types are uniqued: the field's class type is the one of the class.
+  EXPECT_EQ(V->Ty, P.Ctx.getTypes().getClass(V->Ty->getClass()));
+}
+
+TEST(SemaClassTest, MethodCallsRecordTheMemberAndFillInDefaults) {
+  ParsedWithWorld P("func f(Vec a) : float\n"
+                    "    Vec b = a\n"
+                    "    b.move(1)\n"
+                    "    return b.len()\n");
+  ASSERT_TRUE(P.OK) << P.messages().front();
+  auto *S = llvm::cast<ExprStmt>(P.body()[1]);
+  auto *Move = llvm::cast<CallExpr>(S->E);
+  EXPECT_EQ(Move->Kind, CallKind::Method);
+  EXPECT_EQ(Move->NativeFn->Name, "move");
+  ASSERT_EQ(Move->Args.size(), 2u);
+  EXPECT_EQ(Move->NumDefaultArgs, 1u);
+  // The written int argument is promoted; the default is a float literal.
+  EXPECT_TRUE(llvm::isa<ConversionExpr>(Move->Args[0]));
+  auto *Default = llvm::dyn_cast<FloatLiteralExpr>(Move->Args[1]);
+  ASSERT_NE(Default, nullptr);
+  EXPECT_EQ(Default->Value, 2.0f);
+  EXPECT_TRUE(Default->Ty->isFloat());
+  auto *Ret = llvm::cast<ReturnStmt>(P.body()[2]);
+  EXPECT_EQ(llvm::cast<CallExpr>(Ret->Value)->Kind, CallKind::Method);
+}
+
+TEST(SemaClassTest, OperatorsCallTheirMethodsAndNotEqualFallsBack) {
+  ParsedWithWorld P("func f(Vec a, Vec b) : bool\n"
+                    "    Vec c = a + b\n"
+                    "    return c != a\n");
+  ASSERT_TRUE(P.OK) << P.messages().front();
+  auto *Sum = llvm::cast<BinaryExpr>(llvm::cast<DeclStmt>(P.body()[0])->Var->Init);
+  ASSERT_NE(Sum->Operator, nullptr);
+  EXPECT_EQ(Sum->Operator->Name, "_plus_");
+  EXPECT_FALSE(Sum->NegateOperator);
+  auto *Ne = llvm::cast<BinaryExpr>(llvm::cast<ReturnStmt>(P.body()[1])->Value);
+  EXPECT_EQ(Ne->Operator->Name, "_eq_");
+  EXPECT_TRUE(Ne->NegateOperator);
+  EXPECT_TRUE(Ne->Ty->isBool());
+}
+
+TEST(SemaClassTest, InputIsReadOnlyAndOutputWriteOnly) {
+  ParsedWithWorld P("task t()\n"
+                    "    input.v.move(1)\n"
+                    "    float a = input.v.len()\n"
+                    "    float b = output.v.len()\n"
+                    "    input.v = output.v\n"
+                    "    a = input.v - input.v\n");
+  EXPECT_FALSE(P.OK);
+  EXPECT_EQ(P.messages(),
+            (Msgs{"'input' is read-only; method 'move' is not const and may "
+                  "modify it",
+                  "'output' is write-only; its value cannot be read",
+                  "'input' is read-only",
+                  "'output' is write-only; its value cannot be read",
+                  "invalid operands to binary '-' ('W::Vec' and 'W::Vec')"}));
+}
+
+} // namespace
