@@ -24,6 +24,8 @@ using namespace bsc::codegen;
 
 llvm::Value *FunctionEmitter::emitLoad(const Type *T, llvm::Value *Addr,
                                        const llvm::Twine &Name) {
+  if (T->isClass()) // The value is its storage.
+    return Addr;
   if (!T->isBool())
     return Builder.CreateLoad(CGM.getMemoryType(T), Addr, Name);
   llvm::Value *V = Builder.CreateLoad(CGM.getMemoryType(T), Addr);
@@ -32,6 +34,8 @@ llvm::Value *FunctionEmitter::emitLoad(const Type *T, llvm::Value *Addr,
 
 void FunctionEmitter::emitStore(const Type *T, llvm::Value *V,
                                 llvm::Value *Addr) {
+  if (T->isClass()) // Variables of class type are always constructed.
+    return emitClassCopy(T->getClass(), Addr, V, /*DstConstructed=*/true);
   if (T->isBool())
     V = Builder.CreateZExt(V, Builder.getInt8Ty());
   Builder.CreateStore(V, Addr);
@@ -66,10 +70,167 @@ llvm::Value *FunctionEmitter::getLValueAddress(const Expr *E) {
     assert(Addr && "Sema rejects assignment to a task parameter");
     return Addr;
   }
-  // `output.motion = ...`: the address will be emitGlobalIOPointer(Output)
-  // plus the member's offset from the binding's layout. Sema does not
-  // accept member access until bindings exist.
-  llvm_unreachable("assignment to a member is not lowered yet");
+  // `output.motion = ...`: the output pointer plus the field's offset
+  // (properties go through their setter: emitAssign).
+  return emitFieldAddress(*llvm::cast<MemberExpr>(E));
+}
+
+llvm::Value *FunctionEmitter::emitFieldAddress(const MemberExpr &E) {
+  assert(E.Resolved && E.Resolved->FieldOffset && "not a field");
+  llvm::Value *Base = emitExpr(E.Base); // A class value: its storage.
+  return Builder.CreateConstInBoundsGEP1_64(
+      Builder.getInt8Ty(), Base, *E.Resolved->FieldOffset,
+      E.Member.Name + ".addr");
+}
+
+llvm::Value *FunctionEmitter::emitFieldLoad(const Type *T,
+                                            const NativeType &NT,
+                                            llvm::Value *Addr) {
+  unsigned Size = NT.StorageSize;
+  if (T->isClass())
+    return Addr;
+  if (T->isFloat()) {
+    if (Size == 8)
+      return Builder.CreateFPTrunc(
+          Builder.CreateLoad(Builder.getDoubleTy(), Addr), Builder.getFloatTy());
+    return Builder.CreateLoad(Builder.getFloatTy(), Addr);
+  }
+  if (T->isString())
+    return Builder.CreateLoad(Builder.getPtrTy(), Addr);
+  if (Size == 0 || Size > 4)
+    Size = T->isBool() ? 1 : 4;
+  llvm::Value *V = Builder.CreateLoad(Builder.getIntNTy(Size * 8), Addr);
+  if (T->isBool())
+    return Builder.CreateICmpNE(V, llvm::ConstantInt::get(V->getType(), 0));
+  if (Size < 4)
+    V = Builder.CreateSExt(V, Builder.getInt32Ty());
+  return V;
+}
+
+void FunctionEmitter::emitFieldStore(const Type *T, const NativeType &NT,
+                                     llvm::Value *V, llvm::Value *Addr) {
+  unsigned Size = NT.StorageSize;
+  if (T->isClass())
+    return emitClassCopy(T->getClass(), Addr, V, /*DstConstructed=*/true);
+  if (T->isFloat()) {
+    if (Size == 8)
+      V = Builder.CreateFPExt(V, Builder.getDoubleTy());
+    Builder.CreateStore(V, Addr);
+    return;
+  }
+  if (T->isString()) {
+    Builder.CreateStore(V, Addr);
+    return;
+  }
+  if (Size == 0 || Size > 4)
+    Size = T->isBool() ? 1 : 4;
+  Builder.CreateStore(Builder.CreateZExtOrTrunc(V, Builder.getIntNTy(Size * 8)),
+                      Addr);
+}
+
+llvm::AllocaInst *FunctionEmitter::createClassTemp(const NativeClass *C,
+                                                   const llvm::Twine &Name) {
+  llvm::Type *Ty = CGM.getClassMemoryType(C);
+  auto *A = new llvm::AllocaInst(Ty, 0, Name, EntryPoint);
+  A->setAlignment(CGM.getModule().getDataLayout().getABITypeAlign(Ty));
+  return A;
+}
+
+/// The widest unit (1, 2 or 4 bytes) that the class's size and alignment
+/// allow for copies and zeroing by explicit loads and stores.
+static unsigned getCopyUnit(const NativeClass *C) {
+  for (unsigned U : {4u, 2u})
+    if (C->Align >= U && C->Size % U == 0)
+      return U;
+  return 1;
+}
+
+void FunctionEmitter::emitClassInit(const NativeClass *C, llvm::Value *Addr) {
+  // Explicit stores, never memset (no libc in the object).
+  unsigned U = getCopyUnit(C);
+  llvm::Type *UnitTy = Builder.getIntNTy(U * 8);
+  for (uint64_t Off = 0; Off < C->Size; Off += U)
+    Builder.CreateAlignedStore(
+        llvm::ConstantInt::get(UnitTy, 0),
+        Builder.CreateConstInBoundsGEP1_64(Builder.getInt8Ty(), Addr, Off),
+        llvm::Align(U));
+  if (!C->Construct.empty())
+    Builder.CreateCall(CGM.getLifeThunk(C->Construct, 1), {Addr});
+}
+
+void FunctionEmitter::emitClassCopy(const NativeClass *C, llvm::Value *Dst,
+                                    llvm::Value *Src, bool DstConstructed) {
+  if (Dst == Src)
+    return;
+  const std::string &Thunk = DstConstructed ? C->Assign : C->Copy;
+  if (!C->CopiesAsBytes && !Thunk.empty()) {
+    Builder.CreateCall(CGM.getLifeThunk(Thunk, 2), {Dst, Src});
+    return;
+  }
+  // Loads first, then stores: the source may overlap the destination.
+  unsigned U = getCopyUnit(C);
+  llvm::Type *UnitTy = Builder.getIntNTy(U * 8);
+  llvm::SmallVector<llvm::Value *, 8> Units;
+  for (uint64_t Off = 0; Off < C->Size; Off += U)
+    Units.push_back(Builder.CreateAlignedLoad(
+        UnitTy,
+        Builder.CreateConstInBoundsGEP1_64(Builder.getInt8Ty(), Src, Off),
+        llvm::Align(U)));
+  uint64_t Off = 0;
+  for (llvm::Value *V : Units) {
+    Builder.CreateAlignedStore(
+        V, Builder.CreateConstInBoundsGEP1_64(Builder.getInt8Ty(), Dst, Off),
+        llvm::Align(U));
+    Off += U;
+  }
+}
+
+llvm::Value *FunctionEmitter::emitNativeCall(const NativeFunction &NF,
+                                             llvm::Value *Self,
+                                             llvm::ArrayRef<const Expr *> Args) {
+  llvm::SmallVector<llvm::Value *, 4> Values;
+  for (const Expr *A : Args)
+    Values.push_back(emitExpr(A));
+  return emitNativeCallWithValues(NF, Self, Values);
+}
+
+llvm::Value *
+FunctionEmitter::emitNativeCallWithValues(const NativeFunction &NF,
+                                          llvm::Value *Self,
+                                          llvm::ArrayRef<llvm::Value *> Values) {
+  llvm::FunctionCallee Callee = CGM.getNative(NF);
+  llvm::FunctionType *FTy = Callee.getFunctionType();
+  llvm::SmallVector<llvm::Value *, 6> Args;
+  llvm::AllocaInst *Out = nullptr;
+  if (NF.ResultViaOut) {
+    assert(NF.Result.TheClass && "a class result names its class");
+    Out = createClassTemp(NF.Result.TheClass, NF.Name);
+    Args.push_back(Out);
+  }
+  if (NF.hasSelf()) {
+    assert(Self && "a member call needs its object");
+    Args.push_back(Self);
+  }
+  for (llvm::Value *V : Values) {
+    llvm::Type *PTy = FTy->getParamType(Args.size());
+    // The C ABI: bool is an int32 0/1; ints promote to float parameters;
+    // class values are already pointers to their storage.
+    if (V->getType()->isIntegerTy(1))
+      V = Builder.CreateZExt(V, PTy);
+    else if (PTy->isFloatTy() && V->getType()->isIntegerTy(32))
+      V = Builder.CreateSIToFP(V, PTy);
+    Args.push_back(V);
+  }
+  if (Out) {
+    Builder.CreateCall(Callee, Args);
+    return Out;
+  }
+  if (NF.Result.TheCode == NativeType::Void)
+    return Builder.CreateCall(Callee, Args);
+  llvm::CallInst *Call = Builder.CreateCall(Callee, Args, NF.Name);
+  if (NF.Result.TheCode == NativeType::Bool)
+    return Builder.CreateICmpNE(Call, Builder.getInt32(0), "tobool");
+  return Call;
 }
 
 llvm::Value *FunctionEmitter::emitGlobalIOPointer(NameKind K) {
@@ -146,7 +307,7 @@ llvm::Value *FunctionEmitter::emitName(const NameExpr &E) {
   case NameKind::Param:
     if (llvm::Value *Addr = getDeclAddress(E.Param))
       return emitLoad(E.Param->Ty, Addr, E.Param->getName().Name);
-    return Fn->getArg(E.Param->Index + 1);
+    return Fn->getArg(E.Param->Index + getFirstParamArg());
   case NameKind::EnumValue:
     return Builder.getInt32(E.EnumValue);
   case NameKind::Input:
@@ -161,10 +322,13 @@ llvm::Value *FunctionEmitter::emitName(const NameExpr &E) {
 }
 
 llvm::Value *FunctionEmitter::emitMember(const MemberExpr &E) {
-  // Fields of registered classes (`input.ball.position.x`) need the
-  // binding's layout; Sema does not accept member access until bindings
-  // exist. The base of `input.*` will come from emitGlobalIOPointer.
-  llvm_unreachable("member access is not lowered yet");
+  // `input.ball.position.x`: offsets from the input pointer for fields,
+  // the getter thunk for properties (and fields without an offset).
+  const NativeFunction &NF = *E.Resolved;
+  assert(NF.isData() && "a method is only a callee (emitCall)");
+  if (NF.Kind == NativeFunction::Field && NF.FieldOffset)
+    return emitFieldLoad(E.Ty, NF.Result, emitFieldAddress(E));
+  return emitNativeCallWithValues(NF, emitExpr(E.Base), {});
 }
 
 llvm::Value *FunctionEmitter::emitCall(const CallExpr &E) {
@@ -174,6 +338,11 @@ llvm::Value *FunctionEmitter::emitCall(const CallExpr &E) {
     // Tasks and funcs alike: (state, args...). A task call runs one step.
     llvm::Function *Callee = CGM.getFunction(E.Target);
     llvm::SmallVector<llvm::Value *, 4> Args = {StatePtr};
+    llvm::AllocaInst *Out = nullptr;
+    if (ModuleEmitter::returnsClass(*E.Target)) {
+      Out = createClassTemp(E.Ty->getClass(), E.Target->getName().Name);
+      Args.push_back(Out);
+    }
     for (const Expr *A : E.Args) {
       llvm::Value *V = emitExpr(A);
       llvm::Type *PTy = Callee->getArg(Args.size())->getType();
@@ -181,34 +350,21 @@ llvm::Value *FunctionEmitter::emitCall(const CallExpr &E) {
         V = Builder.CreateSIToFP(V, PTy);
       Args.push_back(V);
     }
+    if (Out) {
+      Builder.CreateCall(Callee, Args);
+      return Out;
+    }
     if (Callee->getReturnType()->isVoidTy())
       return Builder.CreateCall(Callee, Args);
     return Builder.CreateCall(Callee, Args, E.Target->getName().Name);
   }
-  case CallKind::NativeFunction: {
-    assert(llvm::isa<NameExpr>(E.Callee) &&
-           "native methods are not accepted by Sema yet");
-    const NativeFunction &NF = *E.NativeFn;
-    llvm::FunctionCallee Callee = CGM.getNative(NF);
-    llvm::SmallVector<llvm::Value *, 4> Args;
-    for (const Expr *A : E.Args) {
-      llvm::Value *V = emitExpr(A);
-      llvm::Type *PTy = Callee.getFunctionType()->getParamType(Args.size());
-      // The C ABI: bool is an int32 0/1; ints promote to float parameters.
-      if (V->getType()->isIntegerTy(1))
-        V = Builder.CreateZExt(V, PTy);
-      else if (PTy->isFloatTy() && V->getType()->isIntegerTy(32))
-        V = Builder.CreateSIToFP(V, PTy);
-      Args.push_back(V);
-    }
-    if (NF.Result.TheCode == NativeType::Void)
-      return Builder.CreateCall(Callee, Args);
-    llvm::CallInst *Call = Builder.CreateCall(Callee, Args, NF.Name);
-    if (NF.Result.TheCode == NativeType::Bool)
-      return Builder.CreateICmpNE(Call, Builder.getInt32(0), "tobool");
-    return Call;
+  case CallKind::NativeFunction:
+    return emitNativeCall(*E.NativeFn, nullptr, E.Args);
+  case CallKind::Method: {
+    // `a.abs()`: the thunk gets the object's storage after the out pointer.
+    const auto *ME = llvm::cast<MemberExpr>(E.Callee);
+    return emitNativeCall(*E.NativeFn, emitExpr(ME->Base), E.Args);
   }
-  case CallKind::Method: // Class values: the driver stops before.
   case CallKind::Unresolved:
     break;
   }
@@ -216,6 +372,8 @@ llvm::Value *FunctionEmitter::emitCall(const CallExpr &E) {
 }
 
 llvm::Value *FunctionEmitter::emitUnary(const UnaryExpr &E) {
+  if (E.Operator) // `-v` on a class value: its `_neg_`.
+    return emitNativeCall(*E.Operator, emitExpr(E.Operand), {});
   llvm::Value *V = emitExpr(E.Operand);
   switch (E.Op) {
   case UnaryOp::Neg:
@@ -232,6 +390,14 @@ llvm::Value *FunctionEmitter::emitUnary(const UnaryExpr &E) {
 llvm::Value *FunctionEmitter::emitBinary(const BinaryExpr &E) {
   if (E.Op == BinaryOp::And || E.Op == BinaryOp::Or)
     return emitLogical(E);
+  if (E.Operator) {
+    // A class-typed LHS: the operator's method with RHS as its argument.
+    llvm::Value *Self = emitExpr(E.LHS);
+    llvm::Value *R = emitNativeCall(*E.Operator, Self, {E.RHS});
+    if (E.NegateOperator)
+      return Builder.CreateNot(R, "not");
+    return R;
+  }
   llvm::Value *L = emitExpr(E.LHS);
   llvm::Value *R = emitExpr(E.RHS);
   // Sema promotes mixed int/float operands; this only guards the IR.

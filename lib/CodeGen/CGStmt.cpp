@@ -86,6 +86,14 @@ void FunctionEmitter::emitStmt(const Stmt *S) {
 
 void FunctionEmitter::emitDecl(const DeclStmt &S) {
   const VarDecl *V = S.Var;
+  if (V->Ty->isClass()) {
+    llvm::Value *Addr = getDeclAddress(V);
+    if (V->Init)
+      emitStore(V->Ty, emitExpr(V->Init), Addr);
+    else
+      emitClassInit(V->Ty->getClass(), Addr); // Trivially destructible.
+    return;
+  }
   // Without an initialiser the local is its type's zero, every time the
   // declaration runs (a declaration in a loop body starts over each pass).
   llvm::Value *Init = V->Init ? emitExpr(V->Init) : CGM.getZeroValue(V->Ty);
@@ -100,13 +108,50 @@ void FunctionEmitter::emitDecl(const DeclStmt &S) {
 
 void FunctionEmitter::emitAssign(const AssignStmt &S) {
   const Type *T = S.Target->Ty;
-  llvm::Value *Addr = getLValueAddress(S.Target);
   BinaryOp Op;
-  if (!getCompoundOperator(S.Op, Op)) {
-    llvm::Value *V = emitExpr(S.Value);
+  bool Compound = getCompoundOperator(S.Op, Op);
+  auto Convert = [&](llvm::Value *V) {
     if (T->isFloat() && V->getType()->isIntegerTy(32))
       V = Builder.CreateSIToFP(V, Builder.getFloatTy());
-    emitStore(T, V, Addr);
+    return V;
+  };
+  if (const auto *ME = llvm::dyn_cast<MemberExpr>(S.Target)) {
+    // `output.motion = ...`, `v.x += 1`: a field by offset, or a property
+    // through its getter and setter thunks.
+    const NativeFunction &NF = *ME->Resolved;
+    if (NF.Kind == NativeFunction::Field && NF.FieldOffset) {
+      llvm::Value *Addr = emitFieldAddress(*ME);
+      if (T->isClass()) {
+        assert(!Compound && "Sema has no compound assignment of classes");
+        emitStore(T, emitExpr(S.Value), Addr);
+        return;
+      }
+      llvm::Value *V;
+      if (Compound) {
+        llvm::Value *Old = emitFieldLoad(T, NF.Result, Addr);
+        V = emitArith(Op, Old, Convert(emitExpr(S.Value)));
+      } else {
+        V = Convert(emitExpr(S.Value));
+      }
+      emitFieldStore(T, NF.Result, V, Addr);
+      return;
+    }
+    llvm::Value *Self = emitExpr(ME->Base);
+    llvm::Value *V;
+    if (Compound) {
+      llvm::Value *Old = emitNativeCallWithValues(NF, Self, {});
+      V = emitArith(Op, Old, Convert(emitExpr(S.Value)));
+    } else {
+      V = Convert(emitExpr(S.Value));
+    }
+    if (V->getType()->isIntegerTy(1))
+      V = Builder.CreateZExt(V, Builder.getInt32Ty());
+    Builder.CreateCall(CGM.getNativeSetter(NF), {Self, V});
+    return;
+  }
+  llvm::Value *Addr = getLValueAddress(S.Target);
+  if (!Compound) {
+    emitStore(T, Convert(emitExpr(S.Value)), Addr);
     return;
   }
   // `x op= v` is `x = x op v` with x evaluated once; the target is a plain
@@ -193,6 +238,11 @@ void FunctionEmitter::emitReturn(const ReturnStmt &S) {
   if (Task) {
     // `return` in a task: done, and start from the top at the next call.
     emitTaskFinish();
+  } else if (S.Value && S.Value->Ty && S.Value->Ty->isClass()) {
+    // Into the caller's raw storage: copy-construct.
+    emitClassCopy(S.Value->Ty->getClass(), Fn->getArg(1), emitExpr(S.Value),
+                  /*DstConstructed=*/false);
+    Builder.CreateRetVoid();
   } else if (S.Value) {
     llvm::Value *V = emitExpr(S.Value);
     if (Fn->getReturnType()->isFloatTy() && V->getType()->isIntegerTy(32))

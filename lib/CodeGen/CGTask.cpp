@@ -81,9 +81,18 @@ void FunctionEmitter::emitTaskPrologue() {
   // Fresh locals: one store per field (never memset: no libc).
   Builder.SetInsertPoint(ResetBB);
   Builder.CreateStore(Builder.getInt32(0), ResumeAddr);
-  for (const VarDecl *V : Task->Locals)
-    Builder.CreateStore(CGM.getZeroValue(V->Ty),
-                        getFrameFieldPtr(Task, FI.Fields.lookup(V)));
+  for (const VarDecl *V : Task->Locals) {
+    llvm::Value *Addr = getFrameFieldPtr(Task, FI.Fields.lookup(V));
+    if (V->Ty->isClass())
+      emitClassInit(V->Ty->getClass(), Addr);
+    else
+      Builder.CreateStore(CGM.getZeroValue(V->Ty), Addr);
+  }
+  // Class parameters are assigned at every call: construct them once.
+  for (const ParamDecl *P : Task->Params)
+    if (P->Ty->isClass())
+      emitClassInit(P->Ty->getClass(),
+                    getFrameFieldPtr(Task, FI.Fields.lookup(P)));
   Builder.CreateBr(DispatchBB);
 
   // Parameters are re-evaluated at every call (rule 2): the body reads the

@@ -53,7 +53,7 @@ static bool isExportable(const CallableDecl &D) {
   for (const ParamDecl *P : D.Params)
     if (!P->Ty || !(P->Ty->isInt() || P->Ty->isFloat() || P->Ty->isBool()))
       return false;
-  return true;
+  return !ModuleEmitter::returnsClass(D);
 }
 
 //===----------------------------------------------------------------------===//
@@ -79,9 +79,8 @@ llvm::Type *ModuleEmitter::getValueType(const Type *T) {
   case TypeKind::String:
     return llvm::PointerType::getUnqual(Ctx);
   case TypeKind::Class:
-    // The driver stops before code generation when a behavior uses
-    // registered classes (err_codegen_unsupported), until they are lowered.
-    llvm_unreachable("class values are not lowered yet");
+    // A pointer to the value's storage (CodeGenImpl.h).
+    return llvm::PointerType::getUnqual(Ctx);
   case TypeKind::Error:
     break;
   }
@@ -91,7 +90,36 @@ llvm::Type *ModuleEmitter::getValueType(const Type *T) {
 llvm::Type *ModuleEmitter::getMemoryType(const Type *T) {
   if (T->isBool())
     return llvm::Type::getInt8Ty(Ctx);
+  if (T->isClass())
+    return getClassMemoryType(T->getClass());
   return getValueType(T);
+}
+
+llvm::Type *ModuleEmitter::getClassMemoryType(const NativeClass *C) {
+  uint64_t Align = C->Align ? C->Align : 1;
+  if (Align == 1 || C->Size % Align != 0)
+    return llvm::ArrayType::get(llvm::Type::getInt8Ty(Ctx), C->Size);
+  // A unit of Align bytes whose ABI alignment on this target is Align, so
+  // that frames, the state and allocas get the class's alignment from the
+  // DataLayout (i64 is only 4-aligned on i586; vectors are size-aligned).
+  const llvm::DataLayout &DL = M.getDataLayout();
+  llvm::Type *Unit = nullptr;
+  for (unsigned Bits : {16u, 32u, 64u, 128u}) {
+    llvm::Type *I = llvm::Type::getIntNTy(Ctx, Bits);
+    if (Bits / 8 == Align && DL.getABITypeAlign(I).value() == Align &&
+        DL.getTypeAllocSize(I) == Align) {
+      Unit = I;
+      break;
+    }
+  }
+  if (!Unit)
+    Unit = llvm::FixedVectorType::get(llvm::Type::getInt8Ty(Ctx), Align);
+  return llvm::ArrayType::get(Unit, C->Size / Align);
+}
+
+bool ModuleEmitter::returnsClass(const CallableDecl &D) {
+  const auto *F = llvm::dyn_cast<FuncDecl>(&D);
+  return F && F->ResultTy && F->ResultTy->isClass();
 }
 
 llvm::Constant *ModuleEmitter::getZeroValue(const Type *T) {
@@ -126,27 +154,55 @@ llvm::Type *ModuleEmitter::getNativeType(const NativeType &NT) {
     return llvm::Type::getFloatTy(Ctx);
   case NativeType::String:
     return llvm::PointerType::getUnqual(Ctx);
-  case NativeType::Class:
-    break;
+  case NativeType::Class: // const T * / T *.
+    return llvm::PointerType::getUnqual(Ctx);
   }
-  // Class values need the binding layer's sizes and thunks; Sema does not
-  // accept them yet, so no checked behavior gets here.
-  llvm_unreachable("native class values are not lowered yet");
+  llvm_unreachable("unknown native type");
 }
 
 llvm::FunctionCallee ModuleEmitter::getNative(const NativeFunction &NF) {
   llvm::FunctionCallee &Slot = Natives[&NF];
   if (Slot)
     return Slot;
+  // wire(R) f([T *self,] wire(A)...) or void f(R *out, [T *self,] ...).
+  llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
   llvm::SmallVector<llvm::Type *, 4> Params;
+  if (NF.ResultViaOut)
+    Params.push_back(Ptr);
+  if (NF.hasSelf())
+    Params.push_back(Ptr);
   for (const NativeType &P : NF.Params)
     Params.push_back(getNativeType(P));
-  auto *FTy =
-      llvm::FunctionType::get(getNativeType(NF.Result), Params, false);
+  llvm::Type *Result = NF.ResultViaOut ? llvm::Type::getVoidTy(Ctx)
+                                       : getNativeType(NF.Result);
+  auto *FTy = llvm::FunctionType::get(Result, Params, false);
   Slot = M.getOrInsertFunction(NF.Symbol, FTy);
   if (auto *F = llvm::dyn_cast<llvm::Function>(Slot.getCallee()))
     F->addFnAttr(llvm::Attribute::NoUnwind);
   return Slot;
+}
+
+llvm::FunctionCallee
+ModuleEmitter::getNativeSetter(const NativeFunction &NF) {
+  llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
+  auto *FTy = llvm::FunctionType::get(
+      llvm::Type::getVoidTy(Ctx), {Ptr, getNativeType(NF.Result)}, false);
+  llvm::FunctionCallee F = M.getOrInsertFunction(NF.Setter, FTy);
+  if (auto *Fn = llvm::dyn_cast<llvm::Function>(F.getCallee()))
+    Fn->addFnAttr(llvm::Attribute::NoUnwind);
+  return F;
+}
+
+llvm::FunctionCallee ModuleEmitter::getLifeThunk(llvm::StringRef Symbol,
+                                                 unsigned NumPtrs) {
+  llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
+  llvm::SmallVector<llvm::Type *, 2> Params(NumPtrs, Ptr);
+  auto *FTy =
+      llvm::FunctionType::get(llvm::Type::getVoidTy(Ctx), Params, false);
+  llvm::FunctionCallee F = M.getOrInsertFunction(Symbol, FTy);
+  if (auto *Fn = llvm::dyn_cast<llvm::Function>(F.getCallee()))
+    Fn->addFnAttr(llvm::Attribute::NoUnwind);
+  return F;
 }
 
 llvm::Constant *ModuleEmitter::getString(llvm::StringRef S) {
@@ -213,6 +269,12 @@ void ModuleEmitter::declareFunctions() {
   llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
   auto Declare = [&](const CallableDecl *D, llvm::Type *Result) {
     llvm::SmallVector<llvm::Type *, 4> Params = {Ptr};
+    bool ClassResult = returnsClass(*D);
+    if (ClassResult) {
+      // A class result goes to the caller's storage: (state, out, params).
+      Params.push_back(Ptr);
+      Result = llvm::Type::getVoidTy(Ctx);
+    }
     for (const ParamDecl *P : D->Params)
       Params.push_back(getValueType(P->Ty));
     auto *FTy = llvm::FunctionType::get(Result, Params, false);
@@ -220,13 +282,17 @@ void ModuleEmitter::declareFunctions() {
                                      getInternalName(*D), M);
     addCommonAttributes(F);
     F->getArg(0)->setName("state");
+    if (ClassResult)
+      F->getArg(1)->setName("result");
+    unsigned First = ClassResult ? 2 : 1;
     for (const ParamDecl *P : D->Params)
-      F->getArg(P->Index + 1)->setName(P->getName().Name);
+      F->getArg(P->Index + First)->setName(P->getName().Name);
     Functions[D] = F;
   };
   for (const CallableDecl *D : getSourceOrder()) {
     if (const auto *F = llvm::dyn_cast<FuncDecl>(D))
-      Declare(F, getValueType(F->ResultTy));
+      Declare(F, F->ResultTy->isClass() ? llvm::Type::getVoidTy(Ctx)
+                                        : getValueType(F->ResultTy));
     else
       Declare(D, llvm::Type::getVoidTy(Ctx));
   }
@@ -440,16 +506,32 @@ void FunctionEmitter::run() {
   EntryPoint = nullptr;
 }
 
+unsigned FunctionEmitter::getFirstParamArg() const {
+  return ModuleEmitter::returnsClass(D) ? 2 : 1;
+}
+
 void FunctionEmitter::emitFuncPrologue() {
+  const llvm::DataLayout &DL = CGM.getModule().getDataLayout();
+  auto CreateSlot = [&](const Type *T, const llvm::Twine &Name) {
+    llvm::Type *MemTy = CGM.getMemoryType(T);
+    auto *Slot = new llvm::AllocaInst(MemTy, 0, Name, EntryPoint);
+    Slot->setAlignment(DL.getABITypeAlign(MemTy));
+    return Slot;
+  };
+  // Class values are constructed before anything assigns them.
   for (const ParamDecl *P : D.Params) {
-    llvm::AllocaInst *Slot = new llvm::AllocaInst(
-        CGM.getMemoryType(P->Ty), 0, P->getName().Name + ".addr", EntryPoint);
+    llvm::AllocaInst *Slot = CreateSlot(P->Ty, P->getName().Name + ".addr");
     Slots[P] = Slot;
-    emitStore(P->Ty, Fn->getArg(P->Index + 1), Slot);
+    if (P->Ty->isClass())
+      emitClassInit(P->Ty->getClass(), Slot);
+    emitStore(P->Ty, Fn->getArg(P->Index + getFirstParamArg()), Slot);
   }
-  for (const VarDecl *V : D.Locals)
-    Slots[V] = new llvm::AllocaInst(CGM.getMemoryType(V->Ty), 0,
-                                    V->getName().Name, EntryPoint);
+  for (const VarDecl *V : D.Locals) {
+    llvm::AllocaInst *Slot = CreateSlot(V->Ty, V->getName().Name);
+    Slots[V] = Slot;
+    if (V->Ty->isClass())
+      emitClassInit(V->Ty->getClass(), Slot);
+  }
 }
 
 void FunctionEmitter::emitFuncEpilogue() {
@@ -458,7 +540,10 @@ void FunctionEmitter::emitFuncEpilogue() {
     // still end here, it returns the zero value rather than anything
     // undefined (runtime safety).
     const Type *ResultTy = llvm::cast<FuncDecl>(D).ResultTy;
-    if (ResultTy->isVoid())
+    if (ResultTy->isClass()) {
+      emitClassInit(ResultTy->getClass(), Fn->getArg(1));
+      Builder.CreateRetVoid();
+    } else if (ResultTy->isVoid())
       Builder.CreateRetVoid();
     else if (ResultTy->isString())
       Builder.CreateRet(CGM.getString(""));

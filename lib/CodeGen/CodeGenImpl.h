@@ -97,8 +97,20 @@ public:
   llvm::FunctionCallee getNative(const NativeFunction &NF);
   /// A private NUL-terminated constant; equal strings share one global.
   llvm::Constant *getString(llvm::StringRef S);
-  /// The C ABI type of a native parameter or result.
+  /// The C ABI type of a native parameter or result (class values travel
+  /// as pointers).
   llvm::Type *getNativeType(const NativeType &NT);
+  /// The setter thunk of a field or property: void(T *self, wire(X) v).
+  llvm::FunctionCallee getNativeSetter(const NativeFunction &NF);
+  /// A life-cycle thunk of a class: void(T *) or void(T *dst, const T *src).
+  llvm::FunctionCallee getLifeThunk(llvm::StringRef Symbol, unsigned NumPtrs);
+  /// The storage of a registered class value in frames and allocas: Size
+  /// bytes with the class's alignment ([Size x i8] when Align is 1, else an
+  /// array of Align-sized units whose ABI alignment is Align).
+  llvm::Type *getClassMemoryType(const NativeClass *C);
+  /// Whether a func returns a class value (through a hidden `ptr` result
+  /// parameter after the state).
+  static bool returnsClass(const CallableDecl &D);
 
   /// Attributes every generated function carries: nounwind (b-script has no
   /// exceptions) and "no-builtins" so that loop idioms and runs of stores
@@ -204,6 +216,37 @@ private:
   llvm::Value *emitLoad(const Type *T, llvm::Value *Addr,
                         const llvm::Twine &Name = "");
   void emitStore(const Type *T, llvm::Value *V, llvm::Value *Addr);
+
+  // Class values (CGExpr.cpp). In registers a class value is a pointer to
+  // its storage: a variable, a frame field, a field reached by offset from
+  // `input`, or a temporary alloca.
+  /// A fresh, aligned alloca for a class value (raw storage).
+  llvm::AllocaInst *createClassTemp(const NativeClass *C,
+                                    const llvm::Twine &Name = "tmp");
+  /// Zeroes the storage with explicit stores, then runs the construct
+  /// thunk if the class has one.
+  void emitClassInit(const NativeClass *C, llvm::Value *Addr);
+  /// *Dst = *Src: loads/stores when the class copies as bytes, else the
+  /// assign thunk (Dst constructed) or the copy thunk (Dst raw).
+  void emitClassCopy(const NativeClass *C, llvm::Value *Dst, llvm::Value *Src,
+                     bool DstConstructed);
+  /// Calls a registered function, method, getter or operator: class
+  /// arguments as pointers, a class result through a fresh out alloca.
+  llvm::Value *emitNativeCall(const NativeFunction &NF, llvm::Value *Self,
+                              llvm::ArrayRef<const Expr *> Args);
+  llvm::Value *emitNativeCallWithValues(const NativeFunction &NF,
+                                        llvm::Value *Self,
+                                        llvm::ArrayRef<llvm::Value *> Args);
+  /// A scalar field of C++ storage `StorageSize` bytes (a double field is a
+  /// b-script float; a short an int).
+  llvm::Value *emitFieldLoad(const Type *T, const NativeType &NT,
+                             llvm::Value *Addr);
+  void emitFieldStore(const Type *T, const NativeType &NT, llvm::Value *V,
+                      llvm::Value *Addr);
+  /// The address of a field (`base.f` with a FieldOffset).
+  llvm::Value *emitFieldAddress(const MemberExpr &E);
+  /// The index of the first declared parameter among Fn's arguments.
+  unsigned getFirstParamArg() const;
 
   /// Evaluates a yield's value as an i32 task state.
   llvm::Value *emitToTaskState(const Expr *E);

@@ -11,6 +11,10 @@
 #include "bsc/CodeGen/Target.h"
 #include "bscript/bscript.h"
 #include "llvm/ExecutionEngine/Orc/Core.h"
+#include "llvm/ExecutionEngine/Orc/ExecutionUtils.h"
+#include "llvm/ExecutionEngine/Orc/ObjectLinkingLayer.h"
+#include "llvm/Support/MemoryBuffer.h"
+#include "llvm/Support/Path.h"
 #include "llvm/ExecutionEngine/Orc/JITTargetMachineBuilder.h"
 #include "llvm/ExecutionEngine/Orc/LLJIT.h"
 #include "llvm/ExecutionEngine/Orc/ThreadSafeModule.h"
@@ -80,6 +84,33 @@ llvm::Error BehaviorJIT::addModule(std::unique_ptr<llvm::Module> M,
   optimizeModule(*M, TM.get(), OptLevel);
   return J->addIRModule(
       llvm::orc::ThreadSafeModule(std::move(M), std::move(Ctx)));
+}
+
+llvm::Error BehaviorJIT::addObjectFile(llvm::StringRef Path) {
+  llvm::orc::JITDylib &JD = J->getMainJITDylib();
+  if (!ProcessSymbols) {
+    // What the binding objects need beyond themselves: libstdc++, libm and
+    // libc, which this process has loaded.
+    auto G = llvm::orc::DynamicLibrarySearchGenerator::GetForCurrentProcess(
+        J->getDataLayout().getGlobalPrefix());
+    if (!G)
+      return G.takeError();
+    JD.addGenerator(std::move(*G));
+    ProcessSymbols = true;
+  }
+  if (llvm::sys::path::extension(Path) == ".a") {
+    auto G = llvm::orc::StaticLibraryDefinitionGenerator::Load(
+        J->getObjLinkingLayer(), Path.str().c_str());
+    if (!G)
+      return G.takeError();
+    JD.addGenerator(std::move(*G));
+    return llvm::Error::success();
+  }
+  auto Buf = llvm::MemoryBuffer::getFile(Path);
+  if (!Buf)
+    return llvm::createStringError(Buf.getError(),
+                                   "cannot read '" + Path + "'");
+  return J->addObjectFile(std::move(*Buf));
 }
 
 llvm::Error BehaviorJIT::runCycles(llvm::StringRef InfoSymbol,

@@ -287,7 +287,8 @@ bool isX86_32(const llvm::Triple &T) { return T.getArch() == llvm::Triple::x86; 
 /// Links `Object` with the runtime shim into the program `Output` with the
 /// system's C compiler driver. Reports and returns false on failure.
 bool linkProgram(Compilation &C, const llvm::Triple &T, llvm::StringRef Object,
-                 llvm::StringRef Output, const char *Argv0) {
+                 llvm::StringRef Output, const char *Argv0,
+                 llvm::ArrayRef<std::string> BindObjects) {
   std::string RuntimeDir = getRuntimeDir(Argv0);
   std::string RuntimeName =
       isX86_32(T) ? "libbscript_rt_i586.a" : "libbscript_rt.a";
@@ -315,8 +316,14 @@ bool linkProgram(Compilation &C, const llvm::Triple &T, llvm::StringRef Object,
         << T.str() << "neither 'cc' nor 'clang-19' is on PATH";
     return false;
   }
-  Args.insert(Args.end(), {Object.str(), Runtime.str().str(), "-o",
-                           Output.str()});
+  // The binding objects hold the thunks the object calls; they need the
+  // C++ runtime and libm.
+  Args.push_back(Object.str());
+  Args.insert(Args.end(), BindObjects.begin(), BindObjects.end());
+  Args.push_back(Runtime.str().str());
+  if (!BindObjects.empty())
+    Args.insert(Args.end(), {"-lstdc++", "-lm"});
+  Args.insert(Args.end(), {"-o", Output.str()});
   llvm::SmallVector<llvm::StringRef, 8> ArgRefs(Args.begin(), Args.end());
   std::string ErrMsg;
   int RC = llvm::sys::ExecuteAndWait(Program, ArgRefs, std::nullopt, {}, 0, 0,
@@ -333,13 +340,25 @@ bool linkProgram(Compilation &C, const llvm::Triple &T, llvm::StringRef Object,
 enum class OutputKind { LLVM, Asm, Obj, Header, Program };
 
 /// Reports what the checked behavior uses that code generation cannot
-/// lower yet (registered classes); false if it did.
+/// lower yet: classes that are not trivially destructible (values are
+/// never destroyed); false if it did.
 bool checkBackendSupport(Compilation &C) {
   if (!C.Checked.UsesClasses)
     return true;
-  C.Diags.report(llvm::SMLoc(), diag::err_codegen_unsupported)
-      << "registered C++ classes ('input', 'output' and class values)";
-  return false;
+  bool OK = true;
+  llvm::SmallVector<const NativeModule *, 4> Mods(
+      C.Checked.NativeModules.begin(), C.Checked.NativeModules.end());
+  if (C.Checked.World && !llvm::is_contained(Mods, C.Checked.World))
+    Mods.push_back(C.Checked.World);
+  for (const NativeModule *M : Mods)
+    for (const NativeClass &Cls : M->Classes)
+      if (!Cls.TriviallyDestructible) {
+        C.Diags.report(llvm::SMLoc(), diag::err_codegen_unsupported)
+            << ("class '" + Cls.QualifiedName +
+                "' that is not trivially destructible");
+        OK = false;
+      }
+  return OK;
 }
 
 int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
@@ -432,7 +451,8 @@ int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
               *M, *TM, llvm::CodeGenFileType::ObjectFile, ObjOS))
         return finishWithInternalError(C, std::move(E));
     }
-    if (!linkProgram(C, TM->getTargetTriple(), ObjPath, Path, Argv0))
+    if (!linkProgram(C, TM->getTargetTriple(), ObjPath, Path, Argv0,
+                     BindObjects))
       llvm::sys::fs::remove(Path);
     return finish(C);
   }
@@ -465,6 +485,9 @@ int runJIT(Compilation &C, const FrontendOptions &FOpts) {
   if (llvm::Error E = verifyGeneratedModule(*M))
     return finishWithInternalError(C, std::move(E));
   std::string EntrySymbol = getEntrySymbol(CGOpts.BehaviorName, *Entry);
+  for (const std::string &Path : BindObjects)
+    if (llvm::Error E = JIT.addObjectFile(Path))
+      return finishWithInternalError(C, std::move(E));
   if (llvm::Error E =
           JIT.addModule(std::move(M), std::move(Ctx), BOpts.Target.OptLevel))
     return finishWithInternalError(C, std::move(E));

@@ -42,6 +42,11 @@ public:
                         std::unique_ptr<llvm::LLVMContext> Ctx,
                         unsigned OptLevel);
 
+  /// Adds a binding object (.o) or archive (.a) built for the host: the
+  /// thunks generated code calls. Their own references (libstdc++, libm)
+  /// resolve against this process.
+  llvm::Error addObjectFile(llvm::StringRef Path);
+
   /// Initialises a state for the behavior whose info struct is `InfoSymbol`,
   /// then `Cycles` times begins a cycle (no input or output) and calls the
   /// parameterless entry `EntrySymbol`.
@@ -55,6 +60,7 @@ private:
   llvm::Triple Triple;
   llvm::DataLayout DL{""};
   std::string CPU;
+  bool ProcessSymbols = false; ///< The process-symbol generator is added.
 };
 
 } // namespace bsc
