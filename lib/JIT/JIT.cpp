@@ -22,6 +22,7 @@
 #include "llvm/MC/TargetRegistry.h"
 #include "llvm/Support/MemAlloc.h"
 #include <cstdio>
+#include <cstring>
 
 using namespace bsc;
 
@@ -113,9 +114,28 @@ llvm::Error BehaviorJIT::addObjectFile(llvm::StringRef Path) {
   return J->addObjectFile(std::move(*Buf));
 }
 
+namespace {
+/// An aligned, zeroed heap object, constructed through its thunk.
+class JITObject {
+public:
+  JITObject(size_t Size, size_t Align)
+      : Size(Size ? Size : 1), Align(Align ? Align : 1),
+        Ptr(llvm::allocate_buffer(this->Size, this->Align)) {
+    std::memset(Ptr, 0, this->Size);
+  }
+  ~JITObject() { llvm::deallocate_buffer(Ptr, Size, Align); }
+  void *get() const { return Ptr; }
+
+private:
+  size_t Size, Align;
+  void *Ptr;
+};
+} // namespace
+
 llvm::Error BehaviorJIT::runCycles(llvm::StringRef InfoSymbol,
                                    llvm::StringRef EntrySymbol,
-                                   unsigned Cycles) {
+                                   unsigned Cycles, const GlobalObject &Input,
+                                   const GlobalObject &Output) {
   auto InfoAddr = J->lookup(InfoSymbol);
   if (!InfoAddr)
     return InfoAddr.takeError();
@@ -137,8 +157,23 @@ llvm::Error BehaviorJIT::runCycles(llvm::StringRef InfoSymbol,
     return llvm::createStringError(
         "bs_state_init refused the state of ABI version " +
         std::to_string(Info->abi_version));
+  // Generated code reads input and writes output through the state header,
+  // so a behavior that declares them must get real objects, never null.
+  JITObject InputObj(Input.Size, Input.Align), OutputObj(Output.Size,
+                                                         Output.Align);
+  for (auto [Spec, Obj] : {std::pair(&Input, &InputObj),
+                           std::pair(&Output, &OutputObj)}) {
+    if (Spec->Construct.empty())
+      continue;
+    auto Ctor = J->lookup(Spec->Construct);
+    if (!Ctor)
+      return Ctor.takeError();
+    Ctor->toPtr<void (*)(void *)>()(Obj->get());
+  }
+  void *In = Input.Size ? InputObj.get() : nullptr;
+  void *Out = Output.Size ? OutputObj.get() : nullptr;
   for (unsigned I = 0; I < Cycles; ++I) {
-    bs_begin_cycle(State, nullptr, nullptr);
+    bs_begin_cycle(State, In, Out);
     Entry(State);
   }
   std::fflush(stdout);

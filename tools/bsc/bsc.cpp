@@ -491,10 +491,34 @@ int runJIT(Compilation &C, const FrontendOptions &FOpts) {
   if (llvm::Error E =
           JIT.addModule(std::move(M), std::move(Ctx), BOpts.Target.OptLevel))
     return finishWithInternalError(C, std::move(E));
-  if (llvm::Error E =
-          JIT.runCycles(Layout.InfoSymbol, EntrySymbol, BOpts.Cycles))
+  BehaviorJIT::GlobalObject Input, Output;
+  if (const NativeModule *World = C.Checked.World) {
+    for (auto [Class, Obj] : {std::pair(World->Input, &Input),
+                              std::pair(World->Output, &Output)})
+      if (Class)
+        *Obj = {size_t(Class->Size), size_t(Class->Align), Class->Construct};
+  }
+  if (llvm::Error E = JIT.runCycles(Layout.InfoSymbol, EntrySymbol,
+                                    BOpts.Cycles, Input, Output))
     return finishWithInternalError(C, std::move(E));
   return finish(C);
+}
+
+/// Reports options of plain compilation given to `bsc run`: llvm::cl lets a
+/// subcommand fall back to the top level's options, which would silently
+/// ignore them (`bsc run -c`).
+bool checkRunOptions(DiagnosticEngine &Diags) {
+  const auto &RunOptions = cl::getRegisteredOptions(RunCmd);
+  bool OK = true;
+  for (const auto &[Name, Opt] :
+       cl::getRegisteredOptions(cl::SubCommand::getTopLevel())) {
+    if (Opt->getNumOccurrences() == 0 || RunOptions.count(Name))
+      continue;
+    Diags.report(llvm::SMLoc(), diag::err_conflicting_options)
+        << ("-" + Name.str()) << "run";
+    OK = false;
+  }
+  return OK;
 }
 
 /// Reports options that ask for two different outputs.
@@ -548,7 +572,7 @@ int main(int argc, char **argv) {
   }
 
   if (RunCmd)
-    return runJIT(C, Opts);
+    return checkRunOptions(C.Diags) ? runJIT(C, Opts) : finish(C);
 
   if (!checkConflicts(C.Diags))
     return finish(C);

@@ -47,11 +47,23 @@ public:
   /// resolve against this process.
   llvm::Error addObjectFile(llvm::StringRef Path);
 
-  /// Initialises a state for the behavior whose info struct is `InfoSymbol`,
-  /// then `Cycles` times begins a cycle (no input or output) and calls the
-  /// parameterless entry `EntrySymbol`.
+  /// The storage `bsc run` provides for `input` or `output`: the world
+  /// module's registered class (size 0: the behavior declares none).
+  struct GlobalObject {
+    size_t Size = 0;
+    size_t Align = 1;
+    std::string Construct; ///< Construct thunk symbol, or empty.
+  };
+
+  /// Initialises a state for the behavior whose info struct is `InfoSymbol`
+  /// and the `Input`/`Output` objects (zeroed, then constructed), then
+  /// `Cycles` times begins a cycle with them and calls the parameterless
+  /// entry `EntrySymbol`. The objects are default values in every cycle;
+  /// replaying recorded inputs is the log-replay runner's job.
   llvm::Error runCycles(llvm::StringRef InfoSymbol,
-                        llvm::StringRef EntrySymbol, unsigned Cycles);
+                        llvm::StringRef EntrySymbol, unsigned Cycles,
+                        const GlobalObject &Input,
+                        const GlobalObject &Output);
 
 private:
   BehaviorJIT() = default;
