@@ -278,22 +278,9 @@ llvm::Value *FunctionEmitter::emitExpr(const Expr *E) {
     return emitConversion(*llvm::cast<ConversionExpr>(E));
   case NodeKind::ErrorExpr:
     llvm_unreachable("a behavior with a parse error never reaches CodeGen");
-  case NodeKind::FuncDecl:
-  case NodeKind::TaskDecl:
-  case NodeKind::ParamDecl:
-  case NodeKind::VarDecl:
-  case NodeKind::BlockStmt:
-  case NodeKind::DeclStmt:
-  case NodeKind::FuncDeclStmt:
-  case NodeKind::AssignStmt:
-  case NodeKind::ExprStmt:
-  case NodeKind::IfStmt:
-  case NodeKind::ForStmt:
-  case NodeKind::BreakStmt:
-  case NodeKind::ContinueStmt:
-  case NodeKind::ReturnStmt:
-  case NodeKind::YieldStmt:
-  case NodeKind::ErrorStmt:
+#define DECL(Class) case NodeKind::Class:
+#define STMT(Class) case NodeKind::Class:
+#include "bsc/AST/ASTNodes.def"
     break;
   }
   llvm_unreachable("not an expression");

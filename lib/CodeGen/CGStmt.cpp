@@ -63,22 +63,9 @@ void FunctionEmitter::emitStmt(const Stmt *S) {
     return emitYield(*llvm::cast<YieldStmt>(S));
   case NodeKind::ErrorStmt:
     llvm_unreachable("a behavior with a parse error never reaches CodeGen");
-  case NodeKind::FuncDecl:
-  case NodeKind::TaskDecl:
-  case NodeKind::ParamDecl:
-  case NodeKind::VarDecl:
-  case NodeKind::IntLiteralExpr:
-  case NodeKind::FloatLiteralExpr:
-  case NodeKind::BoolLiteralExpr:
-  case NodeKind::StringLiteralExpr:
-  case NodeKind::NameExpr:
-  case NodeKind::MemberExpr:
-  case NodeKind::CallExpr:
-  case NodeKind::UnaryExpr:
-  case NodeKind::BinaryExpr:
-  case NodeKind::TaskStateExpr:
-  case NodeKind::ConversionExpr:
-  case NodeKind::ErrorExpr:
+#define DECL(Class) case NodeKind::Class:
+#define EXPR(Class) case NodeKind::Class:
+#include "bsc/AST/ASTNodes.def"
     break;
   }
   llvm_unreachable("not a statement");
