@@ -966,39 +966,34 @@ bind::readBindingBuffers(ArrayRef<MemoryBufferRef> Buffers,
 // Model queries
 //===----------------------------------------------------------------------===//
 
-const BoundMember *BoundClass::findMember(StringRef N) const {
-  for (const BoundMember &M : Members)
-    if (M.Name == N)
-      return &M;
+/// The element of `Range` whose Name is `N`, or null: every model lookup.
+template <typename RangeT>
+static auto findNamed(const RangeT &Range, StringRef N)
+    -> decltype(&*std::begin(Range)) {
+  for (const auto &Element : Range)
+    if (Element.Name == N)
+      return &Element;
   return nullptr;
+}
+
+const BoundMember *BoundClass::findMember(StringRef N) const {
+  return findNamed(Members, N);
 }
 
 const BoundClass *BoundModule::findClass(StringRef N) const {
-  for (const BoundClass &C : Classes)
-    if (C.Name == N)
-      return &C;
-  return nullptr;
+  return findNamed(Classes, N);
 }
 
 const BoundEnum *BoundModule::findEnum(StringRef N) const {
-  for (const BoundEnum &E : Enums)
-    if (E.Name == N)
-      return &E;
-  return nullptr;
+  return findNamed(Enums, N);
 }
 
 const BoundMember *BoundModule::findFunction(StringRef N) const {
-  for (const BoundMember &F : Functions)
-    if (F.Name == N)
-      return &F;
-  return nullptr;
+  return findNamed(Functions, N);
 }
 
 const BoundModule *BindingModel::findModule(StringRef N) const {
-  for (const BoundModule &M : Modules)
-    if (M.Name == N)
-      return &M;
-  return nullptr;
+  return findNamed(Modules, N);
 }
 
 const BoundModule *BindingModel::getWorldModule() const {
