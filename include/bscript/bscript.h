@@ -77,8 +77,11 @@ void bs_begin_cycle(void *state, const void *input, void *output);
 int32_t bs_task_state(const void *state, const bs_behavior_info *info,
                       const char *name, int *found);
 
-/** The standard native module `io`: each prints its value and a newline.
- *  printf uses "%g"; printb prints true/false; bool travels as int32. */
+/** The C functions of the standard module `io`: each prints its value and a
+ *  newline. printf uses "%g"; printb prints true/false (nonzero is true).
+ *  Scripts reach them through the thunks of the runtime's io_module.cpp,
+ *  which registers them with bscript/Bind.h; a robot without stdout
+ *  replaces these (io.c) and keeps the registration. */
 void bs_io_printi(int32_t value);
 void bs_io_printf(float value);
 void bs_io_printb(int32_t value);

@@ -1,7 +1,6 @@
 //===- NativeConversion.cpp - binding model -> Native.h registry ----------===//
 //
-// Sema and CodeGen consume native modules through Native.h, the one
-// description shared with the built-in `io`. This converts a whole binding
+// Sema and CodeGen consume native modules through Native.h. This converts a whole binding
 // model into it: every module with its classes (sizes, alignments,
 // life-cycle thunks, fields with offsets, properties, methods, class-scope
 // functions), module functions, enums, and the `input`/`output` classes.

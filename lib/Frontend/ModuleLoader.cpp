@@ -145,13 +145,28 @@ private:
 } // namespace
 
 bool bsc::readBindingObjects(Compilation &C, const FrontendOptions &Opts) {
-  if (Opts.BindObjects.empty())
+  // The standard modules live in the runtime: a missing one is the
+  // installation's problem, reported as linking reports it.
+  bool Found = true;
+  for (const std::string &Path : Opts.StandardModules)
+    if (!llvm::sys::fs::exists(Path)) {
+      C.Diags.report(llvm::SMLoc(), diag::err_runtime_missing)
+          << llvm::sys::path::filename(Path)
+          << ("'" + llvm::sys::path::parent_path(Path) + "'").str();
+      Found = false;
+    }
+  if (!Found)
+    return false;
+  // One reading of all objects: a --bind module named like a standard one
+  // is then "registered twice", as between two --bind objects.
+  std::vector<std::string> Paths = Opts.StandardModules;
+  Paths.insert(Paths.end(), Opts.BindObjects.begin(), Opts.BindObjects.end());
+  if (Paths.empty())
     return true;
   llvm::Triple Target = Opts.Target;
   if (Target.str().empty())
     Target = llvm::Triple(llvm::sys::getProcessTriple());
-  llvm::Expected<bind::BindingModel> Model =
-      bind::readBindings(Opts.BindObjects, Target);
+  llvm::Expected<bind::BindingModel> Model = bind::readBindings(Paths, Target);
   if (!Model) {
     // The reader joins its messages with newlines: one diagnostic each.
     llvm::handleAllErrors(Model.takeError(), [&](const llvm::ErrorInfoBase &E) {

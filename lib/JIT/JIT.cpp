@@ -1,10 +1,12 @@
 //===- JIT.cpp - running a behavior on the host with ORC LLJIT ------------===//
 //
-// The runtime shim's functions are defined in the JIT as absolute symbols
-// with their addresses in this process (bsc links bscript_rt). That is
-// exactly the set of symbols a compiled object may import (CodeGen.h), so a
-// behavior that would not link on the robot does not link here either,
-// rather than silently picking up something else bsc happens to contain.
+// The runtime shim's C functions are defined in the JIT as absolute symbols
+// with their addresses in this process (bsc links bscript_rt), and the
+// thunks of the standard modules (`io`) are linked on demand from the host
+// runtime archive, as a program links them. That is exactly the set of
+// symbols a compiled object may import (CodeGen.h), so a behavior that
+// would not link on the robot does not link here either, rather than
+// silently picking up something else bsc happens to contain.
 //
 //===----------------------------------------------------------------------===//
 #include "bsc/JIT/JIT.h"
@@ -58,6 +60,7 @@ llvm::Expected<std::unique_ptr<BehaviorJIT>> BehaviorJIT::create() {
   Add("bs_state_init", &bs_state_init);
   Add("bs_begin_cycle", &bs_begin_cycle);
   Add("bs_task_state", &bs_task_state);
+  // What the io thunks call.
   Add("bs_io_printi", &bs_io_printi);
   Add("bs_io_printf", &bs_io_printf);
   Add("bs_io_printb", &bs_io_printb);
@@ -99,19 +102,22 @@ llvm::Error BehaviorJIT::addObjectFile(llvm::StringRef Path) {
     JD.addGenerator(std::move(*G));
     ProcessSymbols = true;
   }
-  if (llvm::sys::path::extension(Path) == ".a") {
-    auto G = llvm::orc::StaticLibraryDefinitionGenerator::Load(
-        J->getObjLinkingLayer(), Path.str().c_str());
-    if (!G)
-      return G.takeError();
-    JD.addGenerator(std::move(*G));
-    return llvm::Error::success();
-  }
+  if (llvm::sys::path::extension(Path) == ".a")
+    return addArchive(Path);
   auto Buf = llvm::MemoryBuffer::getFile(Path);
   if (!Buf)
     return llvm::createStringError(Buf.getError(),
                                    "cannot read '" + Path + "'");
   return J->addObjectFile(std::move(*Buf));
+}
+
+llvm::Error BehaviorJIT::addArchive(llvm::StringRef Path) {
+  auto G = llvm::orc::StaticLibraryDefinitionGenerator::Load(
+      J->getObjLinkingLayer(), Path.str().c_str());
+  if (!G)
+    return G.takeError();
+  J->getMainJITDylib().addGenerator(std::move(*G));
+  return llvm::Error::success();
 }
 
 namespace {

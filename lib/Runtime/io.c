@@ -2,7 +2,8 @@
  *
  * `io::printi/printf/printb/prints` print a value and a newline on stdout.
  * This is the one part of the shim that uses libc (stdio): a robot that has
- * no stdout replaces this file, not the generated code.
+ * no stdout replaces this file, not the generated code and not
+ * io_module.cpp, which registers these functions as the module `io`.
  *===----------------------------------------------------------------------===*/
 #include "bscript/bscript.h"
 #include <stdio.h>

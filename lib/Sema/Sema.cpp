@@ -119,9 +119,9 @@ bool Sema::run(llvm::ArrayRef<ModuleAST *> Modules) {
 }
 
 void Sema::buildModuleTables(llvm::ArrayRef<ModuleAST *> Modules) {
-  NativeRegistry Builtins = makeBuiltinNativeRegistry();
-  for (const auto &NM : (Natives ? Natives : &Builtins)->Modules)
-    KnownModules.insert(NM->Name);
+  if (Natives)
+    for (const auto &NM : Natives->Modules)
+      KnownModules.insert(NM->Name);
 
   for (ModuleAST *M : Modules) {
     KnownModules.insert(M->Name);

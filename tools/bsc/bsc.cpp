@@ -116,8 +116,8 @@ cl::list<std::string>
                          "the scripts (repeatable; read for -target)"),
                 cl::value_desc("obj"), cl::cat(BscCategory), BSC_BOTH);
 cl::opt<bool> DumpBindings("dump-bindings",
-                           cl::desc("Print what the --bind objects register "
-                                    "and exit"),
+                           cl::desc("Print what the standard modules and the "
+                                    "--bind objects register, and exit"),
                            cl::cat(BscCategory));
 cl::opt<bool> DebugInfo("g",
                         cl::desc("Accepted for compatibility; bsc does not "
@@ -284,14 +284,34 @@ std::string getRuntimeDir(const char *Argv0) {
 /// Whether `T` runs 32-bit x86 code (the robot runtime and `cc -m32`).
 bool isX86_32(const llvm::Triple &T) { return T.getArch() == llvm::Triple::x86; }
 
+/// The runtime archive a program for `T` links: the robot's for 32-bit x86,
+/// else the host's.
+const char *getRuntimeArchiveName(const llvm::Triple &T) {
+  return isX86_32(T) ? "libbscript_rt_i586.a" : "libbscript_rt.a";
+}
+
+/// The objects holding the standard modules (`io`) for `T`: its runtime
+/// archive, for the ELF x86 targets bsc ships a runtime for. Other targets
+/// have none; a program for one passes its own build of
+/// lib/Runtime/io_module.cpp with --bind.
+std::vector<std::string> getStandardModules(const llvm::Triple &T,
+                                            const char *Argv0) {
+  bool HasRuntime = (isX86_32(T) || T.getArch() == llvm::Triple::x86_64) &&
+                    T.isOSBinFormatELF();
+  if (!HasRuntime)
+    return {};
+  llvm::SmallString<256> Path(getRuntimeDir(Argv0));
+  llvm::sys::path::append(Path, getRuntimeArchiveName(T));
+  return {std::string(Path)};
+}
+
 /// Links `Object` with the runtime shim into the program `Output` with the
 /// system's C compiler driver. Reports and returns false on failure.
 bool linkProgram(Compilation &C, const llvm::Triple &T, llvm::StringRef Object,
                  llvm::StringRef Output, const char *Argv0,
                  llvm::ArrayRef<std::string> BindObjects) {
   std::string RuntimeDir = getRuntimeDir(Argv0);
-  std::string RuntimeName =
-      isX86_32(T) ? "libbscript_rt_i586.a" : "libbscript_rt.a";
+  std::string RuntimeName = getRuntimeArchiveName(T);
   llvm::SmallString<256> Runtime(RuntimeDir);
   llvm::sys::path::append(Runtime, RuntimeName);
   if (!llvm::sys::fs::exists(Runtime)) {
@@ -317,7 +337,7 @@ bool linkProgram(Compilation &C, const llvm::Triple &T, llvm::StringRef Object,
     return false;
   }
   // The binding objects hold the thunks the object calls; they need the
-  // C++ runtime and libm.
+  // C++ runtime and libm (the runtime's own io thunks need neither).
   Args.push_back(Object.str());
   Args.insert(Args.end(), BindObjects.begin(), BindObjects.end());
   Args.push_back(Runtime.str().str());
@@ -485,6 +505,11 @@ int runJIT(Compilation &C, const FrontendOptions &FOpts) {
   if (llvm::Error E = verifyGeneratedModule(*M))
     return finishWithInternalError(C, std::move(E));
   std::string EntrySymbol = getEntrySymbol(CGOpts.BehaviorName, *Entry);
+  // The standard modules' thunks from the host runtime archive, then the
+  // --bind objects, as a program links them.
+  for (const std::string &Path : FOpts.StandardModules)
+    if (llvm::Error E = JIT.addArchive(Path))
+      return finishWithInternalError(C, std::move(E));
   for (const std::string &Path : BindObjects)
     if (llvm::Error E = JIT.addObjectFile(Path))
       return finishWithInternalError(C, std::move(E));
@@ -564,6 +589,7 @@ int main(int argc, char **argv) {
   Opts.IncludeDirs.assign(IncludeDirs.begin(), IncludeDirs.end());
   Opts.BindObjects.assign(BindObjects.begin(), BindObjects.end());
   Opts.Target = RunCmd ? resolveTargetTriple("") : resolveTargetTriple(TargetArg);
+  Opts.StandardModules = getStandardModules(Opts.Target, argv[0]);
 
   if (DumpBindings) {
     if (readBindingObjects(C, Opts))

@@ -29,6 +29,14 @@ private:
   llvm::SmallString<128> Path;
 };
 
+/// Options whose standard modules are the built host runtime's (CMake
+/// passes its path), as the driver sets them for the host.
+FrontendOptions hostOptions() {
+  FrontendOptions O;
+  O.StandardModules = {BSC_HOST_RUNTIME};
+  return O;
+}
+
 std::vector<std::string> messages(const Compilation &C) {
   std::vector<std::string> Result;
   for (const Diagnostic &D : C.Diags.getDiagnostics())
@@ -68,7 +76,7 @@ TEST(FrontendTest, ResolvesScriptNativeUnknownAndCyclicRequires) {
   TempDir Dir;
   Dir.write("B.bs", "requires \"A\"\nfunc g()\n    return\n");
   Compilation C;
-  FrontendOptions O;
+  FrontendOptions O = hostOptions();
   O.Inputs = {Dir.write("A.bs", "requires \"B\"\nrequires \"io\"\n"
                                 "requires \"Nowhere\"\nfunc f()\n    return\n")};
   EXPECT_FALSE(loadModules(C, O)); // Nowhere is unknown.
@@ -101,7 +109,7 @@ TEST(FrontendTest, SearchesIncludeDirsAfterTheRequiringFolder) {
 TEST(FrontendTest, SelfAndDuplicateRequires) {
   TempDir Dir;
   Compilation C;
-  FrontendOptions O;
+  FrontendOptions O = hostOptions();
   O.Inputs = {Dir.write("S.bs", "requires \"io\"\nrequires \"io\"\n"
                                 "requires \"S\"\nfunc f()\n    return\n")};
   EXPECT_FALSE(loadModules(C, O));
@@ -109,6 +117,59 @@ TEST(FrontendTest, SelfAndDuplicateRequires) {
   ASSERT_EQ(M.size(), 2u);
   EXPECT_EQ(M[0], "module 'io' is required more than once");
   EXPECT_EQ(M[1], "module 'S' requires itself");
+}
+
+/// `io` is an ordinary binding module in each runtime archive: read for the
+/// archive's target, its functions have the C functions' signatures (bool
+/// for printb, whose C function takes int32_t) and are called through
+/// Bind.h thunks.
+TEST(FrontendTest, StandardModulesComeFromTheRuntimeArchive) {
+  const std::pair<const char *, const char *> Runtimes[] = {
+      {"x86_64-unknown-linux-gnu", BSC_HOST_RUNTIME},
+      {"i586-unknown-linux-gnu", BSC_I586_RUNTIME}};
+  for (const auto &[Triple, Archive] : Runtimes) {
+    SCOPED_TRACE(Triple);
+    Compilation C;
+    FrontendOptions O;
+    O.Target = llvm::Triple(Triple);
+    O.StandardModules = {Archive};
+    ASSERT_TRUE(readBindingObjects(C, O))
+        << (messages(C).empty() ? "" : messages(C)[0]);
+    const NativeModule *IO = C.Natives.find("io");
+    ASSERT_NE(IO, nullptr);
+    EXPECT_EQ(IO->File, std::string(Archive) + "(io_module.cpp.o)");
+    EXPECT_EQ(IO->Classes.size(), 0u);
+    const std::pair<const char *, NativeType::Code> Want[] = {
+        {"printi", NativeType::Int},
+        {"printf", NativeType::Float},
+        {"printb", NativeType::Bool},
+        {"prints", NativeType::String}};
+    ASSERT_EQ(IO->Functions.size(), 4u);
+    for (const auto &[Name, Param] : Want) {
+      const NativeFunction *F = IO->findFunction(Name);
+      ASSERT_NE(F, nullptr) << Name;
+      EXPECT_EQ(F->Kind, NativeFunction::Function);
+      ASSERT_EQ(F->Params.size(), 1u);
+      EXPECT_EQ(F->Params[0].TheCode, Param) << Name;
+      EXPECT_EQ(F->Result.TheCode, NativeType::Void);
+      EXPECT_TRUE(llvm::StringRef(F->Symbol).starts_with("_ZN2bs6detail8CallImpl"))
+          << F->Symbol;
+    }
+    EXPECT_NE(IO->findFunction("printi")->Symbol.find("bs_io_printi"),
+              std::string::npos);
+  }
+}
+
+TEST(FrontendTest, MissingStandardModulesAreReported) {
+  TempDir Dir;
+  Compilation C;
+  FrontendOptions O;
+  O.StandardModules = {Dir.path() + "/libbscript_rt.a"};
+  EXPECT_FALSE(readBindingObjects(C, O));
+  EXPECT_EQ(messages(C), std::vector<std::string>{
+                             "runtime library 'libbscript_rt.a' not found "
+                             "(looked in '" + Dir.path() + "')"});
+  EXPECT_EQ(C.Natives.find("io"), nullptr);
 }
 
 /// A buffer named t.bs holding `Text`, and a diagnostic at line `Line`.

@@ -1,16 +1,17 @@
 //===- Native.h - what native (C/C++-registered) modules provide -*- C++ -*-===//
 //
-// A native module is registered from C/C++ rather than written in b-script:
-// the built-in `io`, and the modules of the binding objects given with
-// --bind (lib/Bind reads them and converts its BindingModel into this form,
-// bind::addToNativeRegistry). Sema and CodeGen only see this description, so
-// where a module came from does not matter to them, and the AST library does
-// not depend on the ELF reader.
+// A native module is registered from C++ with bscript/Bind.h rather than
+// written in b-script: the standard `io` (read from the runtime archive) and
+// the modules of the binding objects given with --bind. lib/Bind reads them
+// and converts its BindingModel into this form (bind::addToNativeRegistry).
+// Sema and CodeGen only see this description, so where a module came from
+// does not matter to them, and the AST library does not depend on the ELF
+// reader.
 //
 // Why a description of its own rather than the BindingModel itself: the
-// built-in `io` has no binding object, and the front end wants resolved
-// pointers (a parameter's class, a member's owner) where the reader's model
-// has module/index pairs. The conversion keeps everything the back end needs
+// front end wants resolved pointers (a parameter's class, a member's owner)
+// where the reader's model has module/index pairs, and unit tests build
+// small registries by hand. The conversion keeps everything the back end needs
 // (thunk symbols, field offsets, sizes, alignments, life-cycle thunks), so
 // CodeGen never has to go back to the BindingModel.
 //
@@ -52,7 +53,8 @@ struct NativeType {
   /// travel as `const T *`.
   bool MutableRef = false;
   /// sizeof the C++ type on the target (a `double` field keeps its 8
-  /// bytes while its b-script type is float); 0 when not known (io).
+  /// bytes while its b-script type is float); 0 when not known (a
+  /// hand-made description).
   uint32_t StorageSize = 0;
 };
 
@@ -142,7 +144,7 @@ struct NativeModule {
   /// then the world module: its names are visible unqualified everywhere).
   const NativeClass *Input = nullptr;
   const NativeClass *Output = nullptr;
-  std::string File; ///< The binding object it came from; empty for io.
+  std::string File; ///< The binding object it came from.
   uint64_t Hash = 0; ///< bs::moduleHash of the descriptor (bindings.md).
 
   const NativeFunction *findFunction(llvm::StringRef N) const {
@@ -184,9 +186,6 @@ struct NativeRegistry {
     return nullptr;
   }
 };
-
-/// The registry of the native modules that ship with bsc (today: `io`).
-NativeRegistry makeBuiltinNativeRegistry();
 
 } // namespace bsc
 

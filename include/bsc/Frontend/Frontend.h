@@ -1,7 +1,8 @@
 //===- Frontend.h - from source files to a checked behavior ----*- C++ -*-===//
 //
 // The front end of one compilation: read the files named on the command
-// line, read the binding objects (--bind) into native modules, parse the
+// line, read the standard modules (`io`, from the runtime archive) and the
+// binding objects (--bind) into native modules, parse the
 // files, follow their `requires` to sibling `.bs` files (or native
 // modules), and check the whole behavior. The driver, the JIT runner
 // and the REPL all start here. Nothing here prints; diagnostics collect in
@@ -30,6 +31,10 @@ constexpr unsigned MaxSourceFileMiB = 64;
 struct FrontendOptions {
   std::vector<std::string> Inputs;      ///< The .bs files named by the user.
   std::vector<std::string> IncludeDirs; ///< -I: searched after the requiring file's folder.
+  /// The standard modules (`io`): binding objects or archives read like
+  /// BindObjects and before them, so a --bind module of the same name is
+  /// "registered twice". The driver names the runtime archive of Target.
+  std::vector<std::string> StandardModules;
   /// --bind: binding objects or archives (bindings.md), read for Target.
   std::vector<std::string> BindObjects;
   /// The compilation's target: sizes, offsets and the descriptor's pointer
@@ -42,10 +47,11 @@ struct Compilation {
   llvm::SourceMgr SM;
   ASTContext Ctx;
   DiagnosticEngine Diags;
-  /// The built-in `io`, then the modules of the binding objects.
-  NativeRegistry Natives = makeBuiltinNativeRegistry();
-  /// What the binding objects register, as lib/Bind read it (the module
-  /// hashes and files for the back end; Natives holds the converted form).
+  /// The modules of the standard and the binding objects.
+  NativeRegistry Natives;
+  /// What the standard and binding objects register, as lib/Bind read it
+  /// (the module hashes and files for the back end; Natives holds the
+  /// converted form).
   bind::BindingModel Bindings;
   /// Every module, the inputs first, then required ones as found.
   std::vector<ModuleAST *> Modules;
@@ -59,9 +65,11 @@ unsigned addSourceFile(Compilation &C, llvm::StringRef Path);
 /// The module name of a file: its name without the `.bs` extension.
 std::string moduleNameForPath(llvm::StringRef Path);
 
-/// Reads Opts.BindObjects for Opts.Target into C.Bindings and adds their
-/// modules to C.Natives. Each reader error becomes one `bsc: error: ...`
-/// diagnostic (err_bind_read); returns false if there was one.
+/// Reads Opts.StandardModules and Opts.BindObjects for Opts.Target into
+/// C.Bindings and adds their modules to C.Natives. A missing standard module
+/// file is err_runtime_missing; each reader error becomes one
+/// `bsc: error: ...` diagnostic (err_bind_read). Returns false if there was
+/// an error.
 bool readBindingObjects(Compilation &C, const FrontendOptions &Opts);
 
 /// Reads the binding objects (readBindingObjects), then parses the inputs

@@ -4,7 +4,9 @@
 // cycle, with the same runtime shim and the same generated code as a
 // compiled program, so it prints exactly what the robot program would.
 // The runtime shim is linked into bsc and handed to the JIT by address;
-// the generated code cannot reach anything else in the bsc process.
+// the standard modules' thunks (`io`) come from the host runtime archive,
+// loaded like a --bind archive. Without --bind objects the generated code
+// cannot reach anything else in the bsc process.
 //
 //===----------------------------------------------------------------------===//
 #ifndef BSC_JIT_JIT_H
@@ -46,6 +48,11 @@ public:
   /// thunks generated code calls. Their own references (libstdc++, libm)
   /// resolve against this process.
   llvm::Error addObjectFile(llvm::StringRef Path);
+
+  /// Adds the members of archive `Path` on demand, as a static linker does,
+  /// without this process's libraries: for the runtime archive, whose
+  /// standard modules' thunks need nothing but the runtime shim.
+  llvm::Error addArchive(llvm::StringRef Path);
 
   /// The storage `bsc run` provides for `input` or `output`: the world
   /// module's registered class (size 0: the behavior declares none).

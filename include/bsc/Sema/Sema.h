@@ -30,9 +30,8 @@ struct Behavior {
 /// "Sema:" fields of the AST and `Out`. Returns false if it reported an
 /// error to `Diags`.
 ///
-/// `Natives` is every native module of the compilation (the built-in `io`
-/// and the --bind modules, see Native.h); null means the built-in ones
-/// only. It decides which module names are known and which module is the
+/// `Natives` is every native module of the compilation (the standard `io`
+/// and the --bind modules, see Native.h); null means none. It decides which module names are known and which module is the
 /// world module (the one declaring `input`/`output`), whose classes and
 /// enums are visible unqualified in every module and whose name works as a
 /// qualifier without `requires`. Other native modules are reached through
