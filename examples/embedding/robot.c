@@ -14,8 +14,11 @@ int main(void) {
   if (bs_walk_info.state_size != BS_WALK_STATE_SIZE ||
       bs_walk_info.state_align != BS_WALK_STATE_ALIGN)
     return 2;
-  if (bs_walk_init(&robot_state) != 0)
-    return 1;
+  /* Refused: another ABI version, or (with --bind) a binding module that
+   * changed since walk.bs was compiled. The runtime says which. */
+  int code = bs_walk_init(&robot_state);
+  if (code != BS_INIT_OK)
+    return bs_report_init_failure(&bs_walk_info, code);
   static const int distance[4] = {30, 20, 10, 0};
   for (int cycle = 0; cycle < 4; ++cycle) {
     bs_walk_begin_cycle(&robot_state, NULL, NULL);

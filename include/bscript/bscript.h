@@ -15,6 +15,12 @@
  *                                            a func's result is returned
  * `bsc --emit-header` writes the typed face of these for one behavior.
  *
+ * A behavior compiled with `bsc --bind` also refers to the descriptor
+ * `bs_module_<Name>` of every binding module it was compiled against and
+ * records the descriptor's hash; bs_state_init refuses to start when a
+ * linked descriptor has another hash (the script is stale: sizes, offsets
+ * or signatures changed since it was compiled).
+ *
  * A cycle: bs_begin_cycle(state, &input, &output), then call the entry.
  *===----------------------------------------------------------------------===*/
 #ifndef BSCRIPT_BSCRIPT_H
@@ -28,7 +34,7 @@ extern "C" {
 #endif
 
 /** Bumped whenever the layout below changes; bs_behavior_info carries it. */
-#define BS_ABI_VERSION 1
+#define BS_ABI_VERSION 2
 
 /** Task states (language.md): > 0 running, 0 done, < 0 failure. */
 #define BS_TASK_DONE 0
@@ -55,18 +61,49 @@ typedef struct bs_task_info {
   uint32_t frame_offset; /**< Of its bs_frame_header inside the state. */
 } bs_task_info;
 
+/** bs_state_init's results. */
+#define BS_INIT_OK 0
+#define BS_INIT_BAD_INFO (-1)       /**< Another ABI version, or misaligned. */
+#define BS_INIT_STALE_BINDINGS (-2) /**< See bs_check_bindings. */
+
+/** A binding module the behavior was compiled against. */
+typedef struct bs_binding_module {
+  const char *name;       /**< "Math" */
+  const void *descriptor; /**< &bs_module_Math, as linked */
+  uint64_t hash;          /**< bs_module_hash of the descriptor bsc read */
+} bs_binding_module;
+
 typedef struct bs_behavior_info {
   uint32_t abi_version; /**< BS_ABI_VERSION of the compiler that made it. */
   uint32_t state_size;  /**< Bytes of state the embedding must provide... */
   uint32_t state_align; /**< ...aligned to this. */
   uint32_t num_tasks;
   const bs_task_info *tasks;
+  uint32_t num_modules; /**< Binding modules it was compiled against. */
+  const bs_binding_module *modules;
 } bs_behavior_info;
 
 /** Zeroes a state: every task reports done and starts from the top at its
- *  next call. Returns 0, or -1 if `info` is from another ABI version or the
- *  storage is misaligned. */
+ *  next call. Returns BS_INIT_OK; BS_INIT_BAD_INFO if `info` is from another
+ *  ABI version or the storage is misaligned; BS_INIT_STALE_BINDINGS (state
+ *  untouched) if a linked binding module differs from the one the behavior
+ *  was compiled against. */
 int bs_state_init(void *state, const bs_behavior_info *info);
+
+/** The name of the first binding module whose linked descriptor does not
+ *  have the hash the behavior was compiled against, or NULL if all match:
+ *  for a message such as "the behavior was compiled against binding module
+ *  'Math' whose descriptor has changed; recompile the scripts". */
+const char *bs_check_bindings(const bs_behavior_info *info);
+
+/** The hash of a binding module's descriptor (`&bs_module_Math`), the same
+ *  as bs::moduleHash of bscript/Bind.h and bsc's (docs/bindings.md). */
+uint64_t bs_module_hash(const void *descriptor);
+
+/** What a program does when bs_state_init returned `code` (not BS_INIT_OK):
+ *  prints why on stderr and returns the exit status 1. Programs that bsc
+ *  links call it; it uses stdio, like the io module. */
+int bs_report_init_failure(const bs_behavior_info *info, int code);
 
 /** Starts the next execution cycle with this cycle's input and output. */
 void bs_begin_cycle(void *state, const void *input, void *output);

@@ -814,18 +814,33 @@ void Reader::readBinary(Binary &Bin, StringRef Name) {
                  Target.str() + ")");
     return;
   }
-  // GCC's -flto objects hold GIMPLE, not the descriptor's bytes.
+  // GCC's -flto objects hold GIMPLE, not the descriptor's bytes, unless
+  // they are fat (-ffat-lto-objects): then the object code, descriptor
+  // included, is there too. GCC marks slim objects with `__gnu_lto_slim`.
+  bool HasLTOSections = false, HasDescriptors = false, Slim = false;
   for (const SectionRef &S : Obj->sections()) {
     Expected<StringRef> SName = S.getName();
-    if (SName && SName->starts_with(".gnu.lto_")) {
-      Errs.add(Name, "",
-               "is a GCC LTO object without object code (compiled with "
-               "-flto?); build the binding objects without -flto or with "
-               "-ffat-lto-objects");
-      return;
-    }
-    if (!SName)
+    if (!SName) {
       consumeError(SName.takeError());
+      continue;
+    }
+    HasLTOSections |= SName->starts_with(".gnu.lto_");
+    HasDescriptors |= *SName == "bs_modules";
+  }
+  for (const SymbolRef &Sym : Obj->symbols()) {
+    Expected<StringRef> SymName = Sym.getName();
+    if (!SymName) {
+      consumeError(SymName.takeError());
+      continue;
+    }
+    Slim |= *SymName == "__gnu_lto_slim";
+  }
+  if (HasLTOSections && (Slim || !HasDescriptors)) {
+    Errs.add(Name, "",
+             "is a GCC LTO object without object code (compiled with "
+             "-flto?); build the binding objects without -flto or with "
+             "-ffat-lto-objects");
+    return;
   }
   ObjectReader(*Obj, Name, Errs).readModules(Modules);
 }

@@ -98,6 +98,7 @@ private:
   /// False for what b-script cannot express (out parameters).
   bool convertType(const BoundType &T, NativeType &Out) {
     Out.StorageSize = T.StorageSize;
+    Out.Unsigned = T.Flags & TF_Unsigned;
     switch (T.Code) {
     case TypeCode::Void:
       Out.TheCode = NativeType::Void;

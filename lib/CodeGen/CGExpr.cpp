@@ -102,8 +102,11 @@ llvm::Value *FunctionEmitter::emitFieldLoad(const Type *T,
   llvm::Value *V = Builder.CreateLoad(Builder.getIntNTy(Size * 8), Addr);
   if (T->isBool())
     return Builder.CreateICmpNE(V, llvm::ConstantInt::get(V->getType(), 0));
+  // Narrow storage extends as its C++ type does: int8_t -1 is -1, uint8_t
+  // 255 is 255 (a sign extension would make it -1).
   if (Size < 4)
-    V = Builder.CreateSExt(V, Builder.getInt32Ty());
+    V = NT.Unsigned ? Builder.CreateZExt(V, Builder.getInt32Ty())
+                    : Builder.CreateSExt(V, Builder.getInt32Ty());
   return V;
 }
 

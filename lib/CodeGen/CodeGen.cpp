@@ -24,7 +24,7 @@ using namespace bsc;
 using namespace bsc::codegen;
 
 /// The ABI version written into bs_behavior_info (BS_ABI_VERSION).
-static constexpr uint32_t ABIVersion = 1;
+static constexpr uint32_t ABIVersion = 2;
 
 std::string bsc::getEntrySymbol(llvm::StringRef BehaviorName,
                                 const CallableDecl &D) {
@@ -371,25 +371,43 @@ void ModuleEmitter::emitEntries() {
 
 void ModuleEmitter::emitInfo() {
   llvm::Type *I32 = llvm::Type::getInt32Ty(Ctx);
+  llvm::Type *I64 = llvm::Type::getInt64Ty(Ctx);
   llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
   auto *TaskInfoTy = llvm::StructType::create(Ctx, {Ptr, I32}, "bs_task_info");
-  auto *InfoTy = llvm::StructType::create(Ctx, {I32, I32, I32, I32, Ptr},
-                                          "bs_behavior_info");
+  auto *ModuleInfoTy =
+      llvm::StructType::create(Ctx, {Ptr, Ptr, I64}, "bs_binding_module");
+  auto *InfoTy = llvm::StructType::create(
+      Ctx, {I32, I32, I32, I32, Ptr, I32, Ptr}, "bs_behavior_info");
+
+  // A private constant array, or null when there is nothing to list.
+  auto EmitTable = [&](llvm::StructType *Ty,
+                       llvm::ArrayRef<llvm::Constant *> Elts,
+                       llvm::StringRef Name) -> llvm::Constant * {
+    if (Elts.empty())
+      return llvm::ConstantPointerNull::get(llvm::PointerType::getUnqual(Ctx));
+    auto *ArrTy = llvm::ArrayType::get(Ty, Elts.size());
+    return new llvm::GlobalVariable(
+        M, ArrTy, /*isConstant=*/true, llvm::GlobalValue::PrivateLinkage,
+        llvm::ConstantArray::get(ArrTy, Elts),
+        "bs_" + Opts.BehaviorName + Name);
+  };
 
   llvm::SmallVector<llvm::Constant *, 8> Tasks;
   for (const BehaviorLayout::Task &T : Layout.Tasks)
     Tasks.push_back(llvm::ConstantStruct::get(
         TaskInfoTy, {getString(T.Decl->getQualifiedName()),
                      llvm::ConstantInt::get(I32, T.FrameOffset)}));
-  llvm::Constant *TaskTable = llvm::ConstantPointerNull::get(
-      llvm::PointerType::getUnqual(Ctx));
-  if (!Tasks.empty()) {
-    auto *ArrTy = llvm::ArrayType::get(TaskInfoTy, Tasks.size());
-    auto *GV = new llvm::GlobalVariable(
-        M, ArrTy, /*isConstant=*/true, llvm::GlobalValue::PrivateLinkage,
-        llvm::ConstantArray::get(ArrTy, Tasks),
-        "bs_" + Opts.BehaviorName + "_tasks");
-    TaskTable = GV;
+
+  // The binding modules it was compiled against: each descriptor by its
+  // symbol (so the link fails if the module is missing) with the hash bsc
+  // read, for bs_state_init to compare (docs/bindings.md, staleness).
+  llvm::SmallVector<llvm::Constant *, 4> Modules;
+  for (const NativeModule *NM : B.BindingModules) {
+    auto *Descriptor = M.getOrInsertGlobal("bs_module_" + NM->Name,
+                                           llvm::Type::getInt8Ty(Ctx));
+    Modules.push_back(llvm::ConstantStruct::get(
+        ModuleInfoTy, {getString(NM->Name), Descriptor,
+                       llvm::ConstantInt::get(I64, NM->Hash)}));
   }
 
   Layout.InfoSymbol = "bs_" + Opts.BehaviorName + "_info";
@@ -397,7 +415,10 @@ void ModuleEmitter::emitInfo() {
       InfoTy, {llvm::ConstantInt::get(I32, ABIVersion),
                llvm::ConstantInt::get(I32, Layout.StateSize),
                llvm::ConstantInt::get(I32, Layout.StateAlign),
-               llvm::ConstantInt::get(I32, Layout.Tasks.size()), TaskTable});
+               llvm::ConstantInt::get(I32, Layout.Tasks.size()),
+               EmitTable(TaskInfoTy, Tasks, "_tasks"),
+               llvm::ConstantInt::get(I32, Modules.size()),
+               EmitTable(ModuleInfoTy, Modules, "_modules")});
   Info = new llvm::GlobalVariable(M, InfoTy, /*isConstant=*/true,
                                   llvm::GlobalValue::ExternalLinkage, Init,
                                   Layout.InfoSymbol);
@@ -409,6 +430,8 @@ void ModuleEmitter::emitProgramMain() {
   llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
   llvm::FunctionCallee Init = M.getOrInsertFunction(
       "bs_state_init", llvm::FunctionType::get(I32, {Ptr, Ptr}, false));
+  llvm::FunctionCallee Report = M.getOrInsertFunction(
+      "bs_report_init_failure", llvm::FunctionType::get(I32, {Ptr, I32}, false));
   llvm::FunctionCallee Begin = M.getOrInsertFunction(
       "bs_begin_cycle",
       llvm::FunctionType::get(llvm::Type::getVoidTy(Ctx), {Ptr, Ptr, Ptr},
@@ -419,20 +442,30 @@ void ModuleEmitter::emitProgramMain() {
                                       "main", M);
   addCommonAttributes(Main);
   llvm::BasicBlock *EntryBB = llvm::BasicBlock::Create(Ctx, "entry", Main);
+  llvm::BasicBlock *Refused = llvm::BasicBlock::Create(Ctx, "init.failed", Main);
+  llvm::BasicBlock *Start = llvm::BasicBlock::Create(Ctx, "start", Main);
   llvm::BasicBlock *Cond = llvm::BasicBlock::Create(Ctx, "cycle.cond", Main);
   llvm::BasicBlock *Body = llvm::BasicBlock::Create(Ctx, "cycle", Main);
   llvm::BasicBlock *Done = llvm::BasicBlock::Create(Ctx, "done", Main);
   llvm::IRBuilder<> IRB(EntryBB);
   llvm::AllocaInst *State = IRB.CreateAlloca(StateTy, nullptr, "state");
   State->setAlignment(llvm::Align(Layout.StateAlign));
-  IRB.CreateCall(Init, {State, Info});
+  // A refused state (stale bindings, bscript.h) ends the program with the
+  // runtime's message and status 1 before anything runs.
+  llvm::Value *InitResult = IRB.CreateCall(Init, {State, Info}, "init");
+  IRB.CreateCondBr(
+      IRB.CreateICmpEQ(InitResult, llvm::ConstantInt::get(I32, 0), "init.ok"),
+      Start, Refused);
+  IRB.SetInsertPoint(Refused);
+  IRB.CreateRet(IRB.CreateCall(Report, {Info, InitResult}, "status"));
+  IRB.SetInsertPoint(Start);
   IRB.CreateBr(Cond);
 
   // for (i = 0; i < cycles; ++i) { bs_begin_cycle(...); entry(state); }
   // (zero cycles run nothing).
   IRB.SetInsertPoint(Cond);
   llvm::PHINode *I = IRB.CreatePHI(I32, 2, "i");
-  I->addIncoming(llvm::ConstantInt::get(I32, 0), EntryBB);
+  I->addIncoming(llvm::ConstantInt::get(I32, 0), Start);
   IRB.CreateCondBr(
       IRB.CreateICmpULT(I, llvm::ConstantInt::get(I32, Opts.ProgramCycles)),
       Body, Done);

@@ -144,6 +144,15 @@ private:
 };
 } // namespace
 
+/// Whether a module's File ("x.o" or "lib.a(x.o)") is one of the runtime
+/// archives that hold the standard modules.
+static bool isFromStandardModule(llvm::StringRef File,
+                                 llvm::ArrayRef<std::string> Standard) {
+  return llvm::any_of(Standard, [&](const std::string &Archive) {
+    return File == Archive || File.starts_with(Archive + "(");
+  });
+}
+
 bool bsc::readBindingObjects(Compilation &C, const FrontendOptions &Opts) {
   // The standard modules live in the runtime: a missing one is the
   // installation's problem, reported as linking reports it.
@@ -182,6 +191,8 @@ bool bsc::readBindingObjects(Compilation &C, const FrontendOptions &Opts) {
   // Members b-script cannot call (out parameters) are left out; naming one
   // is then an unknown member.
   bind::addToNativeRegistry(C.Bindings, C.Natives);
+  for (auto &NM : C.Natives.Modules)
+    NM->Standard = isFromStandardModule(NM->File, Opts.StandardModules);
   return true;
 }
 

@@ -28,6 +28,13 @@
 
 using namespace bsc;
 
+char StaleBindingError::ID;
+
+void StaleBindingError::log(llvm::raw_ostream &OS) const {
+  OS << "the behavior was compiled against binding module '" << Module
+     << "' whose descriptor has changed";
+}
+
 BehaviorJIT::~BehaviorJIT() = default;
 
 llvm::Expected<std::unique_ptr<BehaviorJIT>> BehaviorJIT::create() {
@@ -159,7 +166,11 @@ llvm::Error BehaviorJIT::runCycles(llvm::StringRef InfoSymbol,
   void *State = llvm::allocate_buffer(Size, Align);
   auto Free =
       llvm::make_scope_exit([&] { llvm::deallocate_buffer(State, Size, Align); });
-  if (bs_state_init(State, Info) != 0)
+  int Init = bs_state_init(State, Info);
+  if (Init == BS_INIT_STALE_BINDINGS)
+    if (const char *Module = bs_check_bindings(Info))
+      return llvm::make_error<StaleBindingError>(Module);
+  if (Init != BS_INIT_OK)
     return llvm::createStringError(
         "bs_state_init refused the state of ABI version " +
         std::to_string(Info->abi_version));

@@ -120,8 +120,11 @@ bool Sema::run(llvm::ArrayRef<ModuleAST *> Modules) {
 
 void Sema::buildModuleTables(llvm::ArrayRef<ModuleAST *> Modules) {
   if (Natives)
-    for (const auto &NM : Natives->Modules)
+    for (const auto &NM : Natives->Modules) {
       KnownModules.insert(NM->Name);
+      if (!NM->Standard)
+        Out.BindingModules.push_back(NM.get());
+    }
 
   for (ModuleAST *M : Modules) {
     KnownModules.insert(M->Name);

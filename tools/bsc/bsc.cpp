@@ -15,6 +15,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "EmitHeader.h"
+#include "bsc/Bind/Bind.h"
 #include "bsc/CodeGen/CodeGen.h"
 #include "bsc/CodeGen/Target.h"
 #include "bsc/Frontend/Frontend.h"
@@ -23,6 +24,8 @@
 #include "bsc/Parse/Parser.h"
 #include "llvm/ADT/ScopeExit.h"
 #include "llvm/ADT/StringExtras.h"
+#include "llvm/ADT/StringSet.h"
+#include "llvm/Demangle/Demangle.h"
 #include "llvm/Support/CommandLine.h"
 #include "llvm/Support/FileSystem.h"
 #include "llvm/Support/InitLLVM.h"
@@ -356,6 +359,25 @@ bool linkProgram(Compilation &C, const llvm::Triple &T, llvm::StringRef Object,
   return true;
 }
 
+/// Reports every thunk or descriptor that `M` imports from the binding
+/// modules but no --bind object defines: the linker or the JIT would fail
+/// on it with a bare "undefined symbol". Returns false if there was one.
+bool checkBindingImports(Compilation &C, const llvm::Module &M) {
+  llvm::StringSet<> BindingSymbols;
+  for (const std::string &S : bind::getBindingSymbols(C.Checked.BindingModules))
+    BindingSymbols.insert(S);
+  std::vector<std::string> Imports;
+  for (const llvm::GlobalValue &GV : M.global_values())
+    if (GV.isDeclaration() && BindingSymbols.contains(GV.getName()))
+      Imports.push_back(GV.getName().str());
+  std::vector<std::string> Missing =
+      bind::findUndefinedSymbols(BindObjects, Imports);
+  for (const std::string &S : Missing)
+    C.Diags.report(llvm::SMLoc(), diag::err_stale_binding_symbol)
+        << llvm::demangle(S);
+  return Missing.empty();
+}
+
 /// What the top-level command produces when it goes past the front end.
 enum class OutputKind { LLVM, Asm, Obj, Header, Program };
 
@@ -471,7 +493,8 @@ int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
               *M, *TM, llvm::CodeGenFileType::ObjectFile, ObjOS))
         return finishWithInternalError(C, std::move(E));
     }
-    if (!linkProgram(C, TM->getTargetTriple(), ObjPath, Path, Argv0,
+    if (!checkBindingImports(C, *M) ||
+        !linkProgram(C, TM->getTargetTriple(), ObjPath, Path, Argv0,
                      BindObjects))
       llvm::sys::fs::remove(Path);
     return finish(C);
@@ -505,6 +528,8 @@ int runJIT(Compilation &C, const FrontendOptions &FOpts) {
   if (llvm::Error E = verifyGeneratedModule(*M))
     return finishWithInternalError(C, std::move(E));
   std::string EntrySymbol = getEntrySymbol(CGOpts.BehaviorName, *Entry);
+  if (!checkBindingImports(C, *M))
+    return finish(C);
   // The standard modules' thunks from the host runtime archive, then the
   // --bind objects, as a program links them.
   for (const std::string &Path : FOpts.StandardModules)
@@ -524,8 +549,15 @@ int runJIT(Compilation &C, const FrontendOptions &FOpts) {
         *Obj = {size_t(Class->Size), size_t(Class->Align), Class->Construct};
   }
   if (llvm::Error E = JIT.runCycles(Layout.InfoSymbol, EntrySymbol,
-                                    BOpts.Cycles, Input, Output))
-    return finishWithInternalError(C, std::move(E));
+                                    BOpts.Cycles, Input, Output)) {
+    // A stale binding module is the user's to fix, not an internal error.
+    E = llvm::handleErrors(std::move(E), [&](const StaleBindingError &S) {
+      C.Diags.report(llvm::SMLoc(), diag::err_stale_binding_module)
+          << S.Module;
+    });
+    if (E)
+      return finishWithInternalError(C, std::move(E));
+  }
   return finish(C);
 }
 

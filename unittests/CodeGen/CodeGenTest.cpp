@@ -442,7 +442,7 @@ TEST_F(CodeGenTest, EntriesAndInfo) {
     return llvm::cast<llvm::ConstantInt>(Init->getAggregateElement(I))
         ->getZExtValue();
   };
-  EXPECT_EQ(Field(0), 1u); // BS_ABI_VERSION
+  EXPECT_EQ(Field(0), 2u); // BS_ABI_VERSION
   EXPECT_EQ(Field(1), L.StateSize);
   EXPECT_EQ(Field(2), L.StateAlign);
   EXPECT_EQ(Field(3), 1u); // helper::step
@@ -510,6 +510,20 @@ TEST_F(CodeGenTest, ProgramMainRunsTheCycles) {
       }
   EXPECT_TRUE(CallsInit);
   EXPECT_TRUE(CallsBegin);
+  // A refused state returns the runtime's report (status 1) at once: the
+  // block that calls bs_report_init_failure returns its result.
+  const llvm::CallInst *Report = nullptr;
+  for (const llvm::BasicBlock &BB : *Main)
+    for (const llvm::Instruction &I : BB)
+      if (const auto *Call = llvm::dyn_cast<llvm::CallInst>(&I))
+        if (const llvm::Function *Callee = Call->getCalledFunction())
+          if (Callee->getName() == "bs_report_init_failure")
+            Report = Call;
+  ASSERT_TRUE(Report);
+  const auto *Ret =
+      llvm::dyn_cast<llvm::ReturnInst>(Report->getParent()->getTerminator());
+  ASSERT_TRUE(Ret);
+  EXPECT_EQ(Ret->getReturnValue(), Report);
   // Without ProgramEntry there is no main.
   BehaviorLayout L2;
   EXPECT_FALSE(emit(Targets[0], L2)->getFunction("main"));

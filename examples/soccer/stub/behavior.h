@@ -28,7 +28,8 @@ struct bs_soccer_state {
 #define BS_SOCCER_STATE_SIZE ((uint32_t)sizeof(bs_soccer_state))
 #define BS_SOCCER_STATE_ALIGN ((uint32_t)alignof(bs_soccer_state))
 static const bs_behavior_info bs_soccer_info = {
-    BS_ABI_VERSION, BS_SOCCER_STATE_SIZE, BS_SOCCER_STATE_ALIGN, 0, nullptr};
+    BS_ABI_VERSION, BS_SOCCER_STATE_SIZE, BS_SOCCER_STATE_ALIGN, 0, nullptr,
+    0, nullptr};
 
 static inline int bs_soccer_init(bs_soccer_state *s) {
   *s = bs_soccer_state{};

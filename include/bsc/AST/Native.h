@@ -56,6 +56,10 @@ struct NativeType {
   /// bytes while its b-script type is float); 0 when not known (a
   /// hand-made description).
   uint32_t StorageSize = 0;
+  /// An unsigned integer, or an enum with an unsigned underlying type: a
+  /// storage narrower than int is zero-extended when read, not
+  /// sign-extended (`uint8_t` 250 reads as 250).
+  bool Unsigned = false;
 };
 
 /// A default argument restated with `.defaults(...)`: scalars and enums
@@ -146,6 +150,10 @@ struct NativeModule {
   const NativeClass *Output = nullptr;
   std::string File; ///< The binding object it came from.
   uint64_t Hash = 0; ///< bs::moduleHash of the descriptor (bindings.md).
+  /// Shipped in the runtime archive (`io`): it goes with the runtime bsc
+  /// links, so the behavior neither records its hash nor looks for its
+  /// thunks among the --bind objects.
+  bool Standard = false;
 
   const NativeFunction *findFunction(llvm::StringRef N) const {
     for (const NativeFunction &F : Functions)

@@ -34,6 +34,7 @@ class Triple;
 
 namespace bsc {
 struct NativeRegistry;
+struct NativeModule;
 
 namespace bind {
 
@@ -217,6 +218,19 @@ void dumpBindings(const BindingModel &Model, llvm::raw_ostream &OS);
 /// parameters, which b-script cannot pass.
 std::vector<std::string> addToNativeRegistry(const BindingModel &Model,
                                              NativeRegistry &Registry);
+
+/// The thunk and descriptor symbols of binding modules: what a behavior
+/// compiled against them may import from the binding objects.
+std::vector<std::string>
+getBindingSymbols(llvm::ArrayRef<const NativeModule *> Modules);
+
+/// Those of `Wanted` that no binding object or archive of `Paths` defines
+/// (as a global or weak symbol), in the order of `Wanted`. A behavior that
+/// imports one of them is stale against the bindings it is linked with.
+/// Files that cannot be read are skipped (readBindings reports them).
+std::vector<std::string>
+findUndefinedSymbols(llvm::ArrayRef<std::string> Paths,
+                     llvm::ArrayRef<std::string> Wanted);
 
 } // namespace bind
 } // namespace bsc

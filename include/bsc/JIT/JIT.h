@@ -26,6 +26,20 @@ class LLJIT;
 
 namespace bsc {
 
+/// bs_state_init refused the behavior because the binding module `Module`
+/// linked into the JIT is not the one the behavior was compiled against
+/// (its descriptor hash differs). A user-facing error, not an internal one.
+class StaleBindingError : public llvm::ErrorInfo<StaleBindingError> {
+public:
+  static char ID;
+  std::string Module;
+  explicit StaleBindingError(std::string Module) : Module(std::move(Module)) {}
+  void log(llvm::raw_ostream &OS) const override;
+  std::error_code convertToErrorCode() const override {
+    return llvm::inconvertibleErrorCode();
+  }
+};
+
 /// One JIT session on the host: a DataLayout to generate code for, then one
 /// module to run.
 class BehaviorJIT {
@@ -66,7 +80,8 @@ public:
   /// and the `Input`/`Output` objects (zeroed, then constructed), then
   /// `Cycles` times begins a cycle with them and calls the parameterless
   /// entry `EntrySymbol`. The objects are default values in every cycle;
-  /// replaying recorded inputs is the log-replay runner's job.
+  /// replaying recorded inputs is the log-replay runner's job. A stale
+  /// binding module gives a StaleBindingError.
   llvm::Error runCycles(llvm::StringRef InfoSymbol,
                         llvm::StringRef EntrySymbol, unsigned Cycles,
                         const GlobalObject &Input,

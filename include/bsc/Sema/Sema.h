@@ -19,6 +19,10 @@ struct Behavior {
   std::vector<const NativeModule *> NativeModules;
   /// The module declaring `input`/`output`, if the registry has one.
   const NativeModule *World = nullptr;
+  /// Every module read from a binding object (NativeModule::File is set)
+  /// that the behavior was checked against, required or not: the object
+  /// records their descriptor hashes for the load-time staleness check.
+  std::vector<const NativeModule *> BindingModules;
   /// Whether some local, parameter, result or expression has a registered
   /// class type (`input` and `output` included): the back end must then
   /// lay out and call class values.
