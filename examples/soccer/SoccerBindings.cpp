@@ -14,7 +14,7 @@
 //                 visible unqualified in every script, as in the paper.
 //
 // Build it for the robot like any binding object, e.g.
-//   g++ -std=c++20 -m32 -march=geode -O2 -I/usr/include/eigen3 -c
+//   g++ -std=c++20 -m32 -march=i586 -mtune=geode -O2 -I/usr/include/eigen3 -c
 //   clang++ -std=c++20 --target=i586-linux-gnu -march=geode -O2 ... -c
 // and pass the object to bsc with --bind (the same object that is linked).
 //

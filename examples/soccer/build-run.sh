@@ -22,7 +22,7 @@ mkdir -p "$out"
 
 case $target in
   i586)
-    cflags=(-m32 -march=geode -fPIC)
+    cflags=(-m32 -march=i586 -mtune=geode -fPIC)
     bscflags=(-target i586)
     rt=$libdir/libbscript_rt_i586.a
     run=(python3 "$repo/utils/run-i586")

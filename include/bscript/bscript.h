@@ -70,7 +70,7 @@ typedef struct bs_task_info {
 typedef struct bs_binding_module {
   const char *name;       /**< "Math" */
   const void *descriptor; /**< &bs_module_Math, as linked */
-  uint64_t hash;          /**< bs_module_hash of the descriptor bsc read */
+  uint64_t hash;          /**< bs_binding_hash of the descriptor bsc read */
 } bs_binding_module;
 
 typedef struct bs_behavior_info {
@@ -98,7 +98,7 @@ const char *bs_check_bindings(const bs_behavior_info *info);
 
 /** The hash of a binding module's descriptor (`&bs_module_Math`), the same
  *  as bs::moduleHash of bscript/Bind.h and bsc's (docs/bindings.md). */
-uint64_t bs_module_hash(const void *descriptor);
+uint64_t bs_binding_hash(const void *descriptor);
 
 /** What a program does when bs_state_init returned `code` (not BS_INIT_OK):
  *  prints why on stderr and returns the exit status 1. Programs that bsc

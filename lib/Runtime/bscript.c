@@ -54,7 +54,7 @@ static int bs_in_pointer(const unsigned char *d, uint32_t i) {
   return 0;
 }
 
-uint64_t bs_module_hash(const void *descriptor) {
+uint64_t bs_binding_hash(const void *descriptor) {
   const unsigned char *d = (const unsigned char *)descriptor;
   uint64_t hash = 0xcbf29ce484222325ull;
   /* The bytes up to the end of the string table, pointer fields as zero
@@ -91,7 +91,7 @@ const char *bs_check_bindings(const bs_behavior_info *info) {
     return 0;
   for (uint32_t i = 0; i < info->num_modules; ++i) {
     const bs_binding_module *m = &info->modules[i];
-    if (!m->descriptor || bs_module_hash(m->descriptor) != m->hash)
+    if (!m->descriptor || bs_binding_hash(m->descriptor) != m->hash)
       return m->name;
   }
   return 0;

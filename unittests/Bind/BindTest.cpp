@@ -517,7 +517,7 @@ TEST(BindTest, InProcessDescriptorAndThunks) {
   // The three implementations of the hash agree: bsc's reader (relocations
   // in the file), Bind.h's and the runtime's C one (addresses in memory).
   EXPECT_EQ(Model.Modules[0].Hash, bs::moduleHash(&bs_module_Forms));
-  EXPECT_EQ(Model.Modules[0].Hash, bs_module_hash(&bs_module_Forms));
+  EXPECT_EQ(Model.Modules[0].Hash, bs_binding_hash(&bs_module_Forms));
   const BoundClass &P = Model.Modules[0].Classes[0];
   std::ptrdiff_t XOff;
   std::memcpy(&XOff, D.member("x")->memptr, sizeof XOff);

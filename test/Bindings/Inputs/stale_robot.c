@@ -11,7 +11,7 @@ int main(void) {
   /* The runtime's hash of the descriptor linked here; bsc --dump-bindings
    * prints the one it compiled against. */
   printf("linked descriptor hash 0x%016llx\n",
-         (unsigned long long)bs_module_hash(bs_module_Stale));
+         (unsigned long long)bs_binding_hash(bs_module_Stale));
   fflush(stdout);
   int code = bs_stale_init(&state);
   if (code != BS_INIT_OK) {
