@@ -10,6 +10,15 @@
 // (REL, addend in the data) and R_X86_64_64 (RELA) can appear in such data;
 // anything else means the object is not what this reader expects.
 //
+// A shared library (ET_DYN) holds the same descriptor; its P fields are
+// filled by dynamic relocations instead: against a symbol (R_X86_64_64,
+// R_386_32, GLOB_DAT) when the target may be preempted, or RELATIVE (the
+// target address in the addend, in place for i386) when the linker bound it
+// locally. Everything is then located by (section index, offset in that
+// section) as in a relocatable, so the rest of the reader does not care.
+// Generated code calls thunks by name, so in a library they must be
+// exported: a thunk outside .dynsym is an error.
+//
 // Reading is two passes over all objects of a compilation: pass 1 collects
 // every module and the key symbol of every registered class and enum, pass
 // 2 resolves each signature's keys against that table, so a module may use
@@ -23,6 +32,7 @@
 #include "llvm/ADT/DenseMap.h"
 #include "llvm/ADT/StringExtras.h"
 #include "llvm/ADT/StringMap.h"
+#include "llvm/ADT/StringSet.h"
 #include "llvm/BinaryFormat/ELF.h"
 #include "llvm/BinaryFormat/Magic.h"
 #include "llvm/Demangle/Demangle.h"
@@ -127,6 +137,9 @@ struct Pointee {
   bool Defined = false;
   uint64_t SectionIndex = 0;
   uint64_t Offset = 0; ///< In its section.
+  /// Shared libraries: defined in .dynsym with default or protected
+  /// visibility, so that code outside the library can refer to it.
+  bool Exported = false;
 };
 
 struct Reloc {
@@ -134,6 +147,20 @@ struct Reloc {
   bool HasSym = false;
   SymbolRef Sym;
   int64_t Addend = 0;
+  /// Shared libraries: the symbol, read when indexing (the relocation's
+  /// symbol index is checked there, which SymbolRef would not be), or why
+  /// the relocation cannot be used.
+  Pointee DynSym;
+  std::string Error;
+};
+
+/// A descriptor symbol `bs_module_*` and where it is defined.
+struct DescriptorSym {
+  std::string Name;
+  uint64_t SectionIndex = 0;
+  uint64_t Offset = 0;
+  bool Exported = true;
+  std::string SectionName;
 };
 
 class ObjectReader {
@@ -141,7 +168,8 @@ public:
   ObjectReader(const ELFObjectFileBase &Obj, StringRef File, BindErrors &Errs)
       : Obj(Obj), File(File.str()), Errs(Errs),
         P(Obj.getBytesInAddress()),
-        Is386(Obj.getEMachine() == ELF::EM_386) {}
+        Is386(Obj.getEMachine() == ELF::EM_386),
+        IsDyn(Obj.getEType() == ELF::ET_DYN) {}
 
   /// Reads every descriptor of the object into `Out`.
   void readModules(std::vector<BoundModule> &Out);
@@ -152,15 +180,32 @@ private:
   BindErrors &Errs;
   unsigned P;
   bool Is386;
+  bool IsDyn; ///< A shared library: dynamic relocations, addresses.
 
   // Per section: relocations by offset, and contents.
   DenseMap<uint64_t, DenseMap<uint64_t, Reloc>> RelocsBySection;
   bool RelocsIndexed = false;
   // Defined symbols by (section index, offset), for section-relative
-  // relocations; the best (external before local) wins.
-  DenseMap<std::pair<uint64_t, uint64_t>, SymbolRef> SymbolAt;
+  // relocations; the best (exported, then external, before local) wins.
+  DenseMap<std::pair<uint64_t, uint64_t>, Pointee> SymbolAt;
+  /// Shared libraries: the allocated sections by address.
+  struct SectionRange {
+    uint64_t Addr, Size, Index;
+  };
+  std::vector<SectionRange> Sections;
+  /// Shared libraries: the descriptors, found while indexing.
+  std::vector<DescriptorSym> DynDescriptors;
+  /// Shared libraries: a table could not be read (reported); reading the
+  /// descriptors would only add follow-on errors.
+  bool DynDamaged = false;
 
   void indexRelocations();
+  void addSymbolAt(Pointee Pt);
+  template <class ELFT> void indexDynamic(const ELFObjectFile<ELFT> &EObj);
+  /// Shared libraries: the place of address `Addr`.
+  std::optional<std::pair<uint64_t, uint64_t>> locate(uint64_t Addr) const;
+  Expected<Pointee> pointeeAt(uint64_t Sec, uint64_t Off);
+  Expected<Pointee> resolveDynamic(const Reloc &R);
   Expected<StringRef> contents(uint64_t SectionIndex);
   /// The pointer field at `Off` of section `Sec`: std::nullopt if null.
   Expected<std::optional<Pointee>> pointerAt(uint64_t Sec, uint64_t Off);
@@ -170,14 +215,266 @@ private:
                                                 unsigned Slot);
   Expected<int64_t> readMemberPointer(const Pointee &Holder);
 
-  void readDescriptor(const ELFSymbolRef &Sym, uint64_t Sec, StringRef Data,
-                      std::vector<BoundModule> &Out);
+  void readDescriptor(StringRef SymName, uint64_t Base, uint64_t Sec,
+                      StringRef Data, std::vector<BoundModule> &Out);
 };
+
+static Pointee pointeeOf(const ELFSymbolRef &Sym, uint64_t SecIndex,
+                         uint64_t Offset);
+
+void ObjectReader::addSymbolAt(Pointee Pt) {
+  auto Rank = [](const Pointee &X) {
+    return 2 * X.Exported + hasExternalLinkage(X.Binding);
+  };
+  auto [It, New] = SymbolAt.try_emplace({Pt.SectionIndex, Pt.Offset}, Pt);
+  if (!New && Rank(Pt) > Rank(It->second))
+    It->second = std::move(Pt);
+}
+
+std::optional<std::pair<uint64_t, uint64_t>>
+ObjectReader::locate(uint64_t Addr) const {
+  for (const SectionRange &S : Sections)
+    if (Addr >= S.Addr && Addr - S.Addr < S.Size)
+      return std::make_pair(S.Index, Addr - S.Addr);
+  return std::nullopt;
+}
+
+/// Reads the symbols and dynamic relocations of a shared library through
+/// ELFFile, whose accessors check every table against the file (a damaged
+/// library is an error, never a read out of bounds). The relocation
+/// sections are the allocated SHT_REL/RELA/RELR sections: what
+/// ELFObjectFile::dynamic_relocation_sections finds through the dynamic
+/// table, whose entries it does not check.
+template <class ELFT>
+void ObjectReader::indexDynamic(const ELFObjectFile<ELFT> &EObj) {
+  const ELFFile<ELFT> &EF = EObj.getELFFile();
+  auto Damaged = [&](const Twine &What, Error E) {
+    DynDamaged = true;
+    Errs.add(File, "", "damaged shared library: " + What + ": " +
+                           toString(std::move(E)));
+  };
+  Expected<typename ELFT::ShdrRange> Secs = EF.sections();
+  if (!Secs)
+    return Damaged("section table", Secs.takeError());
+  auto SectionName = [&](const typename ELFT::Shdr &S) -> std::string {
+    Expected<StringRef> N = EF.getSectionName(S);
+    if (N)
+      return N->str();
+    consumeError(N.takeError());
+    return "?";
+  };
+  for (const auto &S : *Secs)
+    if ((S.sh_flags & ELF::SHF_ALLOC) && S.sh_size)
+      Sections.push_back({S.sh_addr, S.sh_size, uint64_t(&S - Secs->begin())});
+
+  // Symbols: .dynsym (what is exported) and .symtab when not stripped.
+  std::vector<Pointee> DynSyms;
+  StringMap<DescriptorSym> Descriptors;
+  for (const auto &SymSec : *Secs) {
+    bool IsDynSym = SymSec.sh_type == ELF::SHT_DYNSYM;
+    if (!IsDynSym && SymSec.sh_type != ELF::SHT_SYMTAB)
+      continue;
+    std::string SecName = SectionName(SymSec);
+    Expected<typename ELFT::SymRange> Syms = EF.symbols(&SymSec);
+    if (!Syms) {
+      Damaged("symbol table '" + SecName + "'", Syms.takeError());
+      continue;
+    }
+    Expected<StringRef> StrTab = EF.getStringTableForSymtab(SymSec, *Secs);
+    if (!StrTab) {
+      Damaged("symbol table '" + SecName + "'", StrTab.takeError());
+      continue;
+    }
+    for (const auto &Sym : *Syms) {
+      Pointee Pt;
+      Expected<StringRef> Name = Sym.getName(*StrTab);
+      if (Name)
+        Pt.Name = Name->str();
+      else
+        consumeError(Name.takeError());
+      Pt.Binding = Sym.getBinding();
+      uint8_t Type = Sym.getType();
+      unsigned Shndx = Sym.st_shndx;
+      Pt.Defined = Shndx != ELF::SHN_UNDEF && Shndx < Secs->size() &&
+                   Type != ELF::STT_SECTION && Type != ELF::STT_FILE;
+      if (Pt.Defined) {
+        Pt.SectionIndex = Shndx;
+        Pt.Offset = Sym.st_value - (*Secs)[Shndx].sh_addr;
+        uint8_t Vis = Sym.getVisibility();
+        Pt.Exported = IsDynSym && hasExternalLinkage(Pt.Binding) &&
+                      (Vis == ELF::STV_DEFAULT || Vis == ELF::STV_PROTECTED);
+      }
+      if (IsDynSym)
+        DynSyms.push_back(Pt);
+      if (!Pt.Defined || Pt.Name.empty())
+        continue;
+      if (StringRef(Pt.Name).starts_with("bs_module_") &&
+          Type != ELF::STT_FUNC) {
+        auto [It, New] = Descriptors.try_emplace(
+            Pt.Name,
+            DescriptorSym{Pt.Name, Pt.SectionIndex, Pt.Offset, Pt.Exported,
+                          SectionName((*Secs)[Pt.SectionIndex])});
+        if (!New)
+          It->second.Exported |= Pt.Exported;
+      }
+      addSymbolAt(std::move(Pt));
+    }
+  }
+  // A symbol of .symtab that .dynsym exports too is exported.
+  StringSet<> Exported;
+  for (const Pointee &Pt : DynSyms)
+    if (Pt.Exported)
+      Exported.insert(Pt.Name);
+  for (auto &Entry : SymbolAt)
+    Entry.second.Exported |= Exported.contains(Entry.second.Name);
+  for (auto &Entry : Descriptors)
+    DynDescriptors.push_back(Entry.second);
+  // In the order of the object, so that messages and dumps are stable.
+  llvm::sort(DynDescriptors, [](const DescriptorSym &A, const DescriptorSym &B) {
+    return std::tie(A.SectionIndex, A.Offset) <
+           std::tie(B.SectionIndex, B.Offset);
+  });
+
+  // Dynamic relocations, by the place they patch.
+  auto Add = [&](uint64_t Where, uint32_t Type, uint32_t SymIndex,
+                 std::optional<int64_t> Addend) {
+    std::optional<std::pair<uint64_t, uint64_t>> Loc = locate(Where);
+    if (!Loc)
+      return; // Patches nothing that a descriptor could point at.
+    Reloc &Rel = RelocsBySection[Loc->first][Loc->second];
+    Rel = Reloc();
+    Rel.Type = Type;
+    if (SymIndex != 0) {
+      if (SymIndex >= DynSyms.size())
+        Rel.Error = "relocation against symbol " + std::to_string(SymIndex) +
+                    " outside the dynamic symbol table: damaged library";
+      else {
+        Rel.HasSym = true;
+        Rel.DynSym = DynSyms[SymIndex];
+      }
+    }
+    if (Addend) {
+      Rel.Addend = *Addend;
+      return;
+    }
+    // REL (i386) and RELR: the addend is the pointer-sized value in place.
+    Expected<StringRef> Data = contents(Loc->first);
+    if (!Data) {
+      Rel.Error = toString(Data.takeError());
+      return;
+    }
+    if (Loc->second + P > Data->size())
+      return; // .bss: zero
+    const char *B = Data->data() + Loc->second;
+    Rel.Addend = P == 4 ? int64_t(support::endian::read32le(B))
+                        : int64_t(support::endian::read64le(B));
+  };
+  for (const auto &RelSec : *Secs) {
+    if (!(RelSec.sh_flags & ELF::SHF_ALLOC))
+      continue;
+    std::string RelName = SectionName(RelSec);
+    auto Bad = [&](Error E) {
+      Damaged("relocation section '" + RelName + "'", std::move(E));
+    };
+    if (RelSec.sh_type == ELF::SHT_RELA) {
+      Expected<typename ELFT::RelaRange> Relas = EF.relas(RelSec);
+      if (!Relas) {
+        Bad(Relas.takeError());
+        continue;
+      }
+      for (const auto &R : *Relas)
+        Add(R.r_offset, R.getType(false), R.getSymbol(false),
+            int64_t(R.r_addend));
+    } else if (RelSec.sh_type == ELF::SHT_REL) {
+      Expected<typename ELFT::RelRange> Rels = EF.rels(RelSec);
+      if (!Rels) {
+        Bad(Rels.takeError());
+        continue;
+      }
+      for (const auto &R : *Rels)
+        Add(R.r_offset, R.getType(false), R.getSymbol(false), std::nullopt);
+    } else if (RelSec.sh_type == ELF::SHT_RELR) {
+      // -z pack-relative-relocs: RELATIVE relocations, addends in place.
+      Expected<typename ELFT::RelrRange> Relrs = EF.relrs(RelSec);
+      if (!Relrs) {
+        Bad(Relrs.takeError());
+        continue;
+      }
+      uint32_t Relative = Is386 ? uint32_t(ELF::R_386_RELATIVE)
+                                : uint32_t(ELF::R_X86_64_RELATIVE);
+      for (const auto &R : EF.decode_relrs(*Relrs))
+        Add(R.r_offset, Relative, 0, std::nullopt);
+    }
+  }
+}
+
+Expected<Pointee> ObjectReader::pointeeAt(uint64_t Sec, uint64_t Off) {
+  auto It = SymbolAt.find({Sec, Off});
+  if (It != SymbolAt.end())
+    return It->second;
+  if (!IsDyn)
+    return createStringError(inconvertibleErrorCode(),
+                             "no symbol is defined where a pointer points "
+                             "(section " +
+                                 Twine(Sec) + " + " + Twine(Off) + ")");
+  // A stripped library: a place without a name. Holders and member
+  // pointers are read by place; a thunk or key needs its name (checked by
+  // the caller).
+  Pointee Pt;
+  Pt.Defined = true;
+  Pt.SectionIndex = Sec;
+  Pt.Offset = Off;
+  return Pt;
+}
+
+Expected<Pointee> ObjectReader::resolveDynamic(const Reloc &R) {
+  if (!R.Error.empty())
+    return createStringError(inconvertibleErrorCode(), R.Error);
+  uint32_t Relative = Is386 ? uint32_t(ELF::R_386_RELATIVE)
+                            : uint32_t(ELF::R_X86_64_RELATIVE);
+  uint32_t Absolute =
+      Is386 ? uint32_t(ELF::R_386_32) : uint32_t(ELF::R_X86_64_64);
+  uint32_t GlobDat =
+      Is386 ? uint32_t(ELF::R_386_GLOB_DAT) : uint32_t(ELF::R_X86_64_GLOB_DAT);
+  if (R.Type == Relative) {
+    uint64_t Addr = P == 4 ? uint64_t(uint32_t(R.Addend)) : uint64_t(R.Addend);
+    std::optional<std::pair<uint64_t, uint64_t>> Loc = locate(Addr);
+    if (!Loc)
+      return createStringError(inconvertibleErrorCode(),
+                               "a pointer points outside the library (0x" +
+                                   Twine::utohexstr(Addr) + ")");
+    return pointeeAt(Loc->first, Loc->second);
+  }
+  if (R.Type != Absolute && R.Type != GlobDat) {
+    StringRef Name = getELFRelocationTypeName(Obj.getEMachine(), R.Type);
+    return createStringError(
+        inconvertibleErrorCode(),
+        "unexpected relocation type " + Name + " (expected " +
+            (Is386 ? "R_386_32 or R_386_RELATIVE"
+                   : "R_X86_64_64 or R_X86_64_RELATIVE") +
+            "); was the library built with Bind.h?");
+  }
+  if (!R.HasSym)
+    return createStringError(inconvertibleErrorCode(),
+                             "relocation without a symbol");
+  const Pointee &Sym = R.DynSym;
+  int64_t Addend = R.Type == GlobDat ? 0 : R.Addend;
+  if (!Sym.Defined || Addend == 0)
+    return Sym; // Undefined: another library defines it.
+  return pointeeAt(Sym.SectionIndex, Sym.Offset + Addend);
+}
 
 void ObjectReader::indexRelocations() {
   if (RelocsIndexed)
     return;
   RelocsIndexed = true;
+  if (IsDyn) {
+    if (auto *O = dyn_cast<ELF32LEObjectFile>(&Obj))
+      indexDynamic(*O);
+    else if (auto *O = dyn_cast<ELF64LEObjectFile>(&Obj))
+      indexDynamic(*O);
+    return;
+  }
   for (const SectionRef &S : Obj.sections()) {
     Expected<section_iterator> Target = S.getRelocatedSection();
     if (!Target) {
@@ -232,12 +529,7 @@ void ObjectReader::indexRelocations() {
       consumeError(Value.takeError());
       continue;
     }
-    auto Key = std::make_pair((*Sec)->getIndex(), *Value);
-    auto It = SymbolAt.find(Key);
-    if (It == SymbolAt.end() ||
-        (!hasExternalLinkage(ELFSymbolRef(It->second).getBinding()) &&
-         hasExternalLinkage(Sym.getBinding())))
-      SymbolAt[Key] = Sym;
+    addSymbolAt(pointeeOf(Sym, (*Sec)->getIndex(), *Value));
   }
 }
 
@@ -267,6 +559,8 @@ static Pointee pointeeOf(const ELFSymbolRef &Sym, uint64_t SecIndex,
 }
 
 Expected<Pointee> ObjectReader::resolve(const Reloc &R) {
+  if (IsDyn)
+    return resolveDynamic(R);
   uint32_t Want = Is386 ? uint32_t(ELF::R_386_32) : uint32_t(ELF::R_X86_64_64);
   if (R.Type != Want) {
     StringRef Name = getELFRelocationTypeName(Obj.getEMachine(), R.Type);
@@ -296,15 +590,7 @@ Expected<Pointee> ObjectReader::resolve(const Reloc &R) {
         return V.takeError();
       Base = *V;
     }
-    uint64_t Index = (*Sec)->getIndex();
-    uint64_t Off = Base + R.Addend;
-    auto It = SymbolAt.find({Index, Off});
-    if (It == SymbolAt.end())
-      return createStringError(inconvertibleErrorCode(),
-                               "no symbol is defined where a pointer points "
-                               "(section " +
-                                   Twine(Index) + " + " + Twine(Off) + ")");
-    return pointeeOf(ELFSymbolRef(It->second), Index, Off);
+    return pointeeAt((*Sec)->getIndex(), Base + R.Addend);
   }
   if (!Defined) {
     Pointee Pt;
@@ -385,11 +671,9 @@ public:
   StringRef Bytes;
 };
 
-void ObjectReader::readDescriptor(const ELFSymbolRef &Sym, uint64_t Sec,
-                                  StringRef Data,
+void ObjectReader::readDescriptor(StringRef SymName, uint64_t Base,
+                                  uint64_t Sec, StringRef Data,
                                   std::vector<BoundModule> &Out) {
-  std::string SymName = cantFail(Sym.getName()).str();
-  uint64_t Base = cantFail(Sym.getValue());
   auto Fail = [&](const Twine &Msg) { Errs.add(File, SymName, Msg); };
   if (Base + HeaderSize > Data.size()) {
     Fail("descriptor is truncated");
@@ -474,7 +758,7 @@ void ObjectReader::readDescriptor(const ELFSymbolRef &Sym, uint64_t Sec,
 
   BoundModule M;
   M.File = File;
-  M.Symbol = SymName;
+  M.Symbol = SymName.str();
   M.Version = Version;
   M.Name = Str(D.u32(H_Name));
   StringRef Want = StringRef(SymName).drop_front(strlen("bs_module_"));
@@ -483,11 +767,25 @@ void ObjectReader::readDescriptor(const ELFSymbolRef &Sym, uint64_t Sec,
     return;
   }
 
+  // A linked library turns hidden symbols into locals, so there only the
+  // name tells an anonymous namespace.
+  auto InternalKey = [&](const Pointee &Pt) {
+    return IsDyn ? Pt.Name.empty() || StringRef(Pt.Name).contains("_GLOBAL__N")
+                 : !hasExternalLinkage(Pt.Binding);
+  };
   // A key field: the symbol of bs::TypeKey<T>::id, which must be external.
   auto Key = [&](std::optional<Pointee> Pt, const Twine &Path) -> std::string {
     if (!Pt)
       return "";
-    if (!hasExternalLinkage(Pt->Binding))
+    if (IsDyn && Pt->Name.empty()) {
+      Errs.add(File, Path.str(),
+               "the type key has no symbol (a stripped library whose key is "
+               "not exported); bsc identifies types by their key's name: "
+               "keep the symbol table or give bs::TypeKey default "
+               "visibility");
+      return "";
+    }
+    if (InternalKey(*Pt))
       Errs.add(File, Path.str(),
                "type '" + typeOfKey(Pt->Name) +
                    "' has internal linkage (declared in an anonymous "
@@ -510,6 +808,23 @@ void ObjectReader::readDescriptor(const ELFSymbolRef &Sym, uint64_t Sec,
     }
     if (!*T)
       return "";
+    if (IsDyn) {
+      if (!(*T)->Exported && !QuietLinkage)
+        Errs.add(File, Path.str(),
+                 "thunk '" +
+                     ((*T)->Name.empty()
+                          ? "at 0x" + Twine::utohexstr((*T)->Offset) +
+                                " in section " + Twine((*T)->SectionIndex)
+                          : Twine(demangled((*T)->Name))) +
+                     "' is not exported by the shared library (built with "
+                     "-fvisibility=hidden, hidden by a version script, or "
+                     "a static function?); generated code calls it by "
+                     "name: give the thunks default visibility (build the "
+                     "bindings without -fvisibility=hidden, or list "
+                     "bs::detail::* as global in the version script) or "
+                     "link the binding objects statically");
+      return (*T)->Name;
+    }
     if (!hasExternalLinkage((*T)->Binding) && !QuietLinkage)
       Errs.add(File, Path.str(),
                "thunk '" + demangled((*T)->Name) +
@@ -536,7 +851,7 @@ void ObjectReader::readDescriptor(const ELFSymbolRef &Sym, uint64_t Sec,
     C.Key = Key(KeyPt, Path);
     if (C.Key.empty() && Errs.Messages.size() == ErrorsBefore)
       Errs.add(File, Path, "class without a type key");
-    InternalClass.push_back(KeyPt && !hasExternalLinkage(KeyPt->Binding));
+    InternalClass.push_back(KeyPt && InternalKey(*KeyPt));
     QuietLinkage = InternalClass.back();
     if (std::optional<Pointee> Life = Ptr(T_Class, I, 1, Path)) {
       C.Construct = Thunk(Life, 0, Path + " construct");
@@ -588,10 +903,12 @@ void ObjectReader::readDescriptor(const ELFSymbolRef &Sym, uint64_t Sec,
     Mb.Flags = Word(T_Member, I, 7);
     QuietLinkage = Owner != NoIndex && InternalClass[Owner];
     uint32_t First = Word(T_Member, I, 8), N = Word(T_Member, I, 9);
+    size_t ErrorsBeforeThunk = Errs.Messages.size();
     Mb.Thunk = Thunk(Ptr(T_Member, I, 0, Path), 0, Path);
     Mb.Setter = Thunk(Ptr(T_Member, I, 1, Path + " setter"), 0,
                       Path + " setter");
-    if (Mb.Thunk.empty())
+    if (Mb.Thunk.empty() && !QuietLinkage &&
+        Errs.Messages.size() == ErrorsBeforeThunk)
       Errs.add(File, Path, "member without a thunk");
     if (std::optional<Pointee> MP = Ptr(T_Member, I, 2, Path)) {
       Expected<int64_t> Off = readMemberPointer(*MP);
@@ -707,13 +1024,39 @@ void ObjectReader::readDescriptor(const ELFSymbolRef &Sym, uint64_t Sec,
 }
 
 void ObjectReader::readModules(std::vector<BoundModule> &Out) {
+  if (IsDyn) {
+    indexRelocations();
+    if (DynDamaged)
+      return;
+    for (const DescriptorSym &D : DynDescriptors) {
+      Expected<StringRef> Data = contents(D.SectionIndex);
+      if (D.SectionName != "bs_modules") {
+        Errs.add(File, D.Name, "descriptor is not in section 'bs_modules'");
+        continue;
+      }
+      if (!Data) {
+        Errs.add(File, D.Name, Data.takeError());
+        continue;
+      }
+      if (!D.Exported) {
+        // Generated code refers to the descriptor for the hash check.
+        Errs.add(File, D.Name,
+                 "descriptor is not exported by the shared library (hidden "
+                 "by a version script?); list bs_module_* as global");
+        continue;
+      }
+      readDescriptor(D.Name, D.Offset, D.SectionIndex, *Data, Out);
+    }
+    return;
+  }
   for (const ELFSymbolRef &Sym : Obj.symbols()) {
     Expected<StringRef> Name = Sym.getName();
     if (!Name) {
       consumeError(Name.takeError());
       continue;
     }
-    if (!Name->starts_with("bs_module_"))
+    // Descriptors are data; the runtime's bs_module_hash is not one.
+    if (!Name->starts_with("bs_module_") || Sym.getELFType() == ELF::STT_FUNC)
       continue;
     Expected<section_iterator> Sec = Sym.getSection();
     if (!Sec) {
@@ -734,13 +1077,36 @@ void ObjectReader::readModules(std::vector<BoundModule> &Out) {
       Errs.add(File, *Name, Data.takeError());
       continue;
     }
-    readDescriptor(Sym, (*Sec)->getIndex(), *Data, Out);
+    readDescriptor(*Name, cantFail(Sym.getValue()), (*Sec)->getIndex(), *Data,
+                   Out);
   }
 }
 
 //===----------------------------------------------------------------------===//
 // Files and archives
 //===----------------------------------------------------------------------===//
+
+/// A position-independent executable is ET_DYN too; DF_1_PIE tells it from
+/// a shared library.
+template <class ELFT> static bool isPIE(const ELFFile<ELFT> &EF) {
+  Expected<typename ELFT::DynRange> Dyn = EF.dynamicEntries();
+  if (!Dyn) {
+    consumeError(Dyn.takeError());
+    return false;
+  }
+  for (const auto &D : *Dyn)
+    if (D.d_tag == ELF::DT_FLAGS_1 && (D.getVal() & ELF::DF_1_PIE))
+      return true;
+  return false;
+}
+
+static bool isProgram(const ELFObjectFileBase &Obj) {
+  if (auto *O = dyn_cast<ELF32LEObjectFile>(&Obj))
+    return isPIE(O->getELFFile());
+  if (auto *O = dyn_cast<ELF64LEObjectFile>(&Obj))
+    return isPIE(O->getELFFile());
+  return false;
+}
 
 class Reader {
 public:
@@ -797,9 +1163,12 @@ void Reader::readBinary(Binary &Bin, StringRef Name) {
     return;
   }
   auto *Obj = dyn_cast<ELFObjectFileBase>(&Bin);
-  if (!Obj || Obj->getEType() != ELF::ET_REL) {
-    Errs.add(Name, "", "not an ELF relocatable object (bsc reads the "
-                       "binding objects that will be linked, built with -c)");
+  if (!Obj || (Obj->getEType() != ELF::ET_REL &&
+               (Obj->getEType() != ELF::ET_DYN || isProgram(*Obj)))) {
+    Errs.add(Name, "",
+             "not an ELF relocatable object or shared library (bsc reads the "
+             "binding objects that will be linked: built with -c, in an "
+             "archive, or linked with -shared)");
     return;
   }
   uint16_t WantMachine =
