@@ -71,11 +71,16 @@ static void addDefinedSymbols(object::Binary &Bin, StringSet<> &Defined) {
     consumeError(std::move(Err));
     return;
   }
+  // A shared library exports through its dynamic symbol table only: its
+  // .symtab also lists what -fvisibility=hidden or a version script hid,
+  // which a program cannot link against.
+  auto *ELF = dyn_cast<object::ELFObjectFileBase>(&Bin);
+  if (ELF && ELF->getEType() == ELF::ET_DYN) {
+    AddFrom(ELF->getDynamicSymbolIterators());
+    return;
+  }
   if (auto *Obj = dyn_cast<object::ObjectFile>(&Bin))
     AddFrom(Obj->symbols());
-  // A shared library exports through its dynamic symbol table.
-  if (auto *ELF = dyn_cast<object::ELFObjectFileBase>(&Bin))
-    AddFrom(ELF->getDynamicSymbolIterators());
 }
 
 std::vector<std::string>

@@ -15,7 +15,9 @@
 #include "llvm/ExecutionEngine/Orc/Core.h"
 #include "llvm/ExecutionEngine/Orc/ExecutionUtils.h"
 #include "llvm/ExecutionEngine/Orc/ObjectLinkingLayer.h"
+#include "llvm/BinaryFormat/Magic.h"
 #include "llvm/Support/MemoryBuffer.h"
+#include "llvm/Support/FileSystem.h"
 #include "llvm/Support/Path.h"
 #include "llvm/ExecutionEngine/Orc/JITTargetMachineBuilder.h"
 #include "llvm/ExecutionEngine/Orc/LLJIT.h"
@@ -29,6 +31,11 @@
 using namespace bsc;
 
 char StaleBindingError::ID;
+char BindingLoadError::ID;
+
+void BindingLoadError::log(llvm::raw_ostream &OS) const {
+  OS << "cannot load '" << Path << "': " << Message;
+}
 
 void StaleBindingError::log(llvm::raw_ostream &OS) const {
   OS << "the behavior was compiled against binding module '" << Module
@@ -111,11 +118,32 @@ llvm::Error BehaviorJIT::addObjectFile(llvm::StringRef Path) {
   }
   if (llvm::sys::path::extension(Path) == ".a")
     return addArchive(Path);
+  llvm::file_magic Magic;
+  if (!llvm::identify_magic(Path, Magic) &&
+      Magic == llvm::file_magic::elf_shared_object)
+    return addSharedLibrary(Path);
   auto Buf = llvm::MemoryBuffer::getFile(Path);
   if (!Buf)
     return llvm::createStringError(Buf.getError(),
                                    "cannot read '" + Path + "'");
   return J->addObjectFile(std::move(*Buf));
+}
+
+llvm::Error BehaviorJIT::addSharedLibrary(llvm::StringRef Path) {
+  // dlopen: the library's own dependencies (libstdc++, ...) come with it,
+  // and generated code finds the thunks it exports by name, as the dynamic
+  // linker would for a program linked against it.
+  // By absolute path: dlopen looks for a bare name in the library path,
+  // not in the current directory.
+  llvm::SmallString<256> Abs(Path);
+  llvm::sys::fs::make_absolute(Abs);
+  auto G = llvm::orc::DynamicLibrarySearchGenerator::Load(
+      Abs.c_str(), J->getDataLayout().getGlobalPrefix());
+  if (!G)
+    return llvm::make_error<BindingLoadError>(
+        Path.str(), llvm::toString(G.takeError()));
+  J->getMainJITDylib().addGenerator(std::move(*G));
+  return llvm::Error::success();
 }
 
 llvm::Error BehaviorJIT::addArchive(llvm::StringRef Path) {

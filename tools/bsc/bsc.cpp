@@ -26,6 +26,7 @@
 #include "llvm/ADT/StringExtras.h"
 #include "llvm/ADT/StringSet.h"
 #include "llvm/Demangle/Demangle.h"
+#include "llvm/BinaryFormat/Magic.h"
 #include "llvm/Support/CommandLine.h"
 #include "llvm/Support/FileSystem.h"
 #include "llvm/Support/InitLLVM.h"
@@ -342,7 +343,22 @@ bool linkProgram(Compilation &C, const llvm::Triple &T, llvm::StringRef Object,
   // The binding objects hold the thunks the object calls; they need the
   // C++ runtime and libm (the runtime's own io thunks need neither).
   Args.push_back(Object.str());
-  Args.insert(Args.end(), BindObjects.begin(), BindObjects.end());
+  for (const std::string &Bind : BindObjects) {
+    llvm::file_magic Magic;
+    if (llvm::identify_magic(Bind, Magic) ||
+        Magic != llvm::file_magic::elf_shared_object) {
+      Args.push_back(Bind);
+      continue;
+    }
+    // A shared library: by absolute path, and its directory as the
+    // program's run path, so that the program runs from any directory.
+    llvm::SmallString<256> Abs(Bind);
+    llvm::sys::fs::make_absolute(Abs);
+    llvm::sys::path::remove_dots(Abs, /*remove_dot_dot=*/true);
+    Args.push_back(std::string(Abs));
+    Args.push_back("-Wl,-rpath," +
+                   llvm::sys::path::parent_path(Abs).str());
+  }
   Args.push_back(Runtime.str().str());
   if (!BindObjects.empty())
     Args.insert(Args.end(), {"-lstdc++", "-lm"});
@@ -536,8 +552,14 @@ int runJIT(Compilation &C, const FrontendOptions &FOpts) {
     if (llvm::Error E = JIT.addArchive(Path))
       return finishWithInternalError(C, std::move(E));
   for (const std::string &Path : BindObjects)
-    if (llvm::Error E = JIT.addObjectFile(Path))
-      return finishWithInternalError(C, std::move(E));
+    if (llvm::Error E = JIT.addObjectFile(Path)) {
+      // A library the loader refuses is the user's to fix.
+      E = llvm::handleErrors(std::move(E), [&](const BindingLoadError &L) {
+        C.Diags.report(llvm::SMLoc(), diag::err_bind_load)
+            << L.Path << L.Message;
+      });
+      return E ? finishWithInternalError(C, std::move(E)) : finish(C);
+    }
   if (llvm::Error E =
           JIT.addModule(std::move(M), std::move(Ctx), BOpts.Target.OptLevel))
     return finishWithInternalError(C, std::move(E));

@@ -11,6 +11,7 @@
 //===----------------------------------------------------------------------===//
 #include "bsc/AST/Native.h"
 #include "bsc/Bind/Bind.h"
+#include "llvm/ADT/StringExtras.h"
 #include "llvm/Object/ELFObjectFile.h"
 #include "llvm/Support/MemoryBuffer.h"
 #include "llvm/Support/raw_ostream.h"
@@ -424,6 +425,66 @@ TEST(BindTest, ArchiveAndDump) {
   EXPECT_NE(S.find("BehaviorInput size 24 align 4"), std::string::npos);
   EXPECT_NE(S.find(" input\n"), std::string::npos);
   EXPECT_NE(S.find(" output\n"), std::string::npos);
+}
+
+//===----------------------------------------------------------------------===//
+// Shared libraries
+//===----------------------------------------------------------------------===//
+
+/// The dump of `Model` without file names, one string per module, sorted:
+/// the order of modules in a library is its section's, in an object its
+/// symbol table's.
+std::vector<std::string> moduleDumps(BindingModel Model) {
+  for (BoundModule &M : Model.Modules)
+    M.File = "F";
+  std::string S;
+  raw_string_ostream OS(S);
+  dumpBindings(Model, OS);
+  std::vector<std::string> Blocks;
+  for (StringRef Line : split(S, '\n')) {
+    if (Line.starts_with("module ") || Blocks.empty())
+      Blocks.emplace_back();
+    Blocks.back() += Line.str() + "\n";
+  }
+  llvm::sort(Blocks);
+  return Blocks;
+}
+
+/// A library holds the descriptors of the objects linked into it, read
+/// through dynamic relocations (against symbols, RELATIVE, packed RELR,
+/// REL with addends in place for i386): the same model, hashes included.
+TEST(BindTest, SharedLibraryMatchesObject) {
+  struct Case {
+    const char *Lib, *Obj;
+  };
+  const Case Cases[] = {
+      {"forms.gcc32.so", "forms.gcc32.o"},
+      {"forms.gcc64.so", "forms.gcc64.o"},
+      {"forms.clang32.so", "forms.clang32.o"},
+      {"forms.clang64.so", "forms.clang64.o"},
+      {"forms.gcc64.relr.so", "forms.gcc64.o"},
+      {"forms.clang64.relr.so", "forms.clang64.o"},
+      {"forms.gcc32.symbolic.so", "forms.gcc32.o"},
+      {"forms.clang64.symbolic.so", "forms.clang64.o"},
+      {"soccer.gcc32.so", "soccer.gcc32.o"},
+      {"soccer.gcc64.so", "soccer.gcc64.o"},
+      {"soccer.clang32.so", "soccer.clang32.o"},
+      {"soccer.clang64.so", "soccer.clang64.o"},
+  };
+  for (const Case &C : Cases) {
+    SCOPED_TRACE(C.Lib);
+    const Triple &T = StringRef(C.Lib).contains("32") ? I586 : X64;
+    BindingModel Lib = read({obj(C.Lib)}, T);
+    BindingModel Obj = read({obj(C.Obj)}, T);
+    ASSERT_EQ(Lib.Modules.size(), Obj.Modules.size());
+    for (const BoundModule &M : Lib.Modules) {
+      EXPECT_EQ(M.File, obj(C.Lib));
+      const BoundModule *O = Obj.findModule(M.Name);
+      ASSERT_TRUE(O);
+      EXPECT_EQ(M.Hash, O->Hash);
+    }
+    EXPECT_EQ(moduleDumps(Lib), moduleDumps(Obj));
+  }
 }
 
 //===----------------------------------------------------------------------===//

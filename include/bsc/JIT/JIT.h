@@ -40,6 +40,20 @@ public:
   }
 };
 
+/// A --bind shared library that the JIT cannot load (dlopen failed: a
+/// missing dependency, an unresolvable symbol); `Message` is the loader's.
+class BindingLoadError : public llvm::ErrorInfo<BindingLoadError> {
+public:
+  static char ID;
+  std::string Path, Message;
+  BindingLoadError(std::string Path, std::string Message)
+      : Path(std::move(Path)), Message(std::move(Message)) {}
+  void log(llvm::raw_ostream &OS) const override;
+  std::error_code convertToErrorCode() const override {
+    return llvm::inconvertibleErrorCode();
+  }
+};
+
 /// One JIT session on the host: a DataLayout to generate code for, then one
 /// module to run.
 class BehaviorJIT {
@@ -58,10 +72,15 @@ public:
                         std::unique_ptr<llvm::LLVMContext> Ctx,
                         unsigned OptLevel);
 
-  /// Adds a binding object (.o) or archive (.a) built for the host: the
-  /// thunks generated code calls. Their own references (libstdc++, libm)
-  /// resolve against this process.
+  /// Adds a binding object (.o), archive (.a) or shared library built for
+  /// the host: the thunks generated code calls. Their own references
+  /// (libstdc++, libm) resolve against this process. A shared library that
+  /// cannot be loaded gives a BindingLoadError.
   llvm::Error addObjectFile(llvm::StringRef Path);
+
+  /// Loads shared library `Path` into this process and resolves generated
+  /// code's references from what it exports.
+  llvm::Error addSharedLibrary(llvm::StringRef Path);
 
   /// Adds the members of archive `Path` on demand, as a static linker does,
   /// without this process's libraries: for the runtime archive, whose
