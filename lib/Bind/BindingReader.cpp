@@ -1055,7 +1055,7 @@ void ObjectReader::readModules(std::vector<BoundModule> &Out) {
       consumeError(Name.takeError());
       continue;
     }
-    // Descriptors are data; the runtime's bs_module_hash is not one.
+    // Descriptors are data: a function so named is not one.
     if (!Name->starts_with("bs_module_") || Sym.getELFType() == ELF::STT_FUNC)
       continue;
     Expected<section_iterator> Sec = Sym.getSection();

@@ -3,8 +3,9 @@
 // Robot code registers C++ types and functions with bscript/Bind.h; each
 // BS_MODULE becomes one constexpr descriptor `bs_module_<Name>` in section
 // `bs_modules` of the compiled binding object. This library reads those
-// descriptors back from ELF relocatable objects and archives (following the
-// relocations to the symbols of type keys and thunks) and hands the rest of
+// descriptors back from ELF relocatable objects, archives and shared
+// libraries (following the relocations, or a library's dynamic relocations,
+// to the symbols of type keys and thunks) and hands the rest of
 // bsc a plain model: modules, classes with their target size and alignment,
 // members with their thunk symbols, field offsets and signatures, enums, and
 // the declared `input` and `output` types.
