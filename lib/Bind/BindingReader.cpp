@@ -809,7 +809,9 @@ void ObjectReader::readDescriptor(StringRef SymName, uint64_t Base,
     if (!*T)
       return "";
     if (IsDyn) {
-      if (!(*T)->Exported && !QuietLinkage)
+      // Undefined: another library is to define it, which the driver
+      // checks against the libraries it links (findUndefinedSymbols).
+      if ((*T)->Defined && !(*T)->Exported && !QuietLinkage)
         Errs.add(File, Path.str(),
                  "thunk '" +
                      ((*T)->Name.empty()
