@@ -116,8 +116,9 @@ cl::opt<std::string> BehaviorNameArg(
     cl::value_desc("name"), cl::cat(BscCategory));
 cl::list<std::string>
     BindObjects("bind",
-                cl::desc("A binding object or archive registering C++ for "
-                         "the scripts (repeatable; read for -target)"),
+                cl::desc("A binding object, archive or shared library "
+                         "registering C++ for the scripts (repeatable; read "
+                         "for -target)"),
                 cl::value_desc("obj"), cl::cat(BscCategory), BSC_BOTH);
 cl::opt<bool> DumpBindings("dump-bindings",
                            cl::desc("Print what the standard modules and the "
