@@ -65,6 +65,13 @@ const char *headName(const BehaviorInput &In, const BehaviorOutput &Out) {
 
 } // namespace
 
+/// Ends the run with `Status`: the behavior's class values (locals of
+/// tasks still running) are destroyed before the state goes away.
+int finish(int Status) {
+  bs_soccer_destroy(&State);
+  return Status;
+}
+
 int main() {
   if (bs_soccer_info.state_size != BS_SOCCER_STATE_SIZE ||
       bs_soccer_info.state_align != BS_SOCCER_STATE_ALIGN) {
@@ -140,7 +147,7 @@ int main() {
     if (!Done) {
       if (TaskState < 0) {
         std::printf("cycle %d: gotoBallAndKick failed\n", N);
-        return 1;
+        return finish(1);
       }
       if (TaskState == BS_TASK_DONE) {
         std::printf("cycle %d: gotoBallAndKick done\n", N);
@@ -151,14 +158,14 @@ int main() {
     if (Done && W.executed() != MotionType::kick) {
       if (!W.ballWasKicked()) {
         std::printf("the ball was not kicked\n");
-        return 1;
+        return finish(1);
       }
       std::printf("success: the ball was kicked, %d mm away after %d "
                   "cycles\n",
                   W.ballDistance(), N);
-      return 0;
+      return finish(0);
     }
   }
   std::printf("gotoBallAndKick still running after %d cycles\n", MaxCycles);
-  return 1;
+  return finish(1);
 }

@@ -34,7 +34,7 @@ extern "C" {
 #endif
 
 /** Bumped whenever the layout below changes; bs_behavior_info carries it. */
-#define BS_ABI_VERSION 2
+#define BS_ABI_VERSION 3
 
 /** Task states (language.md): > 0 running, 0 done, < 0 failure. */
 #define BS_TASK_DONE 0
@@ -81,6 +81,10 @@ typedef struct bs_behavior_info {
   const bs_task_info *tasks;
   uint32_t num_modules; /**< Binding modules it was compiled against. */
   const bs_binding_module *modules;
+  /** Destroys the registered class values that the state's task frames
+   *  hold (those whose C++ destructor does something); NULL when the
+   *  behavior has none. Called through bs_state_destroy. */
+  void (*destroy)(void *state);
 } bs_behavior_info;
 
 /** Zeroes a state: every task reports done and starts from the top at its
@@ -89,6 +93,16 @@ typedef struct bs_behavior_info {
  *  untouched) if a linked binding module differs from the one the behavior
  *  was compiled against. */
 int bs_state_init(void *state, const bs_behavior_info *info);
+
+/** Ends the life of a state: runs the C++ destructor of every registered
+ *  class value that a task frame holds (tasks that are running keep their
+ *  locals in the state across cycles). Call it once when the behavior
+ *  stops, before the storage is freed or reused; afterwards initialise the
+ *  state again before the next cycle. A state that bs_state_init zeroed
+ *  and that never ran, or one destroyed already, holds nothing to destroy
+ *  (calling it again is harmless). Does nothing if `info` is from another
+ *  ABI version. */
+void bs_state_destroy(void *state, const bs_behavior_info *info);
 
 /** The name of the first binding module whose linked descriptor does not
  *  have the hash the behavior was compiled against, or NULL if all match:

@@ -165,10 +165,19 @@ void FunctionEmitter::emitClassCopy(const NativeClass *C, llvm::Value *Dst,
                                     llvm::Value *Src, bool DstConstructed) {
   if (Dst == Src)
     return;
-  const std::string &Thunk = DstConstructed ? C->Assign : C->Copy;
-  if (!C->CopiesAsBytes && !Thunk.empty()) {
-    Builder.CreateCall(CGM.getLifeThunk(Thunk, 2), {Dst, Src});
-    return;
+  if (!C->CopiesAsBytes) {
+    if (DstConstructed && !C->Assign.empty()) {
+      Builder.CreateCall(CGM.getLifeThunk(C->Assign, 2), {Dst, Src});
+      return;
+    }
+    if (!C->Copy.empty()) {
+      // Without an assign thunk, assignment is destroy + copy-construct.
+      if (DstConstructed && ModuleEmitter::needsDestroy(C))
+        emitDestroy(C, Dst);
+      Builder.CreateCall(CGM.getLifeThunk(C->Copy, 2), {Dst, Src});
+      return;
+    }
+    // Not copyable: Sema reports every copy (err_class_not_copyable).
   }
   // Loads first, then stores: the source may overlap the destination.
   unsigned U = getCopyUnit(C);
@@ -226,6 +235,7 @@ FunctionEmitter::emitNativeCallWithValues(const NativeFunction &NF,
   }
   if (Out) {
     Builder.CreateCall(Callee, Args);
+    pushTemp(NF.Result.TheClass, Out);
     return Out;
   }
   if (NF.Result.TheCode == NativeType::Void)
@@ -342,6 +352,7 @@ llvm::Value *FunctionEmitter::emitCall(const CallExpr &E) {
     }
     if (Out) {
       Builder.CreateCall(Callee, Args);
+      pushTemp(E.Ty->getClass(), Out);
       return Out;
     }
     if (Callee->getReturnType()->isVoidTy())
@@ -413,8 +424,10 @@ llvm::Value *FunctionEmitter::emitLogical(const BinaryExpr &E) {
     Builder.CreateCondBr(L, RHSBB, EndBB);
   else
     Builder.CreateCondBr(L, EndBB, RHSBB);
+  // The right operand's temporaries die at its end, so that only those of
+  // the operand that ran are destroyed (no flags).
   Builder.SetInsertPoint(RHSBB);
-  llvm::Value *R = emitCond(E.RHS);
+  llvm::Value *R = emitFullCond(E.RHS);
   llvm::BasicBlock *RHSEnd = Builder.GetInsertBlock();
   Builder.CreateBr(EndBB);
 

@@ -29,12 +29,55 @@ void FunctionEmitter::emitBranch(llvm::BasicBlock *Dest) {
     Builder.CreateBr(Dest);
 }
 
+void FunctionEmitter::emitDestroy(const NativeClass *C, llvm::Value *Addr) {
+  Builder.CreateCall(CGM.getLifeThunk(C->Destroy, 1), {Addr});
+}
+
+void FunctionEmitter::pushTemp(const NativeClass *C, llvm::Value *Addr) {
+  if (ModuleEmitter::needsDestroy(C))
+    Temps.push_back({C, Addr});
+}
+
+void FunctionEmitter::popTemps(size_t Depth) {
+  while (Temps.size() > Depth) {
+    Cleanup T = Temps.pop_back_val();
+    emitDestroy(T.Class, T.Addr);
+  }
+}
+
+void FunctionEmitter::emitLiveCleanups(size_t Depth, bool Forget) {
+  for (size_t I = Live.size(); I > Depth; --I)
+    emitDestroy(Live[I - 1].Class, Live[I - 1].Addr);
+  if (Forget)
+    Live.resize(std::min(Live.size(), Depth));
+}
+
+llvm::Value *FunctionEmitter::emitFullCond(const Expr *E) {
+  size_t Depth = Temps.size();
+  llvm::Value *V = emitCond(E);
+  popTemps(Depth);
+  return V;
+}
+
 void FunctionEmitter::emitBlock(const BlockStmt *S) {
+  // A block is a scope: the func locals it constructed die at its end (a
+  // task's live on in the frame; Live stays empty in tasks).
+  size_t Depth = Live.size();
   for (const Stmt *Child : S->Stmts)
     emitStmt(Child);
+  emitLiveCleanups(Depth, /*Forget=*/true);
 }
 
 void FunctionEmitter::emitStmt(const Stmt *S) {
+  // Every statement ends its full expressions: what remains of their
+  // temporaries is destroyed here (conditions, `return` and `yield` do it
+  // themselves, before they branch).
+  size_t Depth = Temps.size();
+  emitStmtImpl(S);
+  popTemps(Depth);
+}
+
+void FunctionEmitter::emitStmtImpl(const Stmt *S) {
   switch (S->getKind()) {
   case NodeKind::BlockStmt:
     return emitBlock(llvm::cast<BlockStmt>(S));
@@ -74,11 +117,28 @@ void FunctionEmitter::emitStmt(const Stmt *S) {
 void FunctionEmitter::emitDecl(const DeclStmt &S) {
   const VarDecl *V = S.Var;
   if (V->Ty->isClass()) {
+    const NativeClass *C = V->Ty->getClass();
     llvm::Value *Addr = getDeclAddress(V);
-    if (V->Init)
+    if (!llvm::isa_and_nonnull<TaskDecl>(V->Owner)) {
+      // A func's local is constructed here (copy-constructed from its
+      // initialiser) and destroyed at the end of its block.
+      if (V->Init)
+        emitClassCopy(C, Addr, emitExpr(V->Init), /*DstConstructed=*/false);
+      else
+        emitClassInit(C, Addr);
+      if (ModuleEmitter::needsDestroy(C))
+        Live.push_back({C, Addr});
+      return;
+    }
+    // A task's local was constructed at the reset and stays constructed
+    // until the task finishes: assign it, or make it a fresh default value.
+    if (V->Init) {
       emitStore(V->Ty, emitExpr(V->Init), Addr);
-    else
-      emitClassInit(V->Ty->getClass(), Addr); // Trivially destructible.
+    } else {
+      if (ModuleEmitter::needsDestroy(C))
+        emitDestroy(C, Addr);
+      emitClassInit(C, Addr);
+    }
     return;
   }
   // Without an initialiser the local is its type's zero, every time the
@@ -153,7 +213,7 @@ void FunctionEmitter::emitAssign(const AssignStmt &S) {
 
 void FunctionEmitter::emitIf(const IfStmt &S) {
   llvm::LLVMContext &Ctx = CGM.getContext();
-  llvm::Value *Cond = emitCond(S.Cond);
+  llvm::Value *Cond = emitFullCond(S.Cond);
   llvm::BasicBlock *ThenBB = llvm::BasicBlock::Create(Ctx, "if.then", Fn);
   llvm::BasicBlock *EndBB = llvm::BasicBlock::Create(Ctx, "if.end");
   llvm::BasicBlock *ElseBB = EndBB;
@@ -175,6 +235,9 @@ void FunctionEmitter::emitIf(const IfStmt &S) {
 
 void FunctionEmitter::emitFor(const ForStmt &S) {
   llvm::LLVMContext &Ctx = CGM.getContext();
+  // The head is a scope around the loop: a local declared by `init` lives
+  // until the loop ends.
+  size_t HeadDepth = Live.size();
   if (S.Init)
     emitStmt(S.Init);
   llvm::BasicBlock *CondBB = llvm::BasicBlock::Create(Ctx, "for.cond", Fn);
@@ -186,13 +249,13 @@ void FunctionEmitter::emitFor(const ForStmt &S) {
   // A missing condition is true.
   Builder.SetInsertPoint(CondBB);
   if (S.Cond)
-    Builder.CreateCondBr(emitCond(S.Cond), BodyBB, EndBB);
+    Builder.CreateCondBr(emitFullCond(S.Cond), BodyBB, EndBB);
   else
     Builder.CreateBr(BodyBB);
 
   BodyBB->insertInto(Fn);
   Builder.SetInsertPoint(BodyBB);
-  Loops.push_back({EndBB, StepBB});
+  Loops.push_back({EndBB, StepBB, Live.size()});
   emitBlock(S.Body);
   Loops.pop_back();
   emitBranch(StepBB);
@@ -207,21 +270,28 @@ void FunctionEmitter::emitFor(const ForStmt &S) {
 
   EndBB->insertInto(Fn);
   Builder.SetInsertPoint(EndBB);
+  emitLiveCleanups(HeadDepth, /*Forget=*/true);
 }
 
+// `break` and `continue` leave the blocks of the loop body early: their
+// func locals are destroyed on the way out, innermost first.
 void FunctionEmitter::emitBreak(const BreakStmt &) {
   assert(!Loops.empty() && "Sema allows break only in loops");
+  emitLiveCleanups(Loops.back().LiveDepth, /*Forget=*/false);
   Builder.CreateBr(Loops.back().Break);
   startDeadBlock();
 }
 
 void FunctionEmitter::emitContinue(const ContinueStmt &) {
   assert(!Loops.empty() && "Sema allows continue only in loops");
+  emitLiveCleanups(Loops.back().LiveDepth, /*Forget=*/false);
   Builder.CreateBr(Loops.back().Continue);
   startDeadBlock();
 }
 
 void FunctionEmitter::emitReturn(const ReturnStmt &S) {
+  // The result is complete before anything dies: the value's temporaries,
+  // then every live local and parameter, newest first.
   if (Task) {
     // `return` in a task: done, and start from the top at the next call.
     emitTaskFinish();
@@ -229,13 +299,18 @@ void FunctionEmitter::emitReturn(const ReturnStmt &S) {
     // Into the caller's raw storage: copy-construct.
     emitClassCopy(S.Value->Ty->getClass(), Fn->getArg(1), emitExpr(S.Value),
                   /*DstConstructed=*/false);
+    popTemps(0);
+    emitLiveCleanups(0, /*Forget=*/false);
     Builder.CreateRetVoid();
   } else if (S.Value) {
     llvm::Value *V = emitExpr(S.Value);
     if (Fn->getReturnType()->isFloatTy() && V->getType()->isIntegerTy(32))
       V = Builder.CreateSIToFP(V, Builder.getFloatTy());
+    popTemps(0);
+    emitLiveCleanups(0, /*Forget=*/false);
     Builder.CreateRet(V);
   } else {
+    emitLiveCleanups(0, /*Forget=*/false);
     Builder.CreateRetVoid();
   }
   startDeadBlock();

@@ -3,13 +3,20 @@
 // A task is a singleton generator. Its function runs one step per call:
 //
 //   entry:     if (frame.state <= 0 || cycle - frame.last_cycle > 1) goto reset
-//   reset:     frame.resume = 0; every local = its zero value
+//   reset:     [destroy(frame) if live]; frame.resume = 0; every local = its
+//              zero value, class values constructed; [frame.live = 1]
 //   dispatch:  frame.last_cycle = cycle; frame.params = args
 //              switch (frame.resume) { 0: start; k: resume.k }
 //   start:     the body...
 //   yield k:   frame.resume = k; frame.state = v; ret void
 //   resume.k:  ...the code after the k-th yield
-//   end:       frame.resume = 0; frame.state = done; ret void
+//   end:       [destroy(frame)]; frame.resume = 0; frame.state = done; ret
+//
+// Frames with class values whose destructor is not trivial end with an
+// `i8 live` field and have a function `bs.<M>.<task>.destroy(state)` that
+// destroys the values if live (newest first) and clears it. The values are
+// constructed at the reset and destroyed when the task finishes, at its
+// next reset (a running task that missed a cycle) or by bs_state_destroy.
 //
 // This is done by hand rather than with LLVM's coroutine intrinsics because
 // the frame must be a struct whose size is fixed before any optimisation
@@ -78,9 +85,18 @@ void FunctionEmitter::emitTaskPrologue() {
   llvm::BasicBlock *DispatchBB = llvm::BasicBlock::Create(Ctx, "dispatch", Fn);
   Builder.CreateCondBr(Reset, ResetBB, DispatchBB);
 
-  // Fresh locals: one store per field (never memset: no libc).
+  // Fresh locals: one store per field (never memset: no libc). Class
+  // values are constructed, parameters first (they are assigned at every
+  // call); values a running task left behind (a missed cycle) are
+  // destroyed first, through the frame's destroy function.
   Builder.SetInsertPoint(ResetBB);
+  if (FI.Destroy)
+    Builder.CreateCall(FI.Destroy, {StatePtr});
   Builder.CreateStore(Builder.getInt32(0), ResumeAddr);
+  for (const ParamDecl *P : Task->Params)
+    if (P->Ty->isClass())
+      emitClassInit(P->Ty->getClass(),
+                    getFrameFieldPtr(Task, FI.Fields.lookup(P)));
   for (const VarDecl *V : Task->Locals) {
     llvm::Value *Addr = getFrameFieldPtr(Task, FI.Fields.lookup(V));
     if (V->Ty->isClass())
@@ -88,11 +104,9 @@ void FunctionEmitter::emitTaskPrologue() {
     else
       Builder.CreateStore(CGM.getZeroValue(V->Ty), Addr);
   }
-  // Class parameters are assigned at every call: construct them once.
-  for (const ParamDecl *P : Task->Params)
-    if (P->Ty->isClass())
-      emitClassInit(P->Ty->getClass(),
-                    getFrameFieldPtr(Task, FI.Fields.lookup(P)));
+  if (FI.LiveField)
+    Builder.CreateStore(Builder.getInt8(1),
+                        getFrameFieldPtr(Task, FI.LiveField));
   Builder.CreateBr(DispatchBB);
 
   // Parameters are re-evaluated at every call (rule 2): the body reads the
@@ -111,6 +125,9 @@ void FunctionEmitter::emitTaskPrologue() {
 }
 
 void FunctionEmitter::emitTaskFinish() {
+  // A finished task's values are dead: the next call resets the frame.
+  if (llvm::Function *Destroy = CGM.getFrame(Task).Destroy)
+    Builder.CreateCall(Destroy, {StatePtr});
   Builder.CreateStore(Builder.getInt32(0), getFrameFieldPtr(Task, FrameResume));
   Builder.CreateStore(Builder.getInt32(TaskDone),
                       getFrameFieldPtr(Task, FrameState));
@@ -136,6 +153,7 @@ void FunctionEmitter::emitYield(const YieldStmt &S) {
   assert(S.ResumePoint > 0 && "Sema numbers every yield");
   llvm::Value *State =
       S.Value ? emitToTaskState(S.Value) : Builder.getInt32(TaskRunning);
+  popTemps(0); // The value's temporaries are allocas of this call.
   Builder.CreateStore(Builder.getInt32(S.ResumePoint),
                       getFrameFieldPtr(Task, FrameResume));
   Builder.CreateStore(State, getFrameFieldPtr(Task, FrameState));

@@ -24,7 +24,7 @@ using namespace bsc;
 using namespace bsc::codegen;
 
 /// The ABI version written into bs_behavior_info (BS_ABI_VERSION).
-static constexpr uint32_t ABIVersion = 2;
+static constexpr uint32_t ABIVersion = 3;
 
 std::string bsc::getEntrySymbol(llvm::StringRef BehaviorName,
                                 const CallableDecl &D) {
@@ -120,6 +120,14 @@ llvm::Type *ModuleEmitter::getClassMemoryType(const NativeClass *C) {
 bool ModuleEmitter::returnsClass(const CallableDecl &D) {
   const auto *F = llvm::dyn_cast<FuncDecl>(&D);
   return F && F->ResultTy && F->ResultTy->isClass();
+}
+
+bool ModuleEmitter::needsDestroy(const NativeClass *C) {
+  return C && !C->TriviallyDestructible && !C->Destroy.empty();
+}
+
+bool ModuleEmitter::needsDestroy(const Type *T) {
+  return T && T->isClass() && needsDestroy(T->getClass());
 }
 
 llvm::Constant *ModuleEmitter::getZeroValue(const Type *T) {
@@ -245,6 +253,20 @@ void ModuleEmitter::layoutState() {
       Add(P, P->Ty);
     for (const VarDecl *V : T->Locals)
       Add(V, V->Ty);
+    // Whether the class values are constructed: the frame must stay
+    // zero-initialisable (bs_state_init only zeroes), and a state can be
+    // destroyed at any time, also before a task ever ran.
+    bool Destructible =
+        llvm::any_of(T->Params, [](const ParamDecl *P) {
+          return needsDestroy(P->Ty);
+        }) ||
+        llvm::any_of(T->Locals,
+                     [](const VarDecl *V) { return needsDestroy(V->Ty); });
+    if (Destructible) {
+      FI.LiveField = Fields.size();
+      Fields.push_back(llvm::Type::getInt8Ty(Ctx));
+      FI.FieldNames.push_back(Prefix + "live");
+    }
     std::string Name = "bs.frame.";
     if (T->Module)
       Name += T->Module->Name + ".";
@@ -296,6 +318,76 @@ void ModuleEmitter::declareFunctions() {
     else
       Declare(D, llvm::Type::getVoidTy(Ctx));
   }
+  // After the funcs and tasks, so that they keep their names should a
+  // nested func be called `destroy` (LLVM then renames this one).
+  for (const TaskDecl *T : B.Tasks) {
+    FrameInfo &FI = Frames[T];
+    if (!FI.LiveField)
+      continue;
+    FI.Destroy = llvm::Function::Create(
+        llvm::FunctionType::get(llvm::Type::getVoidTy(Ctx), {Ptr}, false),
+        llvm::GlobalValue::InternalLinkage, getInternalName(*T) + ".destroy",
+        M);
+    addCommonAttributes(FI.Destroy);
+    FI.Destroy->getArg(0)->setName("state");
+  }
+}
+
+void ModuleEmitter::emitDestroyFunctions() {
+  llvm::Type *I8 = llvm::Type::getInt8Ty(Ctx);
+  llvm::SmallVector<llvm::Function *, 4> TaskDestroys;
+  for (const TaskDecl *T : B.Tasks) {
+    const FrameInfo &FI = Frames[T];
+    if (!FI.Destroy)
+      continue;
+    TaskDestroys.push_back(FI.Destroy);
+    // if (frame.live) { destroy locals and params, newest first; live = 0 }
+    llvm::Function *F = FI.Destroy;
+    llvm::BasicBlock *Entry = llvm::BasicBlock::Create(Ctx, "entry", F);
+    llvm::BasicBlock *Live = llvm::BasicBlock::Create(Ctx, "live", F);
+    llvm::BasicBlock *Done = llvm::BasicBlock::Create(Ctx, "done", F);
+    llvm::IRBuilder<> IRB(Entry);
+    llvm::Value *Frame = IRB.CreateConstInBoundsGEP2_32(
+        StateTy, F->getArg(0), 0, FI.StateFieldNo, "frame");
+    auto Field = [&](unsigned No) {
+      return IRB.CreateConstInBoundsGEP2_32(FI.Ty, Frame, 0, No,
+                                            FI.FieldNames[No]);
+    };
+    llvm::Value *LiveAddr = Field(FI.LiveField);
+    IRB.CreateCondBr(
+        IRB.CreateICmpNE(IRB.CreateLoad(I8, LiveAddr, "is.live"),
+                         llvm::ConstantInt::get(I8, 0)),
+        Live, Done);
+    IRB.SetInsertPoint(Live);
+    // The reset constructs the parameters, then the locals.
+    llvm::SmallVector<std::pair<const Decl *, const Type *>, 8> Values;
+    for (const ParamDecl *P : T->Params)
+      Values.push_back({P, P->Ty});
+    for (const VarDecl *V : T->Locals)
+      Values.push_back({V, V->Ty});
+    for (auto It = Values.rbegin(); It != Values.rend(); ++It)
+      if (needsDestroy(It->second))
+        IRB.CreateCall(getLifeThunk(It->second->getClass()->Destroy, 1),
+                       {Field(FI.Fields.lookup(It->first))});
+    IRB.CreateStore(llvm::ConstantInt::get(I8, 0), LiveAddr);
+    IRB.CreateBr(Done);
+    IRB.SetInsertPoint(Done);
+    IRB.CreateRetVoid();
+  }
+  if (TaskDestroys.empty())
+    return;
+  // The behavior's: every frame, the last task's first.
+  BehaviorDestroy = llvm::Function::Create(
+      llvm::FunctionType::get(llvm::Type::getVoidTy(Ctx),
+                              {llvm::PointerType::getUnqual(Ctx)}, false),
+      llvm::GlobalValue::InternalLinkage, "bs.destroy", M);
+  addCommonAttributes(BehaviorDestroy);
+  BehaviorDestroy->getArg(0)->setName("state");
+  llvm::IRBuilder<> IRB(
+      llvm::BasicBlock::Create(Ctx, "entry", BehaviorDestroy));
+  for (auto It = TaskDestroys.rbegin(); It != TaskDestroys.rend(); ++It)
+    IRB.CreateCall(*It, {BehaviorDestroy->getArg(0)});
+  IRB.CreateRetVoid();
 }
 
 std::vector<const CallableDecl *> ModuleEmitter::getSourceOrder() const {
@@ -377,7 +469,7 @@ void ModuleEmitter::emitInfo() {
   auto *ModuleInfoTy =
       llvm::StructType::create(Ctx, {Ptr, Ptr, I64}, "bs_binding_module");
   auto *InfoTy = llvm::StructType::create(
-      Ctx, {I32, I32, I32, I32, Ptr, I32, Ptr}, "bs_behavior_info");
+      Ctx, {I32, I32, I32, I32, Ptr, I32, Ptr, Ptr}, "bs_behavior_info");
 
   // A private constant array, or null when there is nothing to list.
   auto EmitTable = [&](llvm::StructType *Ty,
@@ -418,7 +510,10 @@ void ModuleEmitter::emitInfo() {
                llvm::ConstantInt::get(I32, Layout.Tasks.size()),
                EmitTable(TaskInfoTy, Tasks, "_tasks"),
                llvm::ConstantInt::get(I32, Modules.size()),
-               EmitTable(ModuleInfoTy, Modules, "_modules")});
+               EmitTable(ModuleInfoTy, Modules, "_modules"),
+               BehaviorDestroy ? static_cast<llvm::Constant *>(BehaviorDestroy)
+                               : llvm::ConstantPointerNull::get(
+                                     llvm::PointerType::getUnqual(Ctx))});
   Info = new llvm::GlobalVariable(M, InfoTy, /*isConstant=*/true,
                                   llvm::GlobalValue::ExternalLinkage, Init,
                                   Layout.InfoSymbol);
@@ -436,6 +531,9 @@ void ModuleEmitter::emitProgramMain() {
       "bs_begin_cycle",
       llvm::FunctionType::get(llvm::Type::getVoidTy(Ctx), {Ptr, Ptr, Ptr},
                               false));
+  llvm::FunctionCallee Destroy = M.getOrInsertFunction(
+      "bs_state_destroy",
+      llvm::FunctionType::get(llvm::Type::getVoidTy(Ctx), {Ptr, Ptr}, false));
 
   auto *Main = llvm::Function::Create(llvm::FunctionType::get(I32, false),
                                       llvm::GlobalValue::ExternalLinkage,
@@ -484,7 +582,9 @@ void ModuleEmitter::emitProgramMain() {
                  Body);
   IRB.CreateBr(Cond);
 
+  // The end of the behavior: the class values running tasks still hold.
   IRB.SetInsertPoint(Done);
+  IRB.CreateCall(Destroy, {State, Info});
   IRB.CreateRet(llvm::ConstantInt::get(I32, 0));
 }
 
@@ -494,6 +594,7 @@ void ModuleEmitter::run() {
   for (const CallableDecl *D : getSourceOrder())
     FunctionEmitter(*this, *D).run();
   emitEntries();
+  emitDestroyFunctions();
   emitInfo();
   if (Opts.ProgramEntry)
     emitProgramMain();
@@ -551,20 +652,23 @@ void FunctionEmitter::emitFuncPrologue() {
     Slot->setAlignment(DL.getABITypeAlign(MemTy));
     return Slot;
   };
-  // Class values are constructed before anything assigns them.
+  // A class parameter is the func's own copy: copy-constructed from the
+  // caller's value, destroyed at every return. Locals are constructed by
+  // their declarations (emitDecl).
   for (const ParamDecl *P : D.Params) {
     llvm::AllocaInst *Slot = CreateSlot(P->Ty, P->getName().Name + ".addr");
     Slots[P] = Slot;
-    if (P->Ty->isClass())
-      emitClassInit(P->Ty->getClass(), Slot);
-    emitStore(P->Ty, Fn->getArg(P->Index + getFirstParamArg()), Slot);
+    llvm::Value *Arg = Fn->getArg(P->Index + getFirstParamArg());
+    if (P->Ty->isClass()) {
+      emitClassCopy(P->Ty->getClass(), Slot, Arg, /*DstConstructed=*/false);
+      if (ModuleEmitter::needsDestroy(P->Ty))
+        Live.push_back({P->Ty->getClass(), Slot});
+      continue;
+    }
+    emitStore(P->Ty, Arg, Slot);
   }
-  for (const VarDecl *V : D.Locals) {
-    llvm::AllocaInst *Slot = CreateSlot(V->Ty, V->getName().Name);
-    Slots[V] = Slot;
-    if (V->Ty->isClass())
-      emitClassInit(V->Ty->getClass(), Slot);
-  }
+  for (const VarDecl *V : D.Locals)
+    Slots[V] = CreateSlot(V->Ty, V->getName().Name);
 }
 
 void FunctionEmitter::emitFuncEpilogue() {
@@ -573,6 +677,7 @@ void FunctionEmitter::emitFuncEpilogue() {
     // still end here, it returns the zero value rather than anything
     // undefined (runtime safety).
     const Type *ResultTy = llvm::cast<FuncDecl>(D).ResultTy;
+    emitLiveCleanups(0, /*Forget=*/false);
     if (ResultTy->isClass()) {
       emitClassInit(ResultTy->getClass(), Fn->getArg(1));
       Builder.CreateRetVoid();

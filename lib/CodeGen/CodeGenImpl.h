@@ -63,6 +63,11 @@ struct FrameInfo {
   llvm::DenseMap<const Decl *, unsigned> Fields;
   /// Per field, the name its address gets in the IR (`fib.b`).
   llvm::SmallVector<std::string, 8> FieldNames;
+  /// Frames holding class values with a destructor: the trailing `i8 live`
+  /// field (1 while the values are constructed; a zeroed state has 0) and
+  /// `bs.<M>.<task>.destroy`. Otherwise 0 and null.
+  unsigned LiveField = 0;
+  llvm::Function *Destroy = nullptr;
 };
 
 /// What the whole behavior shares while it is being lowered.
@@ -111,6 +116,10 @@ public:
   /// Whether a func returns a class value (through a hidden `ptr` result
   /// parameter after the state).
   static bool returnsClass(const CallableDecl &D);
+  /// Whether values of `T` must be destroyed: a class whose destructor is
+  /// not trivial (and that has the destroy thunk).
+  static bool needsDestroy(const Type *T);
+  static bool needsDestroy(const NativeClass *C);
 
   /// Attributes every generated function carries: nounwind (b-script has no
   /// exceptions) and "no-builtins" so that loop idioms and runs of stores
@@ -127,6 +136,9 @@ private:
   void layoutState();
   void declareFunctions();
   void emitEntries();
+  /// `bs.<M>.<task>.destroy` of every frame with a LiveField, and the
+  /// behavior's `bs.destroy` that calls them (bs_behavior_info.destroy).
+  void emitDestroyFunctions();
   void emitInfo();
   void emitProgramMain();
 
@@ -142,6 +154,7 @@ private:
   llvm::DenseMap<const NativeFunction *, llvm::FunctionCallee> Natives;
   llvm::StringMap<llvm::Constant *> Strings;
   llvm::GlobalVariable *Info = nullptr;
+  llvm::Function *BehaviorDestroy = nullptr; ///< Null: nothing to destroy.
 };
 
 /// Lowers the body of one func or task into its (already declared) function.
@@ -169,6 +182,7 @@ private:
 
   // CGStmt.cpp.
   void emitStmt(const Stmt *S);
+  void emitStmtImpl(const Stmt *S);
   void emitBlock(const BlockStmt *S);
   void emitDecl(const DeclStmt &S);
   void emitAssign(const AssignStmt &S);
@@ -177,6 +191,30 @@ private:
   void emitBreak(const BreakStmt &S);
   void emitContinue(const ContinueStmt &S);
   void emitReturn(const ReturnStmt &S);
+  /// A condition as a full expression: its temporaries are destroyed
+  /// before the branch.
+  llvm::Value *emitFullCond(const Expr *E);
+
+  // Destruction (CGStmt.cpp). A func's class parameters and locals live
+  // from their construction to the end of their scope; a task's live in its
+  // frame from reset to finish (CGTask.cpp). Temporaries live to the end of
+  // their full expression, and those of the right operand of && and || to
+  // the end of that operand: every exit knows statically what is alive, so
+  // no flags are needed.
+  struct Cleanup {
+    const NativeClass *Class;
+    llvm::Value *Addr;
+  };
+  /// Calls the destroy thunk of a class value.
+  void emitDestroy(const NativeClass *C, llvm::Value *Addr);
+  /// Records a temporary class value (a call's result) for destruction at
+  /// the end of the full expression; nothing for trivial destructors.
+  void pushTemp(const NativeClass *C, llvm::Value *Addr);
+  /// Destroys the temporaries above `Depth`, newest first, and forgets them.
+  void popTemps(size_t Depth);
+  /// Destroys the func's live variables above `Depth`, newest first; with
+  /// `Forget` they also leave the list (the end of their scope).
+  void emitLiveCleanups(size_t Depth, bool Forget);
   /// Starts a new block for code that follows a terminator (after `return`,
   /// `break`, ...); it has no predecessors and is removed at the end.
   void startDeadBlock();
@@ -227,7 +265,8 @@ private:
   /// thunk if the class has one.
   void emitClassInit(const NativeClass *C, llvm::Value *Addr);
   /// *Dst = *Src: loads/stores when the class copies as bytes, else the
-  /// assign thunk (Dst constructed) or the copy thunk (Dst raw).
+  /// assign thunk (Dst constructed) or the copy thunk (Dst raw; a
+  /// constructed Dst without assign thunk is destroyed first).
   void emitClassCopy(const NativeClass *C, llvm::Value *Dst, llvm::Value *Src,
                      bool DstConstructed);
   /// Calls a registered function, method, getter or operator: class
@@ -267,6 +306,7 @@ private:
   struct LoopTargets {
     llvm::BasicBlock *Break;
     llvm::BasicBlock *Continue;
+    size_t LiveDepth; ///< Variables alive where they branch to.
   };
   llvm::SmallVector<LoopTargets, 4> Loops;
   /// Task bodies: the dispatch on frame.resume; a case is added per yield.
@@ -276,6 +316,11 @@ private:
   /// The address of each frame field used, computed once (task, field).
   llvm::DenseMap<std::pair<const TaskDecl *, unsigned>, llvm::Value *>
       FieldAddrs;
+  /// Pending temporaries of the current full expression.
+  llvm::SmallVector<Cleanup, 4> Temps;
+  /// A func's constructed parameters and locals that need destruction,
+  /// outermost first.
+  llvm::SmallVector<Cleanup, 8> Live;
 };
 
 } // namespace codegen

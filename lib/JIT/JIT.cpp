@@ -74,6 +74,7 @@ llvm::Expected<std::unique_ptr<BehaviorJIT>> BehaviorJIT::create() {
   Add("bs_state_init", &bs_state_init);
   Add("bs_begin_cycle", &bs_begin_cycle);
   Add("bs_task_state", &bs_task_state);
+  Add("bs_state_destroy", &bs_state_destroy);
   // What the io thunks call.
   Add("bs_io_printi", &bs_io_printi);
   Add("bs_io_printf", &bs_io_printf);
@@ -220,6 +221,18 @@ llvm::Error BehaviorJIT::runCycles(llvm::StringRef InfoSymbol,
   for (unsigned I = 0; I < Cycles; ++I) {
     bs_begin_cycle(State, In, Out);
     Entry(State);
+  }
+  // As a robot program ends: the class values running tasks hold, then
+  // the input and output objects.
+  bs_state_destroy(State, Info);
+  for (auto [Spec, Obj] : {std::pair(&Input, &InputObj),
+                           std::pair(&Output, &OutputObj)}) {
+    if (Spec->Destroy.empty())
+      continue;
+    auto Dtor = J->lookup(Spec->Destroy);
+    if (!Dtor)
+      return Dtor.takeError();
+    Dtor->toPtr<void (*)(void *)>()(Obj->get());
   }
   std::fflush(stdout);
   return llvm::Error::success();

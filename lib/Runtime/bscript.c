@@ -6,7 +6,9 @@
  * (include/bscript/bscript.h). It stays tiny and free of libc (loops instead of memset and
  * strcmp; CMake also stops the compiler from turning them back into calls)
  * so that it links into any robot software, and so that the same file serves
- * the host, the JIT and the robot.
+ * the host, the JIT and the robot. bs_state_destroy runs the behavior's
+ * own destroy function (bs_behavior_info.destroy), which calls the class
+ * destructors' thunks.
  *===----------------------------------------------------------------------===*/
 #include "bscript/bscript.h"
 
@@ -111,6 +113,13 @@ int bs_state_init(void *state, const bs_behavior_info *info) {
   for (uint32_t i = 0; i < info->state_size; ++i)
     bytes[i] = 0;
   return BS_INIT_OK;
+}
+
+void bs_state_destroy(void *state, const bs_behavior_info *info) {
+  /* Each frame records whether its values are constructed, so a zeroed
+   * state and a destroyed one are both left alone. */
+  if (state && info && info->abi_version == BS_ABI_VERSION && info->destroy)
+    info->destroy(state);
 }
 
 void bs_begin_cycle(void *state, const void *input, void *output) {

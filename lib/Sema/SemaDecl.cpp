@@ -76,9 +76,26 @@ const Type *Sema::resolveNativeType(const NativeType &T) {
   llvm_unreachable("unknown native type code");
 }
 
+void Sema::checkCopyable(const Type *T, llvm::SMRange R, llvm::StringRef What,
+                         bool Assigns) {
+  if (!T || !T->isClass())
+    return;
+  const NativeClass *C = T->getClass();
+  // CodeGen copy-constructs with the copy thunk, and assigns with the
+  // assign thunk or else by destroying and copy-constructing.
+  if (C->CopiesAsBytes || !C->Copy.empty() || (Assigns && !C->Assign.empty()))
+    return;
+  diag(R.Start, diag::err_class_not_copyable) << T->getName() << What << R;
+}
+
 void Sema::checkSignature(CallableDecl *C) {
-  for (ParamDecl *P : C->Params)
+  // Every call copies its arguments into the parameters: a func's own
+  // copies (copy-constructed), a task's in its frame (assigned).
+  for (ParamDecl *P : C->Params) {
     P->Ty = resolveType(P->TypeName);
+    checkCopyable(P->Ty, P->TypeName.getRange(), "a parameter",
+                  /*Assigns=*/llvm::isa<TaskDecl>(C));
+  }
   if (auto *F = llvm::dyn_cast<FuncDecl>(C))
     F->ResultTy = F->ResultTypeName.empty() ? Types.getVoid()
                                             : resolveType(F->ResultTypeName);
@@ -115,6 +132,10 @@ void Sema::checkVarDecl(VarDecl *V) {
       diag(V->Init->getLoc(), diag::err_init_type_mismatch)
           << V->getName().Name << V->Ty->getName() << InitTy->getName()
           << V->Init->getRange();
+    else if (!V->Ty->isError() && !InitTy->isError())
+      // A task's local is constructed at the reset and assigned here.
+      checkCopyable(V->Ty, V->Init->getRange(), "an initialiser",
+                    /*Assigns=*/llvm::isa<TaskDecl>(CurCallable));
   }
   declare(V);
 }

@@ -499,8 +499,18 @@ void Sema::checkAssign(AssignStmt *S) {
         << S->Value->getRange();
   };
   if (!Compound) {
-    if (!convertImplicitly(S->Value, TargetTy))
+    if (!convertImplicitly(S->Value, TargetTy)) {
       Mismatch(ValueTy);
+      return;
+    }
+    // A property's setter (or a field without offset) copies in C++.
+    const auto *ME = llvm::dyn_cast<MemberExpr>(S->Target);
+    bool ThroughSetter = ME && ME->Resolved &&
+                         !(ME->Resolved->Kind == NativeFunction::Field &&
+                           ME->Resolved->FieldOffset);
+    if (!ThroughSetter)
+      checkCopyable(TargetTy, S->Value->getRange(), "an assignment",
+                    /*Assigns=*/true);
     return;
   }
   if (!TargetTy->isArithmetic()) {

@@ -112,6 +112,12 @@ public:
   const Type *resolveType(const QualifiedName &N);
   const Type *resolveNativeType(const NativeType &T);
   void checkSignature(CallableDecl *C);
+  /// Reports a class value of type `T` that `What` would copy ("a
+  /// parameter", ...) when the class has neither a copy thunk (nor, if the
+  /// copy `Assigns` to a constructed value, an assign thunk) nor may be
+  /// copied as bytes (err_class_not_copyable).
+  void checkCopyable(const Type *T, llvm::SMRange R, llvm::StringRef What,
+                     bool Assigns = false);
   void checkTopLevelCallable(CallableDecl *C);
   void checkCallableBody(CallableDecl *C);
   void checkNestedFunc(FuncDecl *F);

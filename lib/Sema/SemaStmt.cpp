@@ -107,6 +107,8 @@ void Sema::checkReturn(ReturnStmt *S) {
     diag(S->Value->getLoc(), diag::err_return_type_mismatch)
         << T->getName() << F->getName().Name << ResultTy->getName()
         << S->Value->getRange();
+  else
+    checkCopyable(ResultTy, S->Value->getRange(), "a returned value");
 }
 
 void Sema::checkStmt(Stmt *S) {

@@ -101,6 +101,10 @@ void bsc::writeBehaviorHeader(const Behavior &B, const BehaviorLayout &L,
         "call.\n *  Returns 0, or -1 if the state is misaligned. */\n"
      << "static inline int " << P << "_init(" << P << "_state *state) {\n"
      << "  return bs_state_init(state, &" << L.InfoSymbol << ");\n}\n\n"
+     << "/** Destroys the class values the state holds (bs_state_destroy):\n"
+        " *  once, when the behavior stops; initialise it again to reuse it. */\n"
+     << "static inline void " << P << "_destroy(" << P << "_state *state) {\n"
+     << "  bs_state_destroy(state, &" << L.InfoSymbol << ");\n}\n\n"
      << "/** Starts the next execution cycle. */\n"
      << "static inline void " << P << "_begin_cycle(" << P
      << "_state *state, const void *input, void *output) {\n"

@@ -398,32 +398,8 @@ bool checkBindingImports(Compilation &C, const llvm::Module &M) {
 /// What the top-level command produces when it goes past the front end.
 enum class OutputKind { LLVM, Asm, Obj, Header, Program };
 
-/// Reports what the checked behavior uses that code generation cannot
-/// lower yet: classes that are not trivially destructible (values are
-/// never destroyed); false if it did.
-bool checkBackendSupport(Compilation &C) {
-  if (!C.Checked.UsesClasses)
-    return true;
-  bool OK = true;
-  llvm::SmallVector<const NativeModule *, 4> Mods(
-      C.Checked.NativeModules.begin(), C.Checked.NativeModules.end());
-  if (C.Checked.World && !llvm::is_contained(Mods, C.Checked.World))
-    Mods.push_back(C.Checked.World);
-  for (const NativeModule *M : Mods)
-    for (const NativeClass &Cls : M->Classes)
-      if (!Cls.TriviallyDestructible) {
-        C.Diags.report(llvm::SMLoc(), diag::err_codegen_unsupported)
-            << ("class '" + Cls.QualifiedName +
-                "' that is not trivially destructible");
-        OK = false;
-      }
-  return OK;
-}
-
 int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
             const char *Argv0) {
-  if (!checkBackendSupport(C))
-    return finish(C);
   std::unique_ptr<llvm::TargetMachine> TM =
       createTargetMachine(BOpts.Target, C.Diags);
   if (!TM)
@@ -529,7 +505,7 @@ int runJIT(Compilation &C, const FrontendOptions &FOpts) {
   if (!runFrontend(C, FOpts) || !OptionsOK)
     return finish(C);
   const CallableDecl *Entry = findProgramEntry(C);
-  if (!Entry || !checkBackendSupport(C))
+  if (!Entry)
     return finish(C);
   auto JITOrErr = BehaviorJIT::create();
   if (!JITOrErr)
@@ -569,7 +545,8 @@ int runJIT(Compilation &C, const FrontendOptions &FOpts) {
     for (auto [Class, Obj] : {std::pair(World->Input, &Input),
                               std::pair(World->Output, &Output)})
       if (Class)
-        *Obj = {size_t(Class->Size), size_t(Class->Align), Class->Construct};
+        *Obj = {size_t(Class->Size), size_t(Class->Align), Class->Construct,
+                Class->TriviallyDestructible ? "" : Class->Destroy};
   }
   if (llvm::Error E = JIT.runCycles(Layout.InfoSymbol, EntrySymbol,
                                     BOpts.Cycles, Input, Output)) {

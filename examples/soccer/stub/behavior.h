@@ -29,12 +29,13 @@ struct bs_soccer_state {
 #define BS_SOCCER_STATE_ALIGN ((uint32_t)alignof(bs_soccer_state))
 static const bs_behavior_info bs_soccer_info = {
     BS_ABI_VERSION, BS_SOCCER_STATE_SIZE, BS_SOCCER_STATE_ALIGN, 0, nullptr,
-    0, nullptr};
+    0, nullptr, nullptr}; /* no class values to destroy */
 
 static inline int bs_soccer_init(bs_soccer_state *s) {
   *s = bs_soccer_state{};
   return 0;
 }
+static inline void bs_soccer_destroy(bs_soccer_state *) {} /* nothing to destroy */
 static inline void bs_soccer_begin_cycle(bs_soccer_state *s, const void *in,
                                          void *out) {
   ++s->cycle;

@@ -93,12 +93,14 @@ public:
     size_t Size = 0;
     size_t Align = 1;
     std::string Construct; ///< Construct thunk symbol, or empty.
+    std::string Destroy;   ///< Destroy thunk symbol; empty if trivial.
   };
 
   /// Initialises a state for the behavior whose info struct is `InfoSymbol`
   /// and the `Input`/`Output` objects (zeroed, then constructed), then
   /// `Cycles` times begins a cycle with them and calls the parameterless
-  /// entry `EntrySymbol`. The objects are default values in every cycle;
+  /// entry `EntrySymbol`, and at the end destroys the state
+  /// (bs_state_destroy) and the objects. The objects are default values in every cycle;
   /// replaying recorded inputs is the log-replay runner's job. A stale
   /// binding module gives a StaleBindingError.
   llvm::Error runCycles(llvm::StringRef InfoSymbol,
