@@ -1,6 +1,6 @@
 // Bindings for test/CodeGen/classes.bs: a 16-aligned class with a class
 // result and a scalar method, and (module Res) a class that is not trivially
-// destructible, which code generation does not support yet.
+// destructible.
 #include <bscript/Bind.h>
 
 namespace al {
