@@ -22,6 +22,8 @@
  * or signatures changed since it was compiled).
  *
  * A cycle: bs_begin_cycle(state, &input, &output), then call the entry.
+ * When the robot stops the behavior: bs_state_destroy(state, &bs_B_info),
+ * which destroys the C++ values running tasks keep in the state.
  *===----------------------------------------------------------------------===*/
 #ifndef BSCRIPT_BSCRIPT_H
 #define BSCRIPT_BSCRIPT_H
