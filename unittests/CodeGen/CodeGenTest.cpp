@@ -499,19 +499,29 @@ TEST_F(CodeGenTest, ProgramMainRunsTheCycles) {
   const llvm::Function *Main = M->getFunction("main");
   ASSERT_TRUE(Main);
   EXPECT_TRUE(Main->getReturnType()->isIntegerTy(32));
-  bool CallsInit = false, CallsBegin = false;
+  bool CallsInit = false, CallsBegin = false, DestroysAtTheEnd = false;
   for (const llvm::BasicBlock &BB : *Main)
     for (const llvm::Instruction &I : BB)
       if (const auto *Call = llvm::dyn_cast<llvm::CallInst>(&I)) {
         if (const llvm::Function *Callee = Call->getCalledFunction()) {
           CallsInit |= Callee->getName() == "bs_state_init";
           CallsBegin |= Callee->getName() == "bs_begin_cycle";
+          // bs_state_destroy(state, &info) right before `ret i32 0`.
+          if (Callee->getName() == "bs_state_destroy") {
+            const auto *Ret = llvm::dyn_cast_or_null<llvm::ReturnInst>(
+                Call->getNextNode());
+            DestroysAtTheEnd = Ret && llvm::isa<llvm::ConstantInt>(
+                                          Ret->getReturnValue()) &&
+                               Call->getArgOperand(1) ==
+                                   M->getNamedGlobal(L.InfoSymbol);
+          }
         }
       } else if (const auto *A = llvm::dyn_cast<llvm::AllocaInst>(&I)) {
         EXPECT_EQ(A->getAlign().value(), L.StateAlign);
       }
   EXPECT_TRUE(CallsInit);
   EXPECT_TRUE(CallsBegin);
+  EXPECT_TRUE(DestroysAtTheEnd);
   // A refused state returns the runtime's report (status 1) at once: the
   // block that calls bs_report_init_failure returns its result.
   const llvm::CallInst *Report = nullptr;

@@ -454,6 +454,9 @@ NativeRegistry makeWorld() {
     W->Classes[I].Module = W.get();
     W->Classes[I].Size = 8;
     W->Classes[I].Align = 4;
+    // Plain structs: copied as bytes, nothing to destroy.
+    W->Classes[I].CopiesAsBytes = true;
+    W->Classes[I].TriviallyDestructible = true;
   }
   NativeClass &Vec = W->Classes[0];
   NativeType Float = scalar(NativeType::Float);
@@ -490,7 +493,12 @@ struct ParsedWithWorld {
   ModuleAST *M = nullptr;
   bool OK = false;
 
-  explicit ParsedWithWorld(llvm::StringRef Source) {
+  /// `Adjust` may change the world before the check.
+  explicit ParsedWithWorld(
+      llvm::StringRef Source,
+      llvm::function_ref<void(NativeRegistry &)> Adjust = nullptr) {
+    if (Adjust)
+      Adjust(Natives);
     unsigned ID = SM.AddNewSourceBuffer(
         llvm::MemoryBuffer::getMemBufferCopy(Source, "P.bs"), llvm::SMLoc());
     M = parseModule(SM, ID, "P", Ctx, Diags);
@@ -563,6 +571,34 @@ TEST(SemaClassTest, OperatorsCallTheirMethodsAndNotEqualFallsBack) {
   EXPECT_EQ(Ne->Operator->Name, "_eq_");
   EXPECT_TRUE(Ne->NegateOperator);
   EXPECT_TRUE(Ne->Ty->isBool());
+}
+
+TEST(SemaClassTest, CopiesOfClassesThatCannotBeCopiedAreErrors) {
+  // Vec without copy thunk and not byte-copyable; only the assign thunk.
+  auto NotCopyable = [](NativeRegistry &R) {
+    auto &Vec = const_cast<NativeClass &>(*R.getWorld()->findClass("Vec"));
+    Vec.CopiesAsBytes = false;
+    Vec.Assign = "assign";
+  };
+  ParsedWithWorld P("func f(Vec a) : Vec\n"
+                    "    Vec b\n"
+                    "    Vec c = b\n"
+                    "    b = c\n"
+                    "    b.move(1)\n"
+                    "    return b\n"
+                    "task t()\n"
+                    "    Vec d\n"
+                    "    Vec e = d\n",
+                    NotCopyable);
+  EXPECT_FALSE(P.OK);
+  std::string Head =
+      "class 'W::Vec' cannot be copied: register a copy constructor for it "
+      "(or .copyAsBytes()); ";
+  // The assignment and the task's initialiser assign: the assign thunk
+  // does. The parameter, the func's initialiser and `return` construct.
+  EXPECT_EQ(P.messages(), (Msgs{Head + "a parameter is a copy",
+                                Head + "an initialiser is a copy",
+                                Head + "a returned value is a copy"}));
 }
 
 TEST(SemaClassTest, InputIsReadOnlyAndOutputWriteOnly) {
