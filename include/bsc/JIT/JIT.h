@@ -99,10 +99,10 @@ public:
   /// Initialises a state for the behavior whose info struct is `InfoSymbol`
   /// and the `Input`/`Output` objects (zeroed, then constructed), then
   /// `Cycles` times begins a cycle with them and calls the parameterless
-  /// entry `EntrySymbol`, and at the end destroys the state
-  /// (bs_state_destroy) and the objects. The objects are default values in every cycle;
-  /// replaying recorded inputs is the log-replay runner's job. A stale
-  /// binding module gives a StaleBindingError.
+  /// entry `EntrySymbol`; at the end it destroys the state
+  /// (bs_state_destroy), then the objects. The objects are default values
+  /// in every cycle; replaying recorded inputs is the log-replay runner's
+  /// job. A stale binding module gives a StaleBindingError.
   llvm::Error runCycles(llvm::StringRef InfoSymbol,
                         llvm::StringRef EntrySymbol, unsigned Cycles,
                         const GlobalObject &Input,
