@@ -20,21 +20,13 @@
 
 using namespace bsc;
 
-extern "C" {
-void LLVMInitializeX86TargetInfo();
-void LLVMInitializeX86Target();
-void LLVMInitializeX86TargetMC();
-void LLVMInitializeX86AsmPrinter();
-void LLVMInitializeX86AsmParser();
-}
-
 void bsc::initializeTargets() {
   static bool Done = [] {
-    LLVMInitializeX86TargetInfo();
-    LLVMInitializeX86Target();
-    LLVMInitializeX86TargetMC();
-    LLVMInitializeX86AsmPrinter();
-    LLVMInitializeX86AsmParser();
+    llvm::InitializeAllTargetInfos();
+    llvm::InitializeAllTargets();
+    llvm::InitializeAllTargetMCs();
+    llvm::InitializeAllAsmPrinters();
+    llvm::InitializeAllAsmParsers();
     return true;
   }();
   (void)Done;
@@ -55,7 +47,23 @@ std::string bsc::getDefaultCPU(const llvm::Triple &T) {
     return "geode";
   if (T.getArch() == llvm::Triple::x86_64)
     return "x86-64";
-  return "generic";
+  // Back ends without a "generic" CPU: the oldest supported one. (AMDGPU
+  // has none either, but bsc refuses it: UnsupportedTargets.)
+  switch (T.getArch()) {
+  case llvm::Triple::nvptx:
+  case llvm::Triple::nvptx64:
+    return "sm_52";
+  case llvm::Triple::avr:
+    return "avr2";
+  default:
+    return "generic";
+  }
+}
+
+bool bsc::hasProgramRuntime(const llvm::Triple &T) {
+  llvm::Triple Host(llvm::sys::getProcessTriple());
+  return (T.getArch() == llvm::Triple::x86 || T.getArch() == Host.getArch()) &&
+         T.isOSLinux() && T.isOSBinFormatELF();
 }
 
 std::optional<unsigned> bsc::parseOptLevel(llvm::StringRef Value) {
@@ -78,6 +86,93 @@ static llvm::CodeGenOptLevel getCodeGenOptLevel(unsigned OptLevel) {
   return llvm::CodeGenOptLevel::Aggressive;
 }
 
+namespace {
+/// What bsc refuses to write for a target.
+enum class Refused { ObjectFiles, MachineCode, Everything };
+
+/// A triple LLVM registers but crashes on (a segfault or abort, not an
+/// error it reports) when it writes machine code for it, or that bsc's IR
+/// generator does not support.
+struct UnsupportedTarget {
+  bool (*Matches)(const llvm::Triple &);
+  Refused What;
+  const char *Reason;
+};
+
+using llvm::Triple;
+
+/// The architectures whose MC layer has a Mach-O and a COFF writer.
+bool hasMachOAndCOFF(const Triple &T) {
+  return T.isX86() || T.isARM() || T.isThumb() || T.isAArch64();
+}
+} // namespace
+
+/// Every triple whose machine code bsc refuses, and why. Found by compiling
+/// test/Target/Inputs/portable.bs for each architecture with each OS and
+/// object format (utils/check-targets.py). Errors that LLVM reports (BPF
+/// floats, Xtensa "Cannot select", XCOFF little-endian, ...) are not here: the
+/// BackendErrorReporter turns them into diagnostics. IR and headers only
+/// need the DataLayout, so they work for every triple.
+static const UnsupportedTarget UnsupportedTargets[] = {
+    {[](const Triple &T) { return T.getArch() == Triple::m68k; },
+     Refused::MachineCode,
+     "LLVM 19's experimental M68k back end crashes (instruction scheduling) "
+     "on float arithmetic after a call returning a float"},
+    {[](const Triple &T) { return T.isWasm() && !T.isOSBinFormatWasm(); },
+     Refused::MachineCode,
+     "WebAssembly is written only in the wasm object format"},
+    {[](const Triple &T) { return !T.isWasm() && T.isOSBinFormatWasm(); },
+     Refused::ObjectFiles,
+     "only the WebAssembly architectures write wasm object files"},
+    {[](const Triple &T) {
+       return T.isOSBinFormatMachO() && !hasMachOAndCOFF(T);
+     },
+     Refused::ObjectFiles,
+     "LLVM writes Mach-O objects only for x86, ARM and AArch64"},
+    {[](const Triple &T) {
+       return T.isOSBinFormatXCOFF() &&
+              !(T.isPPC() && T.isOSAIX() && !T.isLittleEndian());
+     },
+     Refused::MachineCode,
+     "XCOFF is written only for big-endian PowerPC AIX"},
+    {[](const Triple &T) { return T.isOSBinFormatGOFF() && !T.isSystemZ(); },
+     Refused::MachineCode, "GOFF is written only for SystemZ"},
+    {[](const Triple &T) {
+       return T.isUEFI() && T.getArch() != Triple::x86_64 && !T.isAArch64();
+     },
+     Refused::ObjectFiles,
+     "LLVM writes UEFI objects only for x86_64 and AArch64"},
+    {[](const Triple &T) {
+       return T.isOSBinFormatCOFF() && !T.isOSWindows() && !T.isUEFI();
+     },
+     Refused::MachineCode,
+     "COFF is written only for Windows and UEFI"},
+    // IRBuilder puts allocas in the DataLayout's address space (5 on
+    // AMDGPU), and the IR generator passes their addresses where it expects
+    // address space 0: invalid IR.
+    {[](const Triple &T) { return T.isAMDGPU(); }, Refused::Everything,
+     "bsc's IR generator keeps locals in address space 0, AMDGPU's stack is "
+     "address space 5"},
+};
+
+bool bsc::checkMachineCodeSupport(const llvm::Triple &T,
+                                  llvm::CodeGenFileType Kind,
+                                  DiagnosticEngine &Diags) {
+  bool Object = Kind == llvm::CodeGenFileType::ObjectFile;
+  for (const UnsupportedTarget &U : UnsupportedTargets) {
+    if (!U.Matches(T) || U.What == Refused::Everything ||
+        (U.What == Refused::ObjectFiles && !Object))
+      continue;
+    bool OnlyObjects = U.What == Refused::ObjectFiles;
+    Diags.report(llvm::SMLoc(), diag::err_unsupported_target)
+        << (OnlyObjects ? "object files" : "machine code") << T.str()
+        << U.Reason
+        << (OnlyObjects ? "; use -S or --emit=llvm" : "; use --emit=llvm");
+    return false;
+  }
+  return true;
+}
+
 std::unique_ptr<llvm::TargetMachine>
 bsc::createTargetMachine(const TargetOptions &Opts, DiagnosticEngine &Diags) {
   initializeTargets();
@@ -94,54 +189,31 @@ bsc::createTargetMachine(const TargetOptions &Opts, DiagnosticEngine &Diags) {
   const llvm::Target *Target =
       llvm::TargetRegistry::lookupTarget(T.str(), Error);
   if (!Target) {
-    Diags.report(llvm::SMLoc(), diag::err_unknown_target)
-        << Spelled << "bsc is built with the X86 back end only";
+    Diags.report(llvm::SMLoc(), diag::err_unknown_target) << Spelled << Error;
     return nullptr;
   }
-  switch (T.getObjectFormat()) {
-  case llvm::Triple::ELF:
-  case llvm::Triple::COFF:
-  case llvm::Triple::MachO:
-    break;
-  case llvm::Triple::UnknownObjectFormat:
-  case llvm::Triple::DXContainer:
-  case llvm::Triple::GOFF:
-  case llvm::Triple::SPIRV:
-  case llvm::Triple::Wasm:
-  case llvm::Triple::XCOFF:
-    Diags.report(llvm::SMLoc(), diag::err_unsupported_object_format)
-        << Spelled
-        << llvm::Triple::getObjectFormatTypeName(T.getObjectFormat());
-    return nullptr;
-  }
-  // Operating systems whose object format the X86 MC layer writes
-  // consistently (with ELF for UEFI, for one, LLVM 19 prints COFF
-  // directives into an ELF file and crashes).
-  bool KnownOS = T.isOSLinux() || T.getOS() == llvm::Triple::UnknownOS ||
-                 T.isOSFreeBSD() || T.isOSNetBSD() || T.isOSOpenBSD();
-  bool Consistent =
-      (KnownOS && T.isOSBinFormatELF()) ||
-      (T.isOSWindows() && T.isOSBinFormatCOFF()) ||
-      (T.isOSDarwin() && T.isOSBinFormatMachO());
-  if (!Consistent) {
-    Diags.report(llvm::SMLoc(), diag::err_unknown_target)
-        << Spelled
-        << "bsc supports x86 Linux, BSD and bare-metal (ELF), Windows (COFF) "
-           "and Darwin (Mach-O) triples";
-    return nullptr;
-  }
+  for (const UnsupportedTarget &U : UnsupportedTargets)
+    if (U.What == Refused::Everything && U.Matches(T)) {
+      Diags.report(llvm::SMLoc(), diag::err_unsupported_target)
+          << "code" << Spelled << U.Reason << "";
+      return nullptr;
+    }
+  std::unique_ptr<llvm::MCSubtargetInfo> STI(
+      Target->createMCSubtargetInfo(T.str(), "", ""));
   std::string CPU = Opts.CPU.empty() ? getDefaultCPU(T) : Opts.CPU;
   // LLVM only warns (on stderr) about an unknown CPU and then generates code
   // for a generic one; for a robot that is a silent miscompile, so check.
-  std::unique_ptr<llvm::MCSubtargetInfo> STI(
-      Target->createMCSubtargetInfo(T.str(), "", ""));
+  // (Every default of getDefaultCPU is valid: utils/check-targets.py.)
   if (!STI || !STI->isCPUStringValid(CPU)) {
     Diags.report(llvm::SMLoc(), diag::err_unknown_cpu) << CPU << Spelled;
     return nullptr;
   }
   llvm::TargetOptions TO;
+  // LLVM 19's Xtensa back end stops with "PIC relocations is not supported".
+  llvm::Reloc::Model RM =
+      T.getArch() == Triple::xtensa ? llvm::Reloc::Static : llvm::Reloc::PIC_;
   std::unique_ptr<llvm::TargetMachine> TM(Target->createTargetMachine(
-      T.str(), CPU, /*Features=*/"", TO, llvm::Reloc::PIC_, std::nullopt,
+      T.str(), CPU, /*Features=*/"", TO, RM, std::nullopt,
       getCodeGenOptLevel(Opts.OptLevel)));
   if (!TM)
     Diags.report(llvm::SMLoc(), diag::err_unknown_target)

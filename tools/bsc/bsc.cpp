@@ -103,12 +103,15 @@ cl::opt<std::string> OutputFile("o", cl::desc("Output file ('-' for stdout)"),
                                 cl::value_desc("file"), cl::cat(BscCategory));
 cl::opt<std::string>
     TargetArg("target",
-              cl::desc("i586 (the robot: Geode, PIC, ELF32), x86_64, or an "
-                       "LLVM triple (default: the host)"),
+              cl::desc("i586 (the robot: Geode, PIC, ELF32), x86_64, or any "
+                       "LLVM triple (default: the host; programs only for "
+                       "the host and i586)"),
               cl::value_desc("target"), cl::cat(BscCategory));
-cl::opt<std::string> CPUArg("mcpu",
-                            cl::desc("Target CPU (default: geode for i586)"),
-                            cl::value_desc("cpu"), cl::cat(BscCategory));
+cl::opt<std::string>
+    CPUArg("mcpu",
+           cl::desc("Target CPU (default: geode for i586, x86-64 for x86_64, "
+                    "else generic or the target's oldest)"),
+           cl::value_desc("cpu"), cl::cat(BscCategory));
 cl::opt<std::string> BehaviorNameArg(
     "behavior-name",
     cl::desc("Prefix of the exported symbols (default: the first file's "
@@ -400,10 +403,22 @@ enum class OutputKind { LLVM, Asm, Obj, Header, Program };
 
 int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
             const char *Argv0) {
+  // Back-end errors (and report_fatal_error, which some targets call as
+  // early as creating the machine) become diagnostics and exit status 1.
+  llvm::LLVMContext Ctx;
+  BackendErrorReporter Reporter(
+      Ctx, C.Diags, resolveTargetTriple(BOpts.Target.Target).str(),
+      [&] { finish(C); });
   std::unique_ptr<llvm::TargetMachine> TM =
       createTargetMachine(BOpts.Target, C.Diags);
   if (!TM)
     return finish(C);
+  if (Kind == OutputKind::Program &&
+      !hasProgramRuntime(TM->getTargetTriple())) {
+    C.Diags.report(llvm::SMLoc(), diag::err_no_runtime_for_target)
+        << TM->getTargetTriple().str();
+    return finish(C);
+  }
   CodeGenOptions CGOpts;
   CGOpts.BehaviorName = getBehaviorName(C);
   if (CGOpts.BehaviorName.empty())
@@ -415,7 +430,6 @@ int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
     CGOpts.ProgramCycles = BOpts.Cycles;
   }
 
-  llvm::LLVMContext Ctx;
   BehaviorLayout Layout;
   std::unique_ptr<llvm::Module> M =
       emitLLVM(C.Checked, Ctx, TM->getTargetTriple(), TM->createDataLayout(),
@@ -455,12 +469,11 @@ int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
     auto Out = openOutput(C, Path, IsAsm);
     if (!Out)
       return finish(C);
-    if (llvm::Error E = emitMachineCode(
-            *M, *TM,
-            IsAsm ? llvm::CodeGenFileType::AssemblyFile
-                  : llvm::CodeGenFileType::ObjectFile,
-            Out->os()))
-      return finishWithInternalError(C, std::move(E));
+    if (!emitMachineCode(*M, *TM,
+                         IsAsm ? llvm::CodeGenFileType::AssemblyFile
+                               : llvm::CodeGenFileType::ObjectFile,
+                         Out->os(), C.Diags))
+      return finish(C);
     Out->keep();
     return finish(C);
   }
@@ -482,9 +495,9 @@ int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
         llvm::make_scope_exit([&] { llvm::sys::fs::remove(ObjPath); });
     {
       llvm::raw_fd_ostream ObjOS(FD, /*shouldClose=*/true);
-      if (llvm::Error E = emitMachineCode(
-              *M, *TM, llvm::CodeGenFileType::ObjectFile, ObjOS))
-        return finishWithInternalError(C, std::move(E));
+      if (!emitMachineCode(*M, *TM, llvm::CodeGenFileType::ObjectFile, ObjOS,
+                           C.Diags))
+        return finish(C);
     }
     if (!checkBindingImports(C, *M) ||
         !linkProgram(C, TM->getTargetTriple(), ObjPath, Path, Argv0,

@@ -22,11 +22,14 @@
 #include "llvm/Support/Error.h"
 #include "llvm/Target/TargetMachine.h"
 #include "llvm/TargetParser/Triple.h"
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
 
 namespace llvm {
+class DiagnosticInfo;
+class LLVMContext;
 class Module;
 class raw_pwrite_stream;
 } // namespace llvm
@@ -46,7 +49,8 @@ struct TargetOptions {
 /// The highest `-O` level.
 constexpr unsigned MaxOptLevel = 3;
 
-/// Registers the X86 back end with LLVM (the only one bsc links). Idempotent.
+/// Registers every back end bsc links (all of Debian's LLVM 19) with LLVM.
+/// Idempotent.
 void initializeTargets();
 
 /// The triple `-target Name` stands for: "i586" is i586-unknown-linux-gnu,
@@ -56,16 +60,22 @@ void initializeTargets();
 llvm::Triple resolveTargetTriple(llvm::StringRef Name);
 
 /// The CPU used when `-mcpu` is not given: "geode" for i586 triples (the
-/// robot), "x86-64" for x86_64, "generic" otherwise.
+/// robot), "x86-64" for x86_64, the oldest supported model for back ends
+/// without a "generic" CPU (NVPTX, AVR), "generic" otherwise.
 std::string getDefaultCPU(const llvm::Triple &T);
 
 /// Parses an `-O` value ("0".."3"); std::nullopt if it is not one.
 std::optional<unsigned> parseOptLevel(llvm::StringRef Value);
 
+/// Whether bsc ships a runtime shim a program for `T` links with (host
+/// x86_64 and i586 Linux): only those get standalone programs; every other
+/// target gets objects, assembly and IR.
+bool hasProgramRuntime(const llvm::Triple &T);
+
 /// Creates the machine for `Opts`, PIC, with the CPU checked against the
-/// target's list and an object format the X86 back end can write (LLVM
-/// crashes on, e.g., x86 wasm). Reports an unknown triple or CPU into
-/// `Diags` and returns null.
+/// target's list. Refuses the targets bsc's IR generator does not support
+/// (AMDGPU: UnsupportedTargets in Target.cpp). Reports an unknown or refused
+/// triple or CPU into `Diags` and returns null.
 std::unique_ptr<llvm::TargetMachine>
 createTargetMachine(const TargetOptions &Opts, DiagnosticEngine &Diags);
 
@@ -73,6 +83,12 @@ createTargetMachine(const TargetOptions &Opts, DiagnosticEngine &Diags);
 /// in the user's program, so it is an llvm::Error (the driver prints it as
 /// an internal error) rather than a diagnostic of the table.
 llvm::Error verifyGeneratedModule(const llvm::Module &M);
+
+/// Reports (and returns false for) the triples whose assembly or object
+/// files LLVM 19 crashes on writing instead of reporting an error: the
+/// UnsupportedTargets table in Target.cpp. emitMachineCode checks it.
+bool checkMachineCodeSupport(const llvm::Triple &T, llvm::CodeGenFileType Kind,
+                             DiagnosticEngine &Diags);
 
 /// Runs the new pass manager's default pipeline for `OptLevel` over `M`.
 /// Library-call recognition is disabled (the generated object must not call
@@ -82,11 +98,36 @@ void optimizeModule(llvm::Module &M, llvm::TargetMachine *TM,
                     unsigned OptLevel);
 
 /// Writes `M` as assembly or as an object file through the legacy code
-/// generation pass manager. createTargetMachine only accepts machines that
-/// can, so a failure here is an internal error.
-llvm::Error emitMachineCode(llvm::Module &M, llvm::TargetMachine &TM,
-                            llvm::CodeGenFileType Kind,
-                            llvm::raw_pwrite_stream &OS);
+/// generation pass manager. Reports a target without an object writer (or
+/// an assembly printer) into `Diags` and returns false; errors of the back
+/// end itself come through a BackendErrorReporter.
+bool emitMachineCode(llvm::Module &M, llvm::TargetMachine &TM,
+                     llvm::CodeGenFileType Kind, llvm::raw_pwrite_stream &OS,
+                     DiagnosticEngine &Diags);
+
+/// While it lives, turns the errors of the LLVM back end into
+/// err_backend_failed: the errors LLVM reports through `Ctx` (an
+/// unsupported construct on some targets) and report_fatal_error. LLVM
+/// cannot go on after a fatal error, so then `PrintAndExit` is called to
+/// print the diagnostics, and the process exits with status 1 (output files
+/// opened with ToolOutputFile are removed). Warnings of the back end are
+/// dropped, as clang drops them without -W flags.
+class BackendErrorReporter {
+public:
+  BackendErrorReporter(llvm::LLVMContext &Ctx, DiagnosticEngine &Diags,
+                       std::string Target, std::function<void()> PrintAndExit);
+  ~BackendErrorReporter();
+  BackendErrorReporter(const BackendErrorReporter &) = delete;
+  BackendErrorReporter &operator=(const BackendErrorReporter &) = delete;
+
+private:
+  static void handleFatal(void *Self, const char *Reason, bool GenCrashDiag);
+  static void handleDiagnostic(const llvm::DiagnosticInfo *DI, void *Self);
+  llvm::LLVMContext &Ctx;
+  DiagnosticEngine &Diags;
+  std::string Target;
+  std::function<void()> PrintAndExit;
+};
 
 } // namespace bsc
 
