@@ -82,8 +82,8 @@ llvm::Expected<std::unique_ptr<BehaviorJIT>> BehaviorJIT::create() {
   Add("bs_io_prints", &bs_io_prints);
   if (llvm::Error E = Result->J->getMainJITDylib().define(
           llvm::orc::absoluteSymbols(std::move(Runtime))))
-    return std::move(E);
-  return std::move(Result);
+    return E;
+  return Result;
 }
 
 llvm::Error BehaviorJIT::addModule(std::unique_ptr<llvm::Module> M,
@@ -207,15 +207,21 @@ llvm::Error BehaviorJIT::runCycles(llvm::StringRef InfoSymbol,
   // so a behavior that declares them must get real objects, never null.
   JITObject InputObj(Input.Size, Input.Align), OutputObj(Output.Size,
                                                          Output.Align);
-  for (auto [Spec, Obj] : {std::pair(&Input, &InputObj),
-                           std::pair(&Output, &OutputObj)}) {
-    if (Spec->Construct.empty())
-      continue;
-    auto Ctor = J->lookup(Spec->Construct);
-    if (!Ctor)
-      return Ctor.takeError();
-    Ctor->toPtr<void (*)(void *)>()(Obj->get());
-  }
+  // Runs one life-cycle thunk (construct or destroy) on both objects.
+  auto CallOnObjects = [&](std::string GlobalObject::*Thunk) -> llvm::Error {
+    for (auto [Spec, Obj] : {std::pair(&Input, &InputObj),
+                             std::pair(&Output, &OutputObj)}) {
+      if ((Spec->*Thunk).empty())
+        continue;
+      auto Fn = J->lookup(Spec->*Thunk);
+      if (!Fn)
+        return Fn.takeError();
+      Fn->toPtr<void (*)(void *)>()(Obj->get());
+    }
+    return llvm::Error::success();
+  };
+  if (llvm::Error E = CallOnObjects(&GlobalObject::Construct))
+    return E;
   void *In = Input.Size ? InputObj.get() : nullptr;
   void *Out = Output.Size ? OutputObj.get() : nullptr;
   for (unsigned I = 0; I < Cycles; ++I) {
@@ -225,15 +231,8 @@ llvm::Error BehaviorJIT::runCycles(llvm::StringRef InfoSymbol,
   // As a robot program ends: the class values running tasks hold, then
   // the input and output objects.
   bs_state_destroy(State, Info);
-  for (auto [Spec, Obj] : {std::pair(&Input, &InputObj),
-                           std::pair(&Output, &OutputObj)}) {
-    if (Spec->Destroy.empty())
-      continue;
-    auto Dtor = J->lookup(Spec->Destroy);
-    if (!Dtor)
-      return Dtor.takeError();
-    Dtor->toPtr<void (*)(void *)>()(Obj->get());
-  }
+  if (llvm::Error E = CallOnObjects(&GlobalObject::Destroy))
+    return E;
   std::fflush(stdout);
   return llvm::Error::success();
 }
