@@ -1137,7 +1137,7 @@ void Reader::readBuffer(MemoryBufferRef Buf, StringRef Name) {
   Expected<std::unique_ptr<Binary>> Bin = createBinary(Buf);
   if (!Bin) {
     Errs.add(Name, "",
-             "not an ELF relocatable object or archive (" +
+             "not an ELF relocatable object, shared library or archive (" +
                  toString(Bin.takeError()) + ")");
     return;
   }

@@ -11,8 +11,8 @@
 #include "llvm/ADT/StringSet.h"
 #include "llvm/Support/FileSystem.h"
 #include "llvm/Support/MemoryBuffer.h"
-#include "llvm/TargetParser/Host.h"
 #include "llvm/Support/Path.h"
+#include "llvm/TargetParser/Host.h"
 
 using namespace bsc;
 
@@ -115,6 +115,10 @@ private:
         continue;
       C.Diags.report(R.Range.Start, diag::err_unknown_module)
           << R.Name << Searched << R.Range;
+      if (Opts.StandardModules.empty() &&
+          llvm::is_contained(StandardModuleNames, R.Name))
+        C.Diags.report(R.Range.Start, diag::note_no_standard_module)
+            << R.Name << Opts.Target.str();
     }
   }
 

@@ -28,6 +28,10 @@ namespace bsc {
 /// module is a few kilobytes, and the limit keeps garbage input bounded.
 constexpr unsigned MaxSourceFileMiB = 64;
 
+/// The modules every target with a runtime provides (FrontendOptions::
+/// StandardModules); named for the message when a target has none.
+inline constexpr const char *StandardModuleNames[] = {"io"};
+
 struct FrontendOptions {
   std::vector<std::string> Inputs;      ///< The .bs files named by the user.
   std::vector<std::string> IncludeDirs; ///< -I: searched after the requiring file's folder.
