@@ -42,6 +42,8 @@ def spelled_messages(test_root):
     return found
 
 def main():
+    if len(sys.argv) != 3:
+        sys.exit('usage: check-diagnostic-coverage.py DiagnosticKinds.def TEST_DIR')
     def_path, test_root = sys.argv[1], sys.argv[2]
     found = spelled_messages(test_root)
     missing = []

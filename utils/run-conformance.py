@@ -18,6 +18,9 @@ def run(cmd, **kw):
     return subprocess.run(cmd, capture_output=True, timeout=120, **kw)
 
 def main():
+    if len(sys.argv) != 7:
+        print(__doc__.strip().splitlines()[-1], file=sys.stderr)
+        return 2
     bsc, run_i586, root, host_obj, i586_obj, work = sys.argv[1:7]
     os.makedirs(work, exist_ok=True)
     failures, ran, compiled = [], 0, 0

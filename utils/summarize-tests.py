@@ -25,6 +25,8 @@ def count(path, skip_name=None):
             passed += 1
     return passed, failed, skipped
 
+if len(sys.argv) != 3:
+    sys.exit('usage: summarize-tests.py CTEST_JUNIT.xml LIT_JUNIT.xml')
 ctest = count(sys.argv[1], skip_name='lit')
 lit = count(sys.argv[2])
 if ctest is None or lit is None:
