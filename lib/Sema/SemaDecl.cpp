@@ -88,6 +88,27 @@ void Sema::checkCopyable(const Type *T, llvm::SMRange R, llvm::StringRef What,
   diag(R.Start, diag::err_class_not_copyable) << T->getName() << What << R;
 }
 
+void Sema::checkDefaultConstructible(const Type *T, llvm::SMRange R,
+                                     llvm::StringRef Fix) {
+  if (!T || !T->isClass())
+    return;
+  const NativeClass *C = T->getClass();
+  // Zero bytes are a value of a class that copies as bytes and needs no
+  // destruction (C++20's implicit-lifetime types), so such a class may
+  // start zeroed; any other class must be constructed before its
+  // assignment, copy or destructor runs on it.
+  if (C->DefaultConstructible ||
+      (C->CopiesAsBytes && C->TriviallyDestructible))
+    return;
+  diag(R.Start, diag::err_class_not_default_constructible)
+      << T->getName() << Fix << R;
+}
+
+/// Why a task's class parameters and locals need a default constructor.
+static constexpr llvm::StringLiteral TaskConstructsAtStart =
+    "a task constructs its parameters and locals when it starts, so register "
+    "a default constructor for it, or pass it to a func instead";
+
 void Sema::checkSignature(CallableDecl *C) {
   // Every call copies its arguments into the parameters: a func's own
   // copies (copy-constructed), a task's in its frame (assigned).
@@ -95,6 +116,9 @@ void Sema::checkSignature(CallableDecl *C) {
     P->Ty = resolveType(P->TypeName);
     checkCopyable(P->Ty, P->TypeName.getRange(), "a parameter",
                   /*Assigns=*/llvm::isa<TaskDecl>(C));
+    if (llvm::isa<TaskDecl>(C))
+      checkDefaultConstructible(P->Ty, P->TypeName.getRange(),
+                                TaskConstructsAtStart);
   }
   if (auto *F = llvm::dyn_cast<FuncDecl>(C))
     F->ResultTy = F->ResultTypeName.empty() ? Types.getVoid()
@@ -137,6 +161,14 @@ void Sema::checkVarDecl(VarDecl *V) {
       checkCopyable(V->Ty, V->Init->getRange(), "an initialiser",
                     /*Assigns=*/llvm::isa<TaskDecl>(CurCallable));
   }
+  if (llvm::isa<TaskDecl>(CurCallable))
+    checkDefaultConstructible(V->Ty, V->TypeName.getRange(),
+                              TaskConstructsAtStart);
+  else if (!V->Init)
+    checkDefaultConstructible(V->Ty, V->TypeName.getRange(),
+                              ("give '" + V->getName().Name +
+                               "' an initial value")
+                                  .str());
   declare(V);
 }
 

@@ -116,6 +116,10 @@ public:
   /// parameter", ...) when the class has neither a copy thunk (nor, if the
   /// copy `Assigns` to a constructed value, an assign thunk) nor may be
   /// copied as bytes (err_class_not_copyable).
+  /// Reports a value of a class without default constructor where b-script
+  /// default-constructs one; `Fix` says what to do instead.
+  void checkDefaultConstructible(const Type *T, llvm::SMRange R,
+                                 llvm::StringRef Fix);
   void checkCopyable(const Type *T, llvm::SMRange R, llvm::StringRef What,
                      bool Assigns = false);
   void checkTopLevelCallable(CallableDecl *C);

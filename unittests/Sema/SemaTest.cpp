@@ -579,6 +579,7 @@ TEST(SemaClassTest, CopiesOfClassesThatCannotBeCopiedAreErrors) {
     auto &Vec = const_cast<NativeClass &>(*R.getWorld()->findClass("Vec"));
     Vec.CopiesAsBytes = false;
     Vec.Assign = "assign";
+    Vec.DefaultConstructible = true;
   };
   ParsedWithWorld P("func f(Vec a) : Vec\n"
                     "    Vec b\n"
@@ -599,6 +600,42 @@ TEST(SemaClassTest, CopiesOfClassesThatCannotBeCopiedAreErrors) {
   EXPECT_EQ(P.messages(), (Msgs{Head + "a parameter is a copy",
                                 Head + "an initialiser is a copy",
                                 Head + "a returned value is a copy"}));
+}
+
+TEST(SemaClassTest, DefaultConstructionNeedsADefaultConstructor) {
+  const char *Source = "func f(Vec a) : Vec\n"
+                       "    Vec b\n"
+                       "    Vec c = a\n"
+                       "    return c\n"
+                       "task t(Vec p)\n"
+                       "    Vec d = p\n";
+  // Without default constructor and with a destructor: the func's local
+  // without initial value and everything the task holds are errors.
+  auto NoDefault = [](NativeRegistry &R) {
+    auto &Vec = const_cast<NativeClass &>(*R.getWorld()->findClass("Vec"));
+    Vec.DefaultConstructible = false;
+    Vec.TriviallyDestructible = false;
+    Vec.Destroy = "destroy";
+  };
+  ParsedWithWorld P(Source, NoDefault);
+  EXPECT_FALSE(P.OK);
+  std::string Head = "class 'W::Vec' has no default constructor: ";
+  std::string InTask = Head + "a task constructs its parameters and locals "
+                              "when it starts, so register a default "
+                              "constructor for it, or pass it to a func "
+                              "instead";
+  // Signatures are checked before bodies: the task's parameter first.
+  EXPECT_EQ(P.messages(),
+            (Msgs{InTask, Head + "give 'b' an initial value", InTask}));
+  // Byte-copyable and trivially destructible: zero bytes are a value.
+  auto ZeroIsAValue = [](NativeRegistry &R) {
+    auto &Vec = const_cast<NativeClass &>(*R.getWorld()->findClass("Vec"));
+    Vec.DefaultConstructible = false;
+    Vec.CopiesAsBytes = true;
+    Vec.TriviallyDestructible = true;
+  };
+  ParsedWithWorld Q(Source, ZeroIsAValue);
+  EXPECT_TRUE(Q.OK) << Q.messages().front();
 }
 
 TEST(SemaClassTest, InputIsReadOnlyAndOutputWriteOnly) {

@@ -9,6 +9,10 @@
 // - Fixed: copy-constructible but not assignable (a const member): bsc
 //   assigns it by destroying and copy-constructing.
 // - Pinned: not copyable (deleted copy constructor and assignment).
+// - Handle: no default constructor, a destructor that counts (its Counted):
+//   only a func may hold one, initialised.
+// - Plain: no default constructor, but trivially copyable and destructible,
+//   so it may start as zero bytes anywhere.
 #include <bscript/Bind.h>
 #include <cstdio>
 
@@ -56,6 +60,19 @@ struct Pinned {
   Pinned &operator=(const Pinned &) = delete;
   ~Pinned() {}
 };
+
+struct Handle {
+  Counted c;
+  explicit Handle(int N) { c.n = N; }
+  int get() const { return c.n; }
+};
+Handle handle(int N) { return Handle(N); }
+
+struct Plain {
+  int v;
+  explicit Plain(int V) : v(V) {}
+};
+Plain plain(int V) { return Plain(V); }
 } // namespace lc
 
 BS_MODULE(Life,
@@ -70,4 +87,10 @@ BS_MODULE(Life,
     .func<&lc::Fixed::get>("get");
   registerClass<lc::Pinned>(module, "Pinned")
     .var<&lc::Pinned::n>("n");
+  registerClass<lc::Handle>(module, "Handle")
+    .func<&lc::Handle::get>("get");
+  registerFunction<&lc::handle>(module, "handle");
+  registerClass<lc::Plain>(module, "Plain")
+    .var<&lc::Plain::v>("v");
+  registerFunction<&lc::plain>(module, "plain");
 )
