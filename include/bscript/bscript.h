@@ -36,7 +36,7 @@ extern "C" {
 #endif
 
 /** Bumped whenever the layout below changes; bs_behavior_info carries it. */
-#define BS_ABI_VERSION 3
+#define BS_ABI_VERSION 4
 
 /** Task states (language.md): > 0 running, 0 done, < 0 failure. */
 #define BS_TASK_DONE 0
@@ -87,7 +87,19 @@ typedef struct bs_behavior_info {
    *  hold (those whose C++ destructor does something); NULL when the
    *  behavior has none. Called through bs_state_destroy. */
   void (*destroy)(void *state);
+  /** `bsc --instrument`: the debugger's static tables of the behavior as
+   *  JSON text (task names, yield lines, frame fields, callers), which
+   *  `bsc trace-decode` reads to turn a trace log into text; NULL
+   *  otherwise. Also in the object's section `.bs_debug_tables`. */
+  const char *debug_tables;
 } bs_behavior_info;
+
+/** One task that ran in the current cycle (bs_trace_snapshot). */
+typedef struct bs_activation {
+  uint16_t task;   /**< Index into bs_behavior_info.tasks. */
+  uint16_t resume; /**< 0: finished; k: waits after its k-th yield. */
+  int32_t state;   /**< The state it left: > 0 running, 0 done, < 0 failure. */
+} bs_activation;
 
 /** Zeroes a state: every task reports done and starts from the top at its
  *  next call. Returns BS_INIT_OK; BS_INIT_BAD_INFO if `info` is from another
@@ -120,6 +132,21 @@ uint64_t bs_binding_hash(const void *descriptor);
  *  prints why on stderr and returns the exit status 1. Programs that bsc
  *  links call it; it uses stdio, like the io module. */
 int bs_report_init_failure(const bs_behavior_info *info, int code);
+
+/** The tasks called in the current cycle, in task-table order, into `out`
+ *  (at most `capacity` records); returns how many there are, which may be
+ *  more than `capacity`. Call it after the cycle's entry calls. It reads
+ *  the frame headers only, so it works with any compiled behavior and costs
+ *  nothing inside the behavior.
+ *
+ *  Trace logs: a robot that logs its behavior writes, per cycle, the
+ *  little-endian words {cycle (the state's bs_state_header.cycle), count}
+ *  and then `count` bs_activation records (8 bytes each: task, resume as
+ *  uint16, state as int32). `bsc trace-decode --object B.o LOG` prints
+ *  them as `bsc run --trace` does, with the names and lines of the tables
+ *  an object compiled with `bsc --instrument` carries. */
+uint32_t bs_trace_snapshot(const void *state, const bs_behavior_info *info,
+                           bs_activation *out, uint32_t capacity);
 
 /** Starts the next execution cycle with this cycle's input and output. */
 void bs_begin_cycle(void *state, const void *input, void *output);

@@ -233,14 +233,30 @@ FunctionEmitter::emitNativeCallWithValues(const NativeFunction &NF,
       V = Builder.CreateSIToFP(V, PTy);
     Args.push_back(V);
   }
+  // The probe names the binding should it crash (CodeGenOptions::Probes).
+  bool Probe = CGM.getOptions().Probes;
+  if (Probe) {
+    std::string Name = NF.Owner ? NF.Owner->QualifiedName + "::" + NF.Name
+                                : NF.Name;
+    if (!NF.Owner)
+      for (const NativeModule *NM : CGM.getBehavior().NativeModules)
+        if (NM->findFunction(NF.Name) == &NF)
+          Name = NM->Name + "::" + NF.Name;
+    emitProbe(NativeProbeSymbol,
+              CGM.addSite({DebugSite::NativeCall, &D, CurStmtLoc, Name}));
+  }
+  llvm::CallInst *Call =
+      Builder.CreateCall(Callee, Args, FTy->getReturnType()->isVoidTy() || Out
+                                           ? ""
+                                           : NF.Name);
+  if (Probe)
+    emitProbe(NativeProbeSymbol, 0);
   if (Out) {
-    Builder.CreateCall(Callee, Args);
     pushTemp(NF.Result.TheClass, Out);
     return Out;
   }
   if (NF.Result.TheCode == NativeType::Void)
-    return Builder.CreateCall(Callee, Args);
-  llvm::CallInst *Call = Builder.CreateCall(Callee, Args, NF.Name);
+    return Call;
   if (NF.Result.TheCode == NativeType::Bool)
     return Builder.CreateICmpNE(Call, Builder.getInt32(0), "tobool");
   return Call;
@@ -337,6 +353,7 @@ llvm::Value *FunctionEmitter::emitCall(const CallExpr &E) {
   case CallKind::Task: {
     // Tasks and funcs alike: (state, args...). A task call runs one step.
     llvm::Function *Callee = CGM.getFunction(E.Target);
+    CGM.noteCall(&D, E.Target);
     llvm::SmallVector<llvm::Value *, 4> Args = {StatePtr};
     llvm::AllocaInst *Out = nullptr;
     if (ModuleEmitter::returnsClass(*E.Target)) {

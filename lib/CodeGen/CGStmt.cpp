@@ -73,8 +73,16 @@ void FunctionEmitter::emitStmt(const Stmt *S) {
   // temporaries is destroyed here (conditions, `return` and `yield` do it
   // themselves, before they branch).
   size_t Depth = Temps.size();
+  llvm::SMLoc Outer = CurStmtLoc;
+  CurStmtLoc = S->getLoc();
   emitStmtImpl(S);
   popTemps(Depth);
+  CurStmtLoc = Outer;
+}
+
+void FunctionEmitter::emitProbe(const char *Symbol, unsigned Site) {
+  Builder.CreateStore(Builder.getInt32(Site), CGM.getProbe(Symbol),
+                      /*isVolatile=*/true);
 }
 
 void FunctionEmitter::emitStmtImpl(const Stmt *S) {
@@ -248,6 +256,9 @@ void FunctionEmitter::emitFor(const ForStmt &S) {
 
   // A missing condition is true.
   Builder.SetInsertPoint(CondBB);
+  if (CGM.getOptions().Probes)
+    emitProbe(LoopProbeSymbol,
+              CGM.addSite({DebugSite::Loop, &D, S.getLoc(), ""}));
   if (S.Cond)
     Builder.CreateCondBr(emitFullCond(S.Cond), BodyBB, EndBB);
   else

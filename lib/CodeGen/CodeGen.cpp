@@ -24,7 +24,7 @@ using namespace bsc;
 using namespace bsc::codegen;
 
 /// The ABI version written into bs_behavior_info (BS_ABI_VERSION).
-static constexpr uint32_t ABIVersion = 3;
+static constexpr uint32_t ABIVersion = 4;
 
 std::string bsc::getEntrySymbol(llvm::StringRef BehaviorName,
                                 const CallableDecl &D) {
@@ -37,7 +37,7 @@ std::string bsc::getEntrySymbol(llvm::StringRef BehaviorName,
 /// The name of the internal function of a func or task: `bs.M.f`, and
 /// `bs.M.task.f` for a func nested in a task. Dots cannot occur in
 /// b-script names, so these never clash with each other or with exports.
-static std::string getInternalName(const CallableDecl &D) {
+std::string bsc::getInternalName(const CallableDecl &D) {
   std::string S = "bs.";
   if (D.Module)
     S += D.Module->Name + ".";
@@ -282,9 +282,35 @@ void ModuleEmitter::layoutState() {
   Layout.StateSize = DL.getTypeAllocSize(StateTy);
   Layout.StateAlign = DL.getABITypeAlign(StateTy).value();
   Layout.Tasks.clear();
-  for (const TaskDecl *T : B.Tasks)
-    Layout.Tasks.push_back(
-        {T, SL->getElementOffset(Frames[T].StateFieldNo)});
+  for (const TaskDecl *T : B.Tasks) {
+    const FrameInfo &FI = Frames[T];
+    uint64_t FrameOffset = SL->getElementOffset(FI.StateFieldNo);
+    const llvm::StructLayout *FL = DL.getStructLayout(FI.Ty);
+    BehaviorLayout::Task Entry{T, FrameOffset, {}};
+    auto Add = [&](const Decl *D, const Type *Ty) {
+      Entry.Fields.push_back(
+          {D, Ty, FrameOffset + FL->getElementOffset(FI.Fields.lookup(D))});
+    };
+    for (const ParamDecl *P : T->Params)
+      Add(P, P->Ty);
+    for (const VarDecl *V : T->Locals)
+      Add(V, V->Ty);
+    Layout.Tasks.push_back(std::move(Entry));
+  }
+}
+
+unsigned ModuleEmitter::addSite(DebugSite Site) {
+  Layout.Sites.push_back(std::move(Site));
+  return Layout.Sites.size();
+}
+
+llvm::GlobalVariable *ModuleEmitter::getProbe(const char *Symbol) {
+  if (llvm::GlobalVariable *G = M.getGlobalVariable(Symbol))
+    return G;
+  llvm::Type *I32 = llvm::Type::getInt32Ty(Ctx);
+  return new llvm::GlobalVariable(M, I32, /*isConstant=*/false,
+                                  llvm::GlobalValue::ExternalLinkage,
+                                  llvm::ConstantInt::get(I32, 0), Symbol);
 }
 
 void ModuleEmitter::declareFunctions() {
@@ -300,8 +326,11 @@ void ModuleEmitter::declareFunctions() {
     for (const ParamDecl *P : D->Params)
       Params.push_back(getValueType(P->Ty));
     auto *FTy = llvm::FunctionType::get(Result, Params, false);
-    auto *F = llvm::Function::Create(FTy, llvm::GlobalValue::InternalLinkage,
-                                     getInternalName(*D), M);
+    auto *F = llvm::Function::Create(
+        FTy,
+        Opts.ExternalFunctions ? llvm::GlobalValue::ExternalLinkage
+                               : llvm::GlobalValue::InternalLinkage,
+        getInternalName(*D), M);
     addCommonAttributes(F);
     F->getArg(0)->setName("state");
     if (ClassResult)
@@ -469,7 +498,7 @@ void ModuleEmitter::emitInfo() {
   auto *ModuleInfoTy =
       llvm::StructType::create(Ctx, {Ptr, Ptr, I64}, "bs_binding_module");
   auto *InfoTy = llvm::StructType::create(
-      Ctx, {I32, I32, I32, I32, Ptr, I32, Ptr, Ptr}, "bs_behavior_info");
+      Ctx, {I32, I32, I32, I32, Ptr, I32, Ptr, Ptr, Ptr}, "bs_behavior_info");
 
   // A private constant array, or null when there is nothing to list.
   auto EmitTable = [&](llvm::StructType *Ty,
@@ -513,10 +542,39 @@ void ModuleEmitter::emitInfo() {
                EmitTable(ModuleInfoTy, Modules, "_modules"),
                BehaviorDestroy ? static_cast<llvm::Constant *>(BehaviorDestroy)
                                : llvm::ConstantPointerNull::get(
-                                     llvm::PointerType::getUnqual(Ctx))});
+                                     llvm::PointerType::getUnqual(Ctx)),
+               getDebugTables()});
   Info = new llvm::GlobalVariable(M, InfoTy, /*isConstant=*/true,
                                   llvm::GlobalValue::ExternalLinkage, Init,
                                   Layout.InfoSymbol);
+}
+
+llvm::Constant *ModuleEmitter::getDebugTables() {
+  if (!Opts.Instrument)
+    return llvm::ConstantPointerNull::get(llvm::PointerType::getUnqual(Ctx));
+  // Declared here, defined by defineDebugTables once the whole module (and
+  // so the call graph the tables list) has been emitted.
+  Layout.DebugTablesSymbol = "bs_" + Opts.BehaviorName + "_debug_tables";
+  return M.getOrInsertGlobal(Layout.DebugTablesSymbol,
+                             llvm::Type::getInt8Ty(Ctx));
+}
+
+void bsc::defineDebugTables(llvm::Module &M, const BehaviorLayout &Layout,
+                            llvm::StringRef JSON) {
+  llvm::GlobalVariable *Decl =
+      M.getGlobalVariable(Layout.DebugTablesSymbol, /*AllowInternal=*/true);
+  assert(Decl && Decl->isDeclaration() && "emitLLVM ran with Instrument");
+  llvm::Constant *Text =
+      llvm::ConstantDataArray::getString(M.getContext(), JSON);
+  auto *G = new llvm::GlobalVariable(M, Text->getType(), /*isConstant=*/true,
+                                     llvm::GlobalValue::ExternalLinkage, Text);
+  // A section of its own, so that `bsc trace-decode` finds the text in an
+  // object without following relocations.
+  G->setSection(DebugTablesSection);
+  G->setAlignment(llvm::Align(1));
+  G->takeName(Decl);
+  Decl->replaceAllUsesWith(G);
+  Decl->eraseFromParent();
 }
 
 void ModuleEmitter::emitProgramMain() {

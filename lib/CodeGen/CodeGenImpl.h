@@ -127,7 +127,19 @@ public:
   void addCommonAttributes(llvm::Function *F);
 
   const Behavior &getBehavior() const { return B; }
+  const CodeGenOptions &getOptions() const { return Opts; }
   llvm::Module &getModule() { return M; }
+
+  // Debugging probes (CodeGenOptions::Probes) -------------------------------
+
+  /// Records a call of a func or task (BehaviorLayout::Calls).
+  void noteCall(const CallableDecl *Caller, const CallableDecl *Callee) {
+    Layout.Calls.emplace_back(Caller, Callee);
+  }
+  /// Records a site; returns its number (from 1).
+  unsigned addSite(DebugSite Site);
+  /// `bs.probe.loop` or `bs.probe.native`, defined on first use.
+  llvm::GlobalVariable *getProbe(const char *Symbol);
   llvm::LLVMContext &getContext() { return Ctx; }
 
 private:
@@ -140,6 +152,9 @@ private:
   /// behavior's `bs.destroy` that calls them (bs_behavior_info.destroy).
   void emitDestroyFunctions();
   void emitInfo();
+  /// bs_behavior_info.debug_tables: null, or with CodeGenOptions::
+  /// Instrument the symbol defineDebugTables defines.
+  llvm::Constant *getDebugTables();
   void emitProgramMain();
 
   const Behavior &B;
@@ -286,6 +301,11 @@ private:
   llvm::Value *emitFieldAddress(const MemberExpr &E);
   /// The index of the first declared parameter among Fn's arguments.
   unsigned getFirstParamArg() const;
+
+  /// With probes: stores site `Site` (0: none) into probe global `Symbol`.
+  void emitProbe(const char *Symbol, unsigned Site);
+  /// The statement being lowered: the place a native call's probe names.
+  llvm::SMLoc CurStmtLoc;
 
   /// Evaluates a yield's value as an i32 task state.
   llvm::Value *emitToTaskState(const Expr *E);

@@ -10,6 +10,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "bsc/JIT/JIT.h"
+#include "bsc/CodeGen/CodeGen.h"
 #include "bsc/CodeGen/Target.h"
 #include "bscript/bscript.h"
 #include "llvm/ExecutionEngine/Orc/Core.h"
@@ -25,8 +26,12 @@
 #include "llvm/ADT/ScopeExit.h"
 #include "llvm/MC/TargetRegistry.h"
 #include "llvm/Support/MemAlloc.h"
+#include <csetjmp>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <iterator>
+#include <sys/time.h>
 
 using namespace bsc;
 
@@ -156,83 +161,185 @@ llvm::Error BehaviorJIT::addArchive(llvm::StringRef Path) {
   return llvm::Error::success();
 }
 
-namespace {
-/// An aligned, zeroed heap object, constructed through its thunk.
-class JITObject {
-public:
-  JITObject(size_t Size, size_t Align)
-      : Size(Size ? Size : 1), Align(Align ? Align : 1),
-        Ptr(llvm::allocate_buffer(this->Size, this->Align)) {
-    std::memset(Ptr, 0, this->Size);
+void *BehaviorJIT::lookup(llvm::StringRef Symbol) {
+  auto Addr = J->lookup(Symbol);
+  if (!Addr) {
+    llvm::consumeError(Addr.takeError());
+    return nullptr;
   }
-  ~JITObject() { llvm::deallocate_buffer(Ptr, Size, Align); }
-  void *get() const { return Ptr; }
+  return Addr->toPtr<void *>();
+}
 
-private:
-  size_t Size, Align;
-  void *Ptr;
-};
+//===----------------------------------------------------------------------===//
+// BehaviorSession
+//===----------------------------------------------------------------------===//
+
+namespace {
+/// The cycle guard (BehaviorSession): where a signal during a cycle jumps
+/// to. One session runs cycles at a time, on one thread.
+sigjmp_buf CycleJump;
+volatile sig_atomic_t InCycle = 0;
+volatile sig_atomic_t CaughtSignal = 0;
+constexpr int GuardedSignals[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGALRM};
+struct sigaction PreviousActions[std::size(GuardedSignals)];
+unsigned Sessions = 0;
+/// The handler runs on its own stack, so a stack overflow in registered C++
+/// still reaches it.
+alignas(16) char AltStack[64 * 1024];
+
+void onGuardedSignal(int Sig) {
+  if (!InCycle) {
+    // Not ours: what would have happened without the guard.
+    for (size_t I = 0; I < std::size(GuardedSignals); ++I)
+      if (GuardedSignals[I] == Sig)
+        sigaction(Sig, &PreviousActions[I], nullptr);
+    raise(Sig);
+    return;
+  }
+  InCycle = 0;
+  CaughtSignal = Sig;
+  siglongjmp(CycleJump, 1);
+}
+
+void installGuard() {
+  if (Sessions++)
+    return;
+  stack_t SS = {};
+  SS.ss_sp = AltStack;
+  SS.ss_size = sizeof AltStack;
+  sigaltstack(&SS, nullptr);
+  struct sigaction SA = {};
+  SA.sa_handler = onGuardedSignal;
+  SA.sa_flags = SA_ONSTACK | SA_NODEFER;
+  sigemptyset(&SA.sa_mask);
+  for (size_t I = 0; I < std::size(GuardedSignals); ++I)
+    sigaction(GuardedSignals[I], &SA, &PreviousActions[I]);
+}
+
+void removeGuard() {
+  if (--Sessions)
+    return;
+  for (size_t I = 0; I < std::size(GuardedSignals); ++I)
+    sigaction(GuardedSignals[I], &PreviousActions[I], nullptr);
+}
+
+void setTimer(unsigned Ms) {
+  struct itimerval T = {};
+  T.it_value.tv_sec = Ms / 1000;
+  T.it_value.tv_usec = (Ms % 1000) * 1000;
+  setitimer(ITIMER_REAL, &T, nullptr);
+}
+
+/// An aligned, zeroed heap block.
+void *allocateZeroed(size_t Size, size_t Align) {
+  void *P = llvm::allocate_buffer(Size ? Size : 1, Align ? Align : 1);
+  std::memset(P, 0, Size ? Size : 1);
+  return P;
+}
+void deallocate(void *P, size_t Size, size_t Align) {
+  if (P)
+    llvm::deallocate_buffer(P, Size ? Size : 1, Align ? Align : 1);
+}
 } // namespace
 
-llvm::Error BehaviorJIT::runCycles(llvm::StringRef InfoSymbol,
-                                   llvm::StringRef EntrySymbol,
-                                   unsigned Cycles, const GlobalObject &Input,
-                                   const GlobalObject &Output) {
-  auto InfoAddr = J->lookup(InfoSymbol);
+llvm::Error BehaviorSession::callThunk(const std::string &Symbol, void *Obj) {
+  if (Symbol.empty() || !Obj)
+    return llvm::Error::success();
+  auto Fn = JIT.J->lookup(Symbol);
+  if (!Fn)
+    return Fn.takeError();
+  Fn->toPtr<void (*)(void *)>()(Obj);
+  return llvm::Error::success();
+}
+
+llvm::Expected<std::unique_ptr<BehaviorSession>>
+BehaviorSession::start(BehaviorJIT &JIT, llvm::StringRef InfoSymbol,
+                       llvm::StringRef EntrySymbol,
+                       const BehaviorJIT::GlobalObject &InputSpec,
+                       const BehaviorJIT::GlobalObject &OutputSpec) {
+  auto InfoAddr = JIT.J->lookup(InfoSymbol);
   if (!InfoAddr)
     return InfoAddr.takeError();
-  auto EntryAddr = J->lookup(EntrySymbol);
+  auto EntryAddr = JIT.J->lookup(EntrySymbol);
   if (!EntryAddr)
     return EntryAddr.takeError();
-  const auto *Info = InfoAddr->toPtr<const bs_behavior_info *>();
+  std::unique_ptr<BehaviorSession> S(new BehaviorSession(JIT));
+  S->Info = InfoAddr->toPtr<const bs_behavior_info *>();
   // Entries without parameters: a func's result (if any) is returned in a
   // register and ignored, as the program's main does.
-  auto *Entry = EntryAddr->toPtr<void (*)(void *)>();
+  S->Entry = EntryAddr->toPtr<void (*)(void *)>();
+  S->LoopProbe = static_cast<uint32_t *>(JIT.lookup(LoopProbeSymbol));
+  S->NativeProbe = static_cast<uint32_t *>(JIT.lookup(NativeProbeSymbol));
 
   // The embedding provides the state; here it is one aligned heap block.
-  size_t Align = Info->state_align ? Info->state_align : 1;
-  size_t Size = Info->state_size ? Info->state_size : 1;
-  void *State = llvm::allocate_buffer(Size, Align);
-  auto Free =
-      llvm::make_scope_exit([&] { llvm::deallocate_buffer(State, Size, Align); });
-  int Init = bs_state_init(State, Info);
+  S->State = allocateZeroed(S->Info->state_size, S->Info->state_align);
+  int Init = bs_state_init(S->State, S->Info);
   if (Init == BS_INIT_STALE_BINDINGS)
-    if (const char *Module = bs_check_bindings(Info))
+    if (const char *Module = bs_check_bindings(S->Info))
       return llvm::make_error<StaleBindingError>(Module);
   if (Init != BS_INIT_OK)
     return llvm::createStringError(
         "bs_state_init refused the state of ABI version " +
-        std::to_string(Info->abi_version));
+        std::to_string(S->Info->abi_version));
+  S->Started = true;
   // Generated code reads input and writes output through the state header,
   // so a behavior that declares them must get real objects, never null.
-  JITObject InputObj(Input.Size, Input.Align), OutputObj(Output.Size,
-                                                         Output.Align);
-  // Runs one life-cycle thunk (construct or destroy) on both objects.
-  auto CallOnObjects = [&](std::string GlobalObject::*Thunk) -> llvm::Error {
-    for (auto [Spec, Obj] : {std::pair(&Input, &InputObj),
-                             std::pair(&Output, &OutputObj)}) {
-      if ((Spec->*Thunk).empty())
-        continue;
-      auto Fn = J->lookup(Spec->*Thunk);
-      if (!Fn)
-        return Fn.takeError();
-      Fn->toPtr<void (*)(void *)>()(Obj->get());
-    }
-    return llvm::Error::success();
-  };
-  if (llvm::Error E = CallOnObjects(&GlobalObject::Construct))
+  S->InputSpec = InputSpec;
+  S->OutputSpec = OutputSpec;
+  if (InputSpec.Size)
+    S->Input = allocateZeroed(InputSpec.Size, InputSpec.Align);
+  if (OutputSpec.Size)
+    S->Output = allocateZeroed(OutputSpec.Size, OutputSpec.Align);
+  if (llvm::Error E = S->callThunk(InputSpec.Construct, S->Input))
     return E;
-  void *In = Input.Size ? InputObj.get() : nullptr;
-  void *Out = Output.Size ? OutputObj.get() : nullptr;
-  for (unsigned I = 0; I < Cycles; ++I) {
-    bs_begin_cycle(State, In, Out);
-    Entry(State);
+  if (llvm::Error E = S->callThunk(OutputSpec.Construct, S->Output))
+    return E;
+  installGuard();
+  return S;
+}
+
+BehaviorSession::~BehaviorSession() {
+  if (Started) {
+    // As a robot program ends: the class values running tasks hold, then
+    // the input and output objects.
+    bs_state_destroy(State, Info);
+    llvm::consumeError(callThunk(InputSpec.Destroy, Input));
+    llvm::consumeError(callThunk(OutputSpec.Destroy, Output));
+    removeGuard();
   }
-  // As a robot program ends: the class values running tasks hold, then
-  // the input and output objects.
-  bs_state_destroy(State, Info);
-  if (llvm::Error E = CallOnObjects(&GlobalObject::Destroy))
-    return E;
+  deallocate(Input, InputSpec.Size, InputSpec.Align);
+  deallocate(Output, OutputSpec.Size, OutputSpec.Align);
+  if (Info)
+    deallocate(State, Info->state_size, Info->state_align);
   std::fflush(stdout);
-  return llvm::Error::success();
+}
+
+uint32_t BehaviorSession::getCycle() const {
+  return static_cast<const bs_state_header *>(State)->cycle;
+}
+
+BehaviorSession::Outcome BehaviorSession::runCycle(unsigned LimitMs) {
+  Outcome Result;
+  if (LoopProbe)
+    *LoopProbe = 0;
+  if (NativeProbe)
+    *NativeProbe = 0;
+  bs_begin_cycle(State, Input, Output);
+  if (sigsetjmp(CycleJump, 1) == 0) {
+    InCycle = 1;
+    if (LimitMs)
+      setTimer(LimitMs);
+    Entry(State);
+    InCycle = 0;
+    if (LimitMs)
+      setTimer(0);
+  } else {
+    setTimer(0);
+    Result.K = CaughtSignal == SIGALRM ? Outcome::TimedOut : Outcome::Crashed;
+    Result.Signal = CaughtSignal;
+  }
+  Result.LoopSite = LoopProbe ? *LoopProbe : 0;
+  Result.NativeSite = NativeProbe ? *NativeProbe : 0;
+  std::fflush(stdout);
+  return Result;
 }

@@ -129,6 +129,30 @@ void bs_begin_cycle(void *state, const void *input, void *output) {
   header->output = output;
 }
 
+uint32_t bs_trace_snapshot(const void *state, const bs_behavior_info *info,
+                           bs_activation *out, uint32_t capacity) {
+  if (!state || !info || info->abi_version != BS_ABI_VERSION)
+    return 0;
+  const unsigned char *bytes = (const unsigned char *)state;
+  uint32_t cycle = ((const bs_state_header *)state)->cycle, count = 0;
+  if (cycle == 0)
+    return 0;
+  for (uint32_t i = 0; i < info->num_tasks; ++i) {
+    const bs_frame_header *frame =
+        (const bs_frame_header *)(bytes + info->tasks[i].frame_offset);
+    /* Every call stores the cycle: the tasks called in this one. */
+    if (frame->last_cycle != cycle)
+      continue;
+    if (count < capacity) {
+      out[count].task = (uint16_t)i;
+      out[count].resume = (uint16_t)frame->resume;
+      out[count].state = frame->state;
+    }
+    ++count;
+  }
+  return count;
+}
+
 /* Whether two NUL-terminated strings are equal. */
 static int bs_same_name(const char *a, const char *b) {
   while (*a && *a == *b) {

@@ -20,6 +20,7 @@
 #include "bsc/CodeGen/Target.h"
 #include "bsc/Frontend/Frontend.h"
 #include "bsc/JIT/JIT.h"
+#include "bsc/REPL/Debugger.h"
 #include "bsc/Parse/Lexer.h"
 #include "bsc/Parse/Parser.h"
 #include "llvm/ADT/ScopeExit.h"
@@ -69,6 +70,30 @@ cl::opt<std::string> OptLevelArg("O", cl::Prefix,
                                  cl::desc("Optimisation level 0..3 (default 0)"),
                                  cl::value_desc("level"), cl::init("0"),
                                  cl::cat(BscCategory), BSC_BOTH);
+
+cl::opt<std::string> RecordFile(
+    "record",
+    cl::desc("Write each cycle's input and output as one JSON line"),
+    cl::value_desc("file.jsonl"), cl::cat(BscCategory), cl::sub(RunCmd));
+cl::opt<std::string> ReplayFile(
+    "replay",
+    cl::desc("Feed each cycle's input from a JSON-lines file and compare "
+             "the outputs it records"),
+    cl::value_desc("file.jsonl"), cl::cat(BscCategory), cl::sub(RunCmd));
+cl::opt<bool> TraceFlag("trace",
+                        cl::desc("Print the active task hierarchy after "
+                                 "each cycle"),
+                        cl::cat(BscCategory), cl::sub(RunCmd));
+cl::opt<bool> PrintOutputFlag("print-output",
+                              cl::desc("Print the output after each cycle "
+                                       "as JSON"),
+                              cl::cat(BscCategory), cl::sub(RunCmd));
+cl::opt<std::string> CycleLimitArg(
+    "cycle-limit",
+    cl::desc("Stop a cycle that runs longer than this (milliseconds; "
+             "default 3000, 0: no limit)"),
+    cl::value_desc("ms"), cl::init("3000"), cl::cat(BscCategory),
+    cl::sub(RunCmd));
 
 cl::opt<bool> SyntaxOnly("fsyntax-only",
                          cl::desc("Check the program; produce no output"),
@@ -207,6 +232,19 @@ bool parseBackendOptions(DiagnosticEngine &Diags, BackendOptions &Out) {
   Out.Target.Target = TargetArg;
   Out.Target.CPU = CPUArg;
   return OK;
+}
+
+/// Checks --cycle-limit; reports and returns false if it is bad.
+bool parseCycleLimit(DiagnosticEngine &Diags, unsigned &Ms) {
+  // A day: anything longer is a typo, and itimer values must stay small.
+  constexpr unsigned MaxCycleLimitMs = 86400000;
+  if (llvm::StringRef(CycleLimitArg).getAsInteger(10, Ms) ||
+      Ms > MaxCycleLimitMs) {
+    Diags.report(llvm::SMLoc(), diag::err_bad_option_value)
+        << CycleLimitArg.getValue() << "--cycle-limit";
+    return false;
+  }
+  return true;
 }
 
 /// The behavior name: --behavior-name, or the first input's module.
@@ -379,25 +417,6 @@ bool linkProgram(Compilation &C, const llvm::Triple &T, llvm::StringRef Object,
   return true;
 }
 
-/// Reports every thunk or descriptor that `M` imports from the binding
-/// modules but no --bind object defines: the linker or the JIT would fail
-/// on it with a bare "undefined symbol". Returns false if there was one.
-bool checkBindingImports(Compilation &C, const llvm::Module &M) {
-  llvm::StringSet<> BindingSymbols;
-  for (const std::string &S : bind::getBindingSymbols(C.Checked.BindingModules))
-    BindingSymbols.insert(S);
-  std::vector<std::string> Imports;
-  for (const llvm::GlobalValue &GV : M.global_values())
-    if (GV.isDeclaration() && BindingSymbols.contains(GV.getName()))
-      Imports.push_back(GV.getName().str());
-  std::vector<std::string> Missing =
-      bind::findUndefinedSymbols(BindObjects, Imports);
-  for (const std::string &S : Missing)
-    C.Diags.report(llvm::SMLoc(), diag::err_stale_binding_symbol)
-        << llvm::demangle(S);
-  return Missing.empty();
-}
-
 /// What the top-level command produces when it goes past the front end.
 enum class OutputKind { LLVM, Asm, Obj, Header, Program };
 
@@ -499,7 +518,7 @@ int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
                            C.Diags))
         return finish(C);
     }
-    if (!checkBindingImports(C, *M) ||
+    if (!checkBindingImports(C, *M, BindObjects) ||
         !linkProgram(C, TM->getTargetTriple(), ObjPath, Path, Argv0,
                      BindObjects))
       llvm::sys::fs::remove(Path);
@@ -515,62 +534,31 @@ int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
 int runJIT(Compilation &C, const FrontendOptions &FOpts) {
   BackendOptions BOpts;
   bool OptionsOK = parseBackendOptions(C.Diags, BOpts);
+  RunOptions ROpts;
+  ROpts.Cycles = BOpts.Cycles;
+  ROpts.CyclesGiven = CyclesArg.getNumOccurrences() != 0;
+  ROpts.RecordPath = RecordFile;
+  ROpts.ReplayPath = ReplayFile;
+  ROpts.Trace = TraceFlag;
+  ROpts.PrintOutput = PrintOutputFlag;
+  OptionsOK &= parseCycleLimit(C.Diags, ROpts.CycleLimitMs);
   if (!runFrontend(C, FOpts) || !OptionsOK)
     return finish(C);
   const CallableDecl *Entry = findProgramEntry(C);
   if (!Entry)
     return finish(C);
-  auto JITOrErr = BehaviorJIT::create();
-  if (!JITOrErr)
-    return finishWithInternalError(C, JITOrErr.takeError());
-  BehaviorJIT &JIT = **JITOrErr;
-
-  CodeGenOptions CGOpts;
-  CGOpts.BehaviorName = C.Modules.front()->Name;
-  auto Ctx = std::make_unique<llvm::LLVMContext>();
-  BehaviorLayout Layout;
-  std::unique_ptr<llvm::Module> M = emitLLVM(
-      C.Checked, *Ctx, JIT.getTriple(), JIT.getDataLayout(), CGOpts, Layout);
-  if (llvm::Error E = verifyGeneratedModule(*M))
-    return finishWithInternalError(C, std::move(E));
-  std::string EntrySymbol = getEntrySymbol(CGOpts.BehaviorName, *Entry);
-  if (!checkBindingImports(C, *M))
+  LoadOptions LOpts;
+  LOpts.OptLevel = BOpts.Target.OptLevel;
+  LOpts.StandardModules = FOpts.StandardModules;
+  LOpts.BindObjects = FOpts.BindObjects;
+  auto Loaded = loadBehavior(C, *Entry, LOpts);
+  if (!Loaded)
+    return finishWithInternalError(C, Loaded.takeError());
+  if (!*Loaded)
     return finish(C);
-  // The standard modules' thunks from the host runtime archive, then the
-  // --bind objects, as a program links them.
-  for (const std::string &Path : FOpts.StandardModules)
-    if (llvm::Error E = JIT.addArchive(Path))
-      return finishWithInternalError(C, std::move(E));
-  for (const std::string &Path : BindObjects)
-    if (llvm::Error E = JIT.addObjectFile(Path)) {
-      // A library the loader refuses is the user's to fix.
-      E = llvm::handleErrors(std::move(E), [&](const BindingLoadError &L) {
-        C.Diags.report(llvm::SMLoc(), diag::err_bind_load)
-            << L.Path << L.Message;
-      });
-      return E ? finishWithInternalError(C, std::move(E)) : finish(C);
-    }
-  if (llvm::Error E =
-          JIT.addModule(std::move(M), std::move(Ctx), BOpts.Target.OptLevel))
-    return finishWithInternalError(C, std::move(E));
-  BehaviorJIT::GlobalObject Input, Output;
-  if (const NativeModule *World = C.Checked.World) {
-    for (auto [Class, Obj] : {std::pair(World->Input, &Input),
-                              std::pair(World->Output, &Output)})
-      if (Class)
-        *Obj = {size_t(Class->Size), size_t(Class->Align), Class->Construct,
-                Class->TriviallyDestructible ? "" : Class->Destroy};
-  }
-  if (llvm::Error E = JIT.runCycles(Layout.InfoSymbol, EntrySymbol,
-                                    BOpts.Cycles, Input, Output)) {
-    // A stale binding module is the user's to fix, not an internal error.
-    E = llvm::handleErrors(std::move(E), [&](const StaleBindingError &S) {
-      C.Diags.report(llvm::SMLoc(), diag::err_stale_binding_module)
-          << S.Module;
-    });
-    if (E)
-      return finishWithInternalError(C, std::move(E));
-  }
+  llvm::Expected<bool> Ran = runBehavior(C, **Loaded, ROpts, llvm::outs());
+  if (!Ran)
+    return finishWithInternalError(C, Ran.takeError());
   return finish(C);
 }
 

@@ -42,15 +42,56 @@ struct CodeGenOptions {
   /// (standalone programs and `bsc run`).
   const CallableDecl *ProgramEntry = nullptr;
   unsigned ProgramCycles = 1;
+  /// Funcs and tasks get external linkage under their internal names
+  /// (`bs.M.f`), so that code compiled later into the same JIT (a REPL
+  /// line) can call them. Results do not change; only the JIT sets it.
+  bool ExternalFunctions = false;
+  /// Debugging probes for the JIT (docs/repl.md): each loop's head stores
+  /// its site number into the i32 global `bs.probe.loop`, and each call of
+  /// registered C++ stores its site into `bs.probe.native` before the call
+  /// and 0 after it, so that a watchdog or a crash handler can name the
+  /// loop that ran away or the binding that crashed. Values computed do
+  /// not change; robot objects never have probes (no mutable globals).
+  bool Probes = false;
+  /// `--instrument`: bs_behavior_info.debug_tables points to the static
+  /// tables of the debugger (task names, yield lines, frame fields, the
+  /// call graph; bsc/Debug/Trace.h) as JSON, in the section
+  /// DebugTablesSection, so that a robot's trace log can be decoded offline.
+  /// The code of tasks and funcs does not change.
+  bool Instrument = false;
 };
+
+/// The section holding the debug tables of an instrumented object.
+inline constexpr const char *DebugTablesSection = ".bs_debug_tables";
+
+/// A place in the behavior a probe names (BehaviorLayout::Sites).
+struct DebugSite {
+  enum SiteKind { Loop, NativeCall };
+  SiteKind Kind;
+  const CallableDecl *In; ///< The func or task whose body holds it.
+  llvm::SMLoc Loc;        ///< The `for`, or the statement making the call.
+  std::string Native;     ///< NativeCall: the registered C++ (`Math::fabs`).
+};
+
+/// The probe globals of CodeGenOptions::Probes.
+inline constexpr const char *LoopProbeSymbol = "bs.probe.loop";
+inline constexpr const char *NativeProbeSymbol = "bs.probe.native";
 
 /// Where things ended up; what --emit-header and the JIT need.
 struct BehaviorLayout {
   uint64_t StateSize = 0;
   uint64_t StateAlign = 1;
+  /// A parameter or local a task keeps in its frame.
+  struct FrameField {
+    const Decl *D; ///< ParamDecl or VarDecl.
+    const Type *Ty;
+    uint64_t Offset; ///< From the start of the state.
+  };
   struct Task {
     const TaskDecl *Decl;
     uint64_t FrameOffset;
+    /// Parameters in order, then locals in declaration order.
+    std::vector<FrameField> Fields;
   };
   std::vector<Task> Tasks;
   struct Entry {
@@ -60,7 +101,27 @@ struct BehaviorLayout {
   /// The exported entries (top-level funcs and tasks with scalar parameters).
   std::vector<Entry> Entries;
   std::string InfoSymbol; ///< `bs_<Name>_info`.
+  /// With CodeGenOptions::Probes: the sites, numbered from 1 (0 in a probe
+  /// global means "none").
+  std::vector<DebugSite> Sites;
+  /// Every call of a func or task, caller first, in the order emitted
+  /// (duplicates kept): the static call graph the debugger's activation
+  /// trees follow.
+  std::vector<std::pair<const CallableDecl *, const CallableDecl *>> Calls;
+  /// With CodeGenOptions::Instrument: the declared symbol of the tables.
+  std::string DebugTablesSymbol;
 };
+
+/// Defines the debug tables an instrumented module declares
+/// (BehaviorLayout::DebugTablesSymbol) as the NUL-terminated `JSON`. Call
+/// it after emitLLVM and before optimising.
+void defineDebugTables(llvm::Module &M, const BehaviorLayout &Layout,
+                       llvm::StringRef JSON);
+
+/// The symbol of a func or task's generated function: `bs.M.f`, and
+/// `bs.M.task.f` for a func nested in a task (external with
+/// CodeGenOptions::ExternalFunctions).
+std::string getInternalName(const CallableDecl &D);
 
 /// Builds the IR of `B` for `Triple`/`DL`. Never fails on a behavior that
 /// Sema accepted.

@@ -17,6 +17,7 @@
 #include "llvm/IR/Module.h"
 #include "llvm/Support/Error.h"
 #include "llvm/TargetParser/Triple.h"
+#include "bscript/bscript.h"
 #include <memory>
 #include <string>
 
@@ -96,19 +97,11 @@ public:
     std::string Destroy;   ///< Destroy thunk symbol; empty if trivial.
   };
 
-  /// Initialises a state for the behavior whose info struct is `InfoSymbol`
-  /// and the `Input`/`Output` objects (zeroed, then constructed), then
-  /// `Cycles` times begins a cycle with them and calls the parameterless
-  /// entry `EntrySymbol`; at the end it destroys the state
-  /// (bs_state_destroy), then the objects. The objects are default values
-  /// in every cycle; replaying recorded inputs is the log-replay runner's
-  /// job. A stale binding module gives a StaleBindingError.
-  llvm::Error runCycles(llvm::StringRef InfoSymbol,
-                        llvm::StringRef EntrySymbol, unsigned Cycles,
-                        const GlobalObject &Input,
-                        const GlobalObject &Output);
+  /// The address of `Symbol` in the JIT, or null if nothing defines it.
+  void *lookup(llvm::StringRef Symbol);
 
 private:
+  friend class BehaviorSession;
   BehaviorJIT() = default;
 
   std::unique_ptr<llvm::orc::LLJIT> J;
@@ -116,6 +109,58 @@ private:
   llvm::DataLayout DL{""};
   std::string CPU;
   bool ProcessSymbols = false; ///< The process-symbol generator is added.
+};
+
+/// A behavior running in the JIT: its state and its `input` and `output`
+/// objects, advanced one cycle at a time by the driver (`bsc run`) or the
+/// REPL. Each cycle runs under a guard: a watchdog stops a cycle that runs
+/// longer than its limit (a loop without `yield`), and a signal raised in
+/// registered C++ (SIGSEGV, ...) ends the cycle instead of the process.
+/// Either leaves the state as it was at that moment; the driver reports it
+/// and stops. The guard uses SIGALRM and the fault signals while the session
+/// lives, and puts the previous handlers back at its end.
+class BehaviorSession {
+public:
+  /// Initialises a state for the behavior whose info struct is `InfoSymbol`
+  /// and the `Input`/`Output` objects (zeroed, then constructed). A stale
+  /// binding module gives a StaleBindingError.
+  static llvm::Expected<std::unique_ptr<BehaviorSession>>
+  start(BehaviorJIT &JIT, llvm::StringRef InfoSymbol,
+        llvm::StringRef EntrySymbol, const BehaviorJIT::GlobalObject &Input,
+        const BehaviorJIT::GlobalObject &Output);
+  /// Destroys the state (bs_state_destroy), then the objects.
+  ~BehaviorSession();
+
+  /// How a cycle ended.
+  struct Outcome {
+    enum Kind { Completed, TimedOut, Crashed } K = Completed;
+    int Signal = 0;          ///< Crashed: the signal.
+    uint32_t LoopSite = 0;   ///< The last loop probe (BehaviorLayout::Sites).
+    uint32_t NativeSite = 0; ///< The binding being called, if any.
+  };
+  /// Begins the next cycle and calls the entry; a cycle still running after
+  /// `LimitMs` milliseconds (0: no limit) is stopped.
+  Outcome runCycle(unsigned LimitMs);
+
+  void *getState() const { return State; }
+  void *getInput() const { return Input; }
+  void *getOutput() const { return Output; }
+  const bs_behavior_info &getInfo() const { return *Info; }
+  uint32_t getCycle() const;
+  BehaviorJIT &getJIT() const { return JIT; }
+
+private:
+  BehaviorSession(BehaviorJIT &JIT) : JIT(JIT) {}
+  llvm::Error callThunk(const std::string &Symbol, void *Obj);
+
+  BehaviorJIT &JIT;
+  const bs_behavior_info *Info = nullptr;
+  void (*Entry)(void *) = nullptr;
+  void *State = nullptr;
+  void *Input = nullptr, *Output = nullptr;
+  BehaviorJIT::GlobalObject InputSpec, OutputSpec;
+  volatile uint32_t *LoopProbe = nullptr, *NativeProbe = nullptr;
+  bool Started = false; ///< bs_state_init succeeded.
 };
 
 } // namespace bsc

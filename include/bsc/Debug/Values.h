@@ -1,0 +1,95 @@
+//===- Values.h - b-script values in memory as JSON ------------*- C++ -*-===//
+//
+// The debugger reads and writes the values a behavior keeps in memory: the
+// `input` and `output` objects, the parameters and locals in task frames,
+// the REPL's variables. Registered classes are shown through their
+// registered fields and properties, named as b-script sees them, which is
+// what a recording (`bsc run --record`) stores and what a replay writes
+// back. A field is read at its offset; a property through its getter and
+// setter thunks, which is why ValueIO needs the addresses of the thunks in
+// the running JIT.
+//
+// Floats must survive a round trip bit for bit (a replay compares outputs
+// bit-exactly), so numbers are written in the shortest form that reads back
+// as the same float, and non-finite values as the strings "NaN",
+// "Infinity" and "-Infinity" (JSON has no spelling for them).
+//
+//===----------------------------------------------------------------------===//
+#ifndef BSC_DEBUG_VALUES_H
+#define BSC_DEBUG_VALUES_H
+
+#include "bsc/AST/Type.h"
+#include "llvm/Support/Error.h"
+#include "llvm/Support/JSON.h"
+#include <functional>
+#include <optional>
+#include <set>
+#include <string>
+
+namespace bsc {
+struct NativeClass;
+struct NativeType;
+struct NativeFunction;
+
+namespace debug {
+
+/// Reads and writes values in this process's memory (the JIT's).
+class ValueIO {
+public:
+  /// `Resolve` gives the address of a thunk by symbol, null if unknown.
+  explicit ValueIO(std::function<void *(llvm::StringRef)> Resolve)
+      : Resolve(std::move(Resolve)) {}
+
+  /// A value of b-script type `T` stored as generated code stores it in a
+  /// frame or variable (bool as one byte, string as a pointer, a class as
+  /// its C++ object).
+  llvm::json::Value read(const Type *T, const void *Addr);
+  /// An object of a registered class: its fields and properties.
+  llvm::json::Value readClass(const NativeClass &C, const void *Obj);
+
+  /// The inverses. `Path` names the value in messages (`input.ball`);
+  /// members a JSON object leaves out keep their values.
+  llvm::Error write(const Type *T, void *Addr, const llvm::json::Value &V,
+                    llvm::StringRef Path);
+  llvm::Error writeClass(const NativeClass &C, void *Obj,
+                         const llvm::json::Value &V, llvm::StringRef Path);
+
+private:
+  llvm::json::Value readNative(const NativeType &NT, const void *Addr);
+  llvm::Error writeNative(const NativeType &NT, void *Addr,
+                          const llvm::json::Value &V, llvm::StringRef Path);
+  llvm::json::Value readMember(const NativeClass &C, const NativeFunction &M,
+                               const void *Obj);
+  llvm::Error writeMember(const NativeClass &C, const NativeFunction &M,
+                          void *Obj, const llvm::json::Value &V,
+                          llvm::StringRef Path);
+  void *thunk(llvm::StringRef Symbol);
+
+  std::function<void *(llvm::StringRef)> Resolve;
+  /// Strings written into values: they must outlive the values.
+  std::set<std::string> Strings;
+};
+
+/// A float as a JSON value: a number, or "NaN"/"Infinity"/"-Infinity".
+llvm::json::Value floatToJSON(double F);
+/// The inverse; std::nullopt if `V` is neither.
+std::optional<double> floatFromJSON(const llvm::json::Value &V);
+
+/// Writes `V` on one line with keys sorted and numbers that are exact
+/// floats in their shortest round-trip form.
+void printJSON(llvm::raw_ostream &OS, const llvm::json::Value &V);
+std::string toJSONString(const llvm::json::Value &V);
+
+/// The first place where `Got` differs from `Recorded`, with both values as
+/// text; numbers compare exactly (as the floats they were written from).
+struct Difference {
+  std::string Path, Recorded, Got;
+};
+std::optional<Difference> findDifference(const llvm::json::Value &Recorded,
+                                         const llvm::json::Value &Got,
+                                         llvm::StringRef Path);
+
+} // namespace debug
+} // namespace bsc
+
+#endif

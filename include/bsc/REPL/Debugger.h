@@ -1,0 +1,109 @@
+//===- Debugger.h - running behaviors in the JIT to debug them -*- C++ -*-===//
+//
+// The debugging side of bsc (docs/repl.md): `bsc run` with its trace,
+// record and replay options, and `bsc repl`. Both load a checked behavior
+// into a fresh JIT (loadBehavior) and advance a BehaviorSession cycle by
+// cycle; what they print about the behavior comes from bsc/Debug (values
+// as JSON, activation traces), so the REPL, the runner and a decoded robot
+// log agree word for word.
+//
+// User mistakes (an unreadable replay file, a runaway cycle, a crash in
+// registered C++) are diagnostics in the Compilation's engine; llvm::Errors
+// are internal errors.
+//
+//===----------------------------------------------------------------------===//
+#ifndef BSC_REPL_DEBUGGER_H
+#define BSC_REPL_DEBUGGER_H
+
+#include "bsc/CodeGen/CodeGen.h"
+#include "bsc/Debug/Trace.h"
+#include "bsc/Frontend/Frontend.h"
+#include "bsc/JIT/JIT.h"
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace bsc {
+
+/// The options of loading a behavior into the JIT.
+struct LoadOptions {
+  unsigned OptLevel = 0;
+  /// The files of the standard modules and the --bind objects, as for
+  /// FrontendOptions.
+  std::vector<std::string> StandardModules, BindObjects;
+  /// Funcs and tasks callable by later modules (the REPL's lines).
+  bool ExternalFunctions = false;
+};
+
+/// Reports every thunk or descriptor that `M` imports from the binding
+/// modules but no object of `BindObjects` defines: a linker or the JIT
+/// would fail on it with a bare "undefined symbol". Returns false if there
+/// was one.
+bool checkBindingImports(Compilation &C, const llvm::Module &M,
+                         llvm::ArrayRef<std::string> BindObjects);
+
+/// A behavior compiled into its own JIT, ready for a session.
+struct LoadedBehavior {
+  std::unique_ptr<BehaviorJIT> JIT;
+  BehaviorLayout Layout;
+  debug::DebugTables Tables;
+  const CallableDecl *Entry = nullptr;
+  std::string EntrySymbol;
+  /// The world module's input and output classes (null without them).
+  const NativeClass *InputClass = nullptr, *OutputClass = nullptr;
+  BehaviorJIT::GlobalObject Input, Output;
+};
+
+/// Compiles `C.Checked` for the host with debugging probes into a new JIT
+/// and links the standard modules and bindings. Returns null after
+/// reporting a user error (a binding library the loader refuses, a missing
+/// thunk) to C.Diags; an llvm::Error is an internal error.
+llvm::Expected<std::unique_ptr<LoadedBehavior>>
+loadBehavior(Compilation &C, const CallableDecl &Entry,
+             const LoadOptions &Opts);
+
+/// Starts a session; a stale binding module is reported to C.Diags (null
+/// result).
+llvm::Expected<std::unique_ptr<BehaviorSession>>
+startSession(Compilation &C, LoadedBehavior &L);
+
+/// `bsc run`'s options beyond loading.
+struct RunOptions {
+  unsigned Cycles = 1;
+  bool CyclesGiven = false; ///< --cycles was on the command line.
+  std::string RecordPath, ReplayPath;
+  bool Trace = false, PrintOutput = false;
+  unsigned CycleLimitMs = 0;
+};
+
+/// The default --cycle-limit: long enough for any real cycle (a robot's is
+/// 10 to 33 ms), short enough that a runaway loop is noticed at once.
+constexpr unsigned DefaultCycleLimitMs = 3000;
+
+/// Runs the loaded behavior as `bsc run` does. Returns false if it reported
+/// an error (a replayed output that differs, a runaway or crashed cycle).
+llvm::Expected<bool> runBehavior(Compilation &C, LoadedBehavior &L,
+                                 const RunOptions &Opts,
+                                 llvm::raw_ostream &OS);
+
+/// What ended a cycle early, as a diagnostic (at the loop or the call of
+/// registered C++ the probes name). Returns false after reporting.
+bool reportOutcome(Compilation &C, const LoadedBehavior &L,
+                   const BehaviorSession::Outcome &O, uint32_t Cycle,
+                   unsigned LimitMs);
+
+/// `bsc repl`: reads lines from `In` (a terminal gets a prompt with
+/// history and completion; otherwise the lines run as a batch) and answers
+/// on `OS`. Returns the exit status.
+struct ReplOptions {
+  FrontendOptions Frontend;
+  LoadOptions Load;
+  std::string EntryName;
+  std::string BatchFile; ///< --batch: read lines from this file.
+  unsigned CycleLimitMs = DefaultCycleLimitMs;
+};
+int runRepl(const ReplOptions &Opts, llvm::raw_ostream &OS);
+
+} // namespace bsc
+
+#endif

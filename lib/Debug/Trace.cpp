@@ -1,0 +1,296 @@
+//===- Trace.cpp - which tasks ran in a cycle, and where they stopped -----===//
+//
+// See Trace.h for why the hierarchy comes from the static call graph and
+// not from the records.
+//
+//===----------------------------------------------------------------------===//
+#include "bsc/Debug/Trace.h"
+#include "bsc/CodeGen/CodeGen.h"
+#include "llvm/ADT/DenseMap.h"
+#include "llvm/ADT/SetVector.h"
+#include "llvm/ADT/StringExtras.h"
+#include "llvm/ADT/StringMap.h"
+#include "llvm/Support/Endian.h"
+#include "llvm/Support/Path.h"
+#include "llvm/Support/SourceMgr.h"
+#include <set>
+
+using namespace bsc;
+using namespace bsc::debug;
+
+DebugTables debug::buildDebugTables(const Behavior &B,
+                                    const BehaviorLayout &Layout,
+                                    const llvm::SourceMgr &SM) {
+  DebugTables T;
+  llvm::DenseMap<const CallableDecl *, unsigned> TaskIndex;
+  llvm::StringMap<unsigned> NameCount;
+  for (const BehaviorLayout::Task &LT : Layout.Tasks) {
+    TaskIndex[LT.Decl] = TaskIndex.size();
+    ++NameCount[LT.Decl->getName().Name];
+  }
+  // Task-level callers: the tasks from which a task is reached through
+  // funcs only (a call of a task inside a func belongs to the tasks that
+  // call the func).
+  llvm::DenseMap<const CallableDecl *, llvm::SetVector<const CallableDecl *>>
+      Callees;
+  for (auto [Caller, Callee] : Layout.Calls)
+    Callees[Caller].insert(Callee);
+  std::vector<std::set<unsigned>> Callers(Layout.Tasks.size());
+  for (const BehaviorLayout::Task &LT : Layout.Tasks) {
+    unsigned From = TaskIndex.lookup(LT.Decl);
+    llvm::SmallVector<const CallableDecl *, 8> Work = {LT.Decl};
+    llvm::DenseSet<const CallableDecl *> Seen = {LT.Decl};
+    while (!Work.empty()) {
+      const CallableDecl *D = Work.pop_back_val();
+      for (const CallableDecl *Callee : Callees.lookup(D)) {
+        if (auto It = TaskIndex.find(Callee); It != TaskIndex.end()) {
+          Callers[It->second].insert(From);
+          continue;
+        }
+        if (Seen.insert(Callee).second)
+          Work.push_back(Callee);
+      }
+    }
+  }
+
+  auto FileOf = [&](llvm::SMLoc Loc) {
+    unsigned Buf = SM.FindBufferContainingLoc(Loc);
+    if (!Buf)
+      return std::string();
+    return llvm::sys::path::filename(
+               SM.getMemoryBuffer(Buf)->getBufferIdentifier())
+        .str();
+  };
+  auto LineOf = [&](llvm::SMLoc Loc) {
+    return SM.FindBufferContainingLoc(Loc) ? SM.getLineAndColumn(Loc).first
+                                           : 0u;
+  };
+  for (const BehaviorLayout::Task &LT : Layout.Tasks) {
+    const TaskDecl *D = LT.Decl;
+    DebugTables::Task Task;
+    Task.Name = D->getQualifiedName();
+    Task.ShortName = NameCount[D->getName().Name] == 1
+                         ? D->getName().Name.str()
+                         : Task.Name;
+    Task.File = FileOf(D->getLoc());
+    Task.Line = LineOf(D->getName().Loc);
+    for (const YieldStmt *Y : D->Yields)
+      Task.YieldLines.push_back(LineOf(Y->getLoc()));
+    unsigned Index = TaskIndex.lookup(D);
+    Task.Callers.assign(Callers[Index].begin(), Callers[Index].end());
+    for (const BehaviorLayout::FrameField &F : LT.Fields)
+      Task.Fields.push_back({F.D->getName().Name.str(),
+                             F.Ty->getName().str(),
+                             llvm::isa<ParamDecl>(F.D)});
+    T.Tasks.push_back(std::move(Task));
+  }
+  return T;
+}
+
+//===----------------------------------------------------------------------===//
+// JSON
+//===----------------------------------------------------------------------===//
+
+/// Bumped when the JSON form of the tables changes.
+static constexpr int64_t TablesVersion = 1;
+
+llvm::json::Value debug::toJSON(const DebugTables &T) {
+  llvm::json::Array Tasks;
+  for (const DebugTables::Task &Task : T.Tasks) {
+    llvm::json::Array Fields;
+    for (const DebugTables::Field &F : Task.Fields)
+      Fields.push_back(llvm::json::Object{
+          {"name", F.Name}, {"type", F.Type}, {"param", F.IsParam}});
+    Tasks.push_back(llvm::json::Object{
+        {"name", Task.Name},
+        {"short", Task.ShortName},
+        {"file", Task.File},
+        {"line", Task.Line},
+        {"yields", llvm::json::Array(Task.YieldLines)},
+        {"callers", llvm::json::Array(Task.Callers)},
+        {"fields", std::move(Fields)}});
+  }
+  return llvm::json::Object{{"version", TablesVersion},
+                            {"tasks", std::move(Tasks)}};
+}
+
+static llvm::Error badTables(const llvm::Twine &Why) {
+  return llvm::createStringError(llvm::inconvertibleErrorCode(),
+                                 "damaged debug tables: " + Why);
+}
+
+llvm::Expected<DebugTables> debug::parseDebugTables(llvm::StringRef Text) {
+  llvm::Expected<llvm::json::Value> Parsed = llvm::json::parse(Text);
+  if (!Parsed)
+    return badTables(llvm::toString(Parsed.takeError()));
+  const llvm::json::Object *Root = Parsed->getAsObject();
+  if (!Root)
+    return badTables("not an object");
+  if (Root->getInteger("version") != TablesVersion)
+    return badTables("unknown version");
+  const llvm::json::Array *Tasks = Root->getArray("tasks");
+  if (!Tasks)
+    return badTables("no task list");
+  DebugTables T;
+  for (const llvm::json::Value &V : *Tasks) {
+    const llvm::json::Object *O = V.getAsObject();
+    if (!O)
+      return badTables("a task is not an object");
+    DebugTables::Task Task;
+    auto Name = O->getString("name"), Short = O->getString("short"),
+         File = O->getString("file");
+    auto Line = O->getInteger("line");
+    const llvm::json::Array *Yields = O->getArray("yields"),
+                            *Callers = O->getArray("callers"),
+                            *Fields = O->getArray("fields");
+    if (!Name || !Short || !File || !Line || !Yields || !Callers || !Fields)
+      return badTables("a task lacks a member");
+    Task.Name = Name->str();
+    Task.ShortName = Short->str();
+    Task.File = File->str();
+    Task.Line = *Line;
+    for (const llvm::json::Value &Y : *Yields) {
+      std::optional<int64_t> L = Y.getAsInteger();
+      if (!L)
+        return badTables("a yield line is not a number");
+      Task.YieldLines.push_back(*L);
+    }
+    for (const llvm::json::Value &C : *Callers) {
+      std::optional<int64_t> I = C.getAsInteger();
+      if (!I || *I < 0 || size_t(*I) >= Tasks->size())
+        return badTables("a caller is not a task");
+      Task.Callers.push_back(*I);
+    }
+    for (const llvm::json::Value &F : *Fields) {
+      const llvm::json::Object *FO = F.getAsObject();
+      auto FName = FO ? FO->getString("name") : std::nullopt;
+      auto FType = FO ? FO->getString("type") : std::nullopt;
+      if (!FName || !FType)
+        return badTables("a field lacks a name or type");
+      Task.Fields.push_back({FName->str(), FType->str(),
+                             FO->getBoolean("param").value_or(false)});
+    }
+    T.Tasks.push_back(std::move(Task));
+  }
+  return T;
+}
+
+//===----------------------------------------------------------------------===//
+// Activations
+//===----------------------------------------------------------------------===//
+
+ActiveTree debug::buildActiveTree(const DebugTables &T,
+                                  llvm::ArrayRef<bs_activation> Records) {
+  ActiveTree Tree;
+  llvm::DenseMap<unsigned, unsigned> NodeOfTask;
+  for (const bs_activation &A : Records) {
+    if (A.task >= T.Tasks.size() || NodeOfTask.count(A.task))
+      continue;
+    NodeOfTask[A.task] = Tree.Nodes.size();
+    Tree.Nodes.push_back({A, {}});
+  }
+  for (unsigned I = 0; I < Tree.Nodes.size(); ++I) {
+    const DebugTables::Task &Task = T.Tasks[Tree.Nodes[I].Record.task];
+    std::optional<unsigned> Parent;
+    for (unsigned Caller : Task.Callers)
+      if (auto It = NodeOfTask.find(Caller); It != NodeOfTask.end()) {
+        Parent = It->second;
+        break;
+      }
+    if (Parent)
+      Tree.Nodes[*Parent].Children.push_back(I);
+    else
+      Tree.Roots.push_back(I);
+  }
+  return Tree;
+}
+
+std::string debug::describeActivation(const DebugTables &T,
+                                      const bs_activation &A) {
+  std::string S;
+  if (A.state == BS_TASK_RUNNING)
+    S = "running";
+  else if (A.state == BS_TASK_DONE)
+    S = "done";
+  else if (A.state == BS_TASK_FAILURE)
+    S = "failure";
+  else
+    S = "state " + std::to_string(A.state);
+  const DebugTables::Task &Task = T.Tasks[A.task];
+  if (A.resume > 0 && A.resume <= Task.YieldLines.size())
+    S += ", " + Task.File + ":" + std::to_string(Task.YieldLines[A.resume - 1]);
+  return S;
+}
+
+std::string debug::formatTraceLine(const DebugTables &T,
+                                   llvm::ArrayRef<bs_activation> Records) {
+  ActiveTree Tree = buildActiveTree(T, Records);
+  std::vector<std::string> Paths;
+  std::vector<unsigned> Stack;
+  // Depth first, children in task-table order: one path per leaf.
+  std::function<void(unsigned)> Walk = [&](unsigned N) {
+    Stack.push_back(N);
+    const ActiveTask &Node = Tree.Nodes[N];
+    if (Node.Children.empty()) {
+      std::string P;
+      llvm::ListSeparator Sep(" > ");
+      for (unsigned S : Stack)
+        P += (llvm::Twine(Sep) + T.Tasks[Tree.Nodes[S].Record.task].ShortName)
+                 .str();
+      Paths.push_back(P + " [" + describeActivation(T, Node.Record) + "]");
+    }
+    for (unsigned C : Node.Children)
+      Walk(C);
+    Stack.pop_back();
+  };
+  for (unsigned R : Tree.Roots)
+    Walk(R);
+  if (Paths.empty())
+    return "idle";
+  return llvm::join(Paths, "; ");
+}
+
+std::vector<bs_activation> debug::takeSnapshot(const void *State,
+                                               const bs_behavior_info *Info) {
+  std::vector<bs_activation> Records(Info->num_tasks);
+  uint32_t N = bs_trace_snapshot(State, Info, Records.data(), Records.size());
+  Records.resize(std::min<size_t>(N, Records.size()));
+  return Records;
+}
+
+llvm::Expected<std::vector<LoggedCycle>>
+debug::parseTraceLog(llvm::StringRef Bytes, size_t NumTasks) {
+  namespace endian = llvm::support::endian;
+  std::vector<LoggedCycle> Cycles;
+  size_t Pos = 0;
+  auto Fail = [&](const llvm::Twine &Why) {
+    return llvm::createStringError(llvm::inconvertibleErrorCode(),
+                                   "byte " + llvm::Twine(Pos) + ": " + Why);
+  };
+  while (Pos < Bytes.size()) {
+    if (Bytes.size() - Pos < 8)
+      return Fail("the log ends inside a cycle header");
+    LoggedCycle C;
+    C.Cycle = endian::read32le(Bytes.data() + Pos);
+    uint32_t Count = endian::read32le(Bytes.data() + Pos + 4);
+    Pos += 8;
+    if (Count > NumTasks)
+      return Fail("cycle " + llvm::Twine(C.Cycle) + " has " +
+                  llvm::Twine(Count) + " records, but the behavior has " +
+                  llvm::Twine(NumTasks) + " tasks");
+    if ((Bytes.size() - Pos) / 8 < Count)
+      return Fail("the log ends inside cycle " + llvm::Twine(C.Cycle));
+    for (uint32_t I = 0; I < Count; ++I, Pos += 8) {
+      bs_activation A;
+      A.task = endian::read16le(Bytes.data() + Pos);
+      A.resume = endian::read16le(Bytes.data() + Pos + 2);
+      A.state = int32_t(endian::read32le(Bytes.data() + Pos + 4));
+      if (A.task >= NumTasks)
+        return Fail("a record names task " + llvm::Twine(A.task) +
+                    ", but the behavior has " + llvm::Twine(NumTasks));
+      C.Records.push_back(A);
+    }
+    Cycles.push_back(std::move(C));
+  }
+  return Cycles;
+}

@@ -1,0 +1,562 @@
+//===- Values.cpp - b-script values in memory as JSON ---------------------===//
+//
+// Registered members come in two forms (Native.h): a field with an offset,
+// read and written in place by its C++ storage size, and a property (or a
+// field bsc may not touch directly) behind getter and setter thunks with
+// the plain C ABI of docs/bindings.md. Both are handled here the way
+// generated code handles them, so what the debugger shows is what the
+// behavior reads.
+//
+//===----------------------------------------------------------------------===//
+#include "bsc/Debug/Values.h"
+#include "bsc/AST/Native.h"
+#include "llvm/ADT/StringExtras.h"
+#include "llvm/Support/Format.h"
+#include "llvm/Support/MemAlloc.h"
+#include "llvm/Support/raw_ostream.h"
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+using namespace bsc;
+using namespace bsc::debug;
+using llvm::json::Value;
+
+static llvm::Error makeError(const llvm::Twine &Msg) {
+  return llvm::createStringError(llvm::inconvertibleErrorCode(), Msg);
+}
+
+//===----------------------------------------------------------------------===//
+// Numbers
+//===----------------------------------------------------------------------===//
+
+Value debug::floatToJSON(double F) {
+  if (std::isnan(F))
+    return "NaN";
+  if (std::isinf(F))
+    return F > 0 ? "Infinity" : "-Infinity";
+  return F;
+}
+
+std::optional<double> debug::floatFromJSON(const Value &V) {
+  if (std::optional<double> D = V.getAsNumber())
+    return *D;
+  if (std::optional<llvm::StringRef> S = V.getAsString()) {
+    if (*S == "NaN")
+      return std::nan("");
+    if (*S == "Infinity")
+      return HUGE_VAL;
+    if (*S == "-Infinity")
+      return -HUGE_VAL;
+  }
+  return std::nullopt;
+}
+
+/// The shortest decimal that reads back as `D` (as a float when `D` is
+/// one, which every b-script float is).
+static std::string formatNumber(double D) {
+  if (D == std::trunc(D) && std::fabs(D) < 1e15)
+    return llvm::formatv("{0}", (long long)D).str();
+  bool IsFloat = double(float(D)) == D;
+  for (int Precision = 1; Precision <= 17; ++Precision) {
+    char S[40];
+    std::snprintf(S, sizeof S, "%.*g", Precision, D);
+    double Back = std::strtod(S, nullptr);
+    if (IsFloat ? float(Back) == float(D) : Back == D)
+      return S;
+  }
+  char S[40];
+  std::snprintf(S, sizeof S, "%.17g", D);
+  return S;
+}
+
+void debug::printJSON(llvm::raw_ostream &OS, const Value &V) {
+  switch (V.kind()) {
+  case Value::Null:
+  case Value::Boolean:
+  case Value::String:
+    OS << V;
+    return;
+  case Value::Number:
+    if (std::optional<int64_t> I = V.getAsInteger())
+      OS << *I;
+    else
+      OS << formatNumber(*V.getAsNumber());
+    return;
+  case Value::Array: {
+    OS << '[';
+    llvm::ListSeparator Sep(",");
+    for (const Value &E : *V.getAsArray()) {
+      OS << Sep;
+      printJSON(OS, E);
+    }
+    OS << ']';
+    return;
+  }
+  case Value::Object: {
+    const llvm::json::Object &O = *V.getAsObject();
+    std::vector<llvm::StringRef> Keys;
+    for (const auto &KV : O)
+      Keys.push_back(KV.first);
+    llvm::sort(Keys);
+    OS << '{';
+    llvm::ListSeparator Sep(",");
+    for (llvm::StringRef K : Keys) {
+      OS << Sep << Value(K) << ':';
+      printJSON(OS, *O.get(K));
+    }
+    OS << '}';
+    return;
+  }
+  }
+}
+
+std::string debug::toJSONString(const Value &V) {
+  std::string S;
+  llvm::raw_string_ostream OS(S);
+  printJSON(OS, V);
+  return S;
+}
+
+std::optional<Difference> debug::findDifference(const Value &Recorded,
+                                                const Value &Got,
+                                                llvm::StringRef Path) {
+  if (const llvm::json::Object *R = Recorded.getAsObject()) {
+    const llvm::json::Object *G = Got.getAsObject();
+    if (G) {
+      std::vector<llvm::StringRef> Keys;
+      for (const auto &KV : *R)
+        Keys.push_back(KV.first);
+      llvm::sort(Keys);
+      for (llvm::StringRef K : Keys) {
+        const Value *GV = G->get(K);
+        std::string Sub = (Path + "." + K).str();
+        if (!GV)
+          return Difference{Sub, toJSONString(*R->get(K)), "nothing"};
+        if (auto D = findDifference(*R->get(K), *GV, Sub))
+          return D;
+      }
+      return std::nullopt;
+    }
+  }
+  // Numbers compare as the floats (or ints) they are; a number written as
+  // a float's shortest decimal reads back as that float.
+  std::optional<double> RN = floatFromJSON(Recorded), GN = floatFromJSON(Got);
+  bool Same;
+  if (RN && GN)
+    Same = (std::isnan(*RN) && std::isnan(*GN)) || *RN == *GN;
+  else
+    Same = Recorded == Got;
+  if (Same)
+    return std::nullopt;
+  return Difference{Path.str(), toJSONString(Recorded), toJSONString(Got)};
+}
+
+//===----------------------------------------------------------------------===//
+// Reading
+//===----------------------------------------------------------------------===//
+
+void *ValueIO::thunk(llvm::StringRef Symbol) {
+  return Symbol.empty() ? nullptr : Resolve(Symbol);
+}
+
+/// An integer of `Size` bytes at `Addr`, sign- or zero-extended.
+static int64_t loadInt(const void *Addr, unsigned Size, bool Unsigned) {
+  switch (Size) {
+  case 1: {
+    uint8_t V;
+    std::memcpy(&V, Addr, 1);
+    return Unsigned ? int64_t(V) : int64_t(int8_t(V));
+  }
+  case 2: {
+    uint16_t V;
+    std::memcpy(&V, Addr, 2);
+    return Unsigned ? int64_t(V) : int64_t(int16_t(V));
+  }
+  case 8: {
+    int64_t V;
+    std::memcpy(&V, Addr, 8);
+    return V;
+  }
+  default: {
+    uint32_t V;
+    std::memcpy(&V, Addr, 4);
+    return Unsigned ? int64_t(V) : int64_t(int32_t(V));
+  }
+  }
+}
+
+static void storeInt(void *Addr, unsigned Size, int64_t V) {
+  switch (Size) {
+  case 1: {
+    uint8_t B = uint8_t(V);
+    std::memcpy(Addr, &B, 1);
+    return;
+  }
+  case 2: {
+    uint16_t H = uint16_t(V);
+    std::memcpy(Addr, &H, 2);
+    return;
+  }
+  case 8:
+    std::memcpy(Addr, &V, 8);
+    return;
+  default: {
+    uint32_t W = uint32_t(V);
+    std::memcpy(Addr, &W, 4);
+    return;
+  }
+  }
+}
+
+/// An enum value by name when it has one, else its number.
+static Value enumToJSON(const NativeEnum *E, int64_t N) {
+  if (E)
+    for (const NativeEnum::Value &V : E->Values)
+      if (V.Number == N)
+        return V.Name;
+  return N;
+}
+
+static std::optional<int64_t> enumFromJSON(const NativeEnum *E,
+                                           const Value &V) {
+  if (std::optional<int64_t> N = V.getAsInteger())
+    return N;
+  if (std::optional<llvm::StringRef> S = V.getAsString(); S && E)
+    for (const NativeEnum::Value &EV : E->Values)
+      if (EV.Name == *S)
+        return EV.Number;
+  return std::nullopt;
+}
+
+Value ValueIO::readNative(const NativeType &NT, const void *Addr) {
+  unsigned Size = NT.StorageSize;
+  switch (NT.TheCode) {
+  case NativeType::Void:
+    return nullptr;
+  case NativeType::Bool:
+    return loadInt(Addr, Size ? Size : 1, true) != 0;
+  case NativeType::Int:
+    // The b-script value is the int32 the behavior reads.
+    return int64_t(int32_t(loadInt(Addr, Size ? Size : 4, NT.Unsigned)));
+  case NativeType::Enum:
+    return enumToJSON(NT.TheEnum, loadInt(Addr, Size ? Size : 4, NT.Unsigned));
+  case NativeType::Float:
+    if (Size == 8) {
+      double D;
+      std::memcpy(&D, Addr, 8);
+      return floatToJSON(float(D));
+    } else {
+      float F;
+      std::memcpy(&F, Addr, 4);
+      return floatToJSON(F);
+    }
+  case NativeType::String: {
+    const char *S;
+    std::memcpy(&S, Addr, sizeof S);
+    return S ? Value(std::string(S)) : Value(nullptr);
+  }
+  case NativeType::Class:
+    return NT.TheClass ? readClass(*NT.TheClass, Addr) : Value(nullptr);
+  }
+  return nullptr;
+}
+
+Value ValueIO::read(const Type *T, const void *Addr) {
+  switch (T->getKind()) {
+  case TypeKind::Error:
+  case TypeKind::Void:
+    return nullptr;
+  case TypeKind::Int:
+  case TypeKind::TaskState:
+    return loadInt(Addr, 4, false);
+  case TypeKind::Enum:
+    return enumToJSON(T->getEnum(), loadInt(Addr, 4, false));
+  case TypeKind::Float: {
+    float F;
+    std::memcpy(&F, Addr, 4);
+    return floatToJSON(F);
+  }
+  case TypeKind::Bool:
+    return *static_cast<const uint8_t *>(Addr) != 0;
+  case TypeKind::String: {
+    const char *S;
+    std::memcpy(&S, Addr, sizeof S);
+    return std::string(S ? S : "");
+  }
+  case TypeKind::Class:
+    return readClass(*T->getClass(), Addr);
+  }
+  return nullptr;
+}
+
+Value ValueIO::readMember(const NativeClass &C, const NativeFunction &M,
+                          const void *Obj) {
+  if (M.FieldOffset)
+    return readNative(M.Result, static_cast<const char *>(Obj) + *M.FieldOffset);
+  void *Getter = thunk(M.Symbol);
+  if (!Getter)
+    return nullptr;
+  switch (M.Result.TheCode) {
+  case NativeType::Void:
+    return nullptr;
+  case NativeType::Bool:
+    return reinterpret_cast<int32_t (*)(const void *)>(Getter)(Obj) != 0;
+  case NativeType::Int:
+    return reinterpret_cast<int32_t (*)(const void *)>(Getter)(Obj);
+  case NativeType::Enum:
+    return enumToJSON(M.Result.TheEnum,
+                      reinterpret_cast<int32_t (*)(const void *)>(Getter)(Obj));
+  case NativeType::Float:
+    return floatToJSON(reinterpret_cast<float (*)(const void *)>(Getter)(Obj));
+  case NativeType::String: {
+    const char *S =
+        reinterpret_cast<const char *(*)(const void *)>(Getter)(Obj);
+    return S ? Value(std::string(S)) : Value(nullptr);
+  }
+  case NativeType::Class: {
+    const NativeClass *RC = M.Result.TheClass;
+    if (!RC || !M.ResultViaOut)
+      return nullptr;
+    // The getter copy-constructs into raw storage, as for generated code.
+    size_t Align = RC->Align ? RC->Align : 1, Size = RC->Size ? RC->Size : 1;
+    void *Tmp = llvm::allocate_buffer(Size, Align);
+    std::memset(Tmp, 0, Size);
+    reinterpret_cast<void (*)(void *, const void *)>(Getter)(Tmp, Obj);
+    Value Result = readClass(*RC, Tmp);
+    if (!RC->TriviallyDestructible)
+      if (void *Destroy = thunk(RC->Destroy))
+        reinterpret_cast<void (*)(void *)>(Destroy)(Tmp);
+    llvm::deallocate_buffer(Tmp, Size, Align);
+    return Result;
+  }
+  }
+  return nullptr;
+}
+
+Value ValueIO::readClass(const NativeClass &C, const void *Obj) {
+  llvm::json::Object O;
+  for (const NativeFunction &M : C.Members)
+    if (M.isData())
+      O[M.Name] = readMember(C, M, Obj);
+  return O;
+}
+
+//===----------------------------------------------------------------------===//
+// Writing
+//===----------------------------------------------------------------------===//
+
+/// What a JSON value must be to fit a native type, for messages.
+static const char *describe(const NativeType &NT) {
+  switch (NT.TheCode) {
+  case NativeType::Void:
+    return "nothing";
+  case NativeType::Bool:
+    return "true or false";
+  case NativeType::Int:
+    return "an integer";
+  case NativeType::Enum:
+    return "an enum value's name or number";
+  case NativeType::Float:
+    return "a number";
+  case NativeType::String:
+    return "a string";
+  case NativeType::Class:
+    return "an object";
+  }
+  return "a value";
+}
+
+llvm::Error ValueIO::writeNative(const NativeType &NT, void *Addr,
+                                 const Value &V, llvm::StringRef Path) {
+  auto Mismatch = [&] {
+    return makeError(Path + " must be " + describe(NT) + ", not " +
+                     toJSONString(V));
+  };
+  unsigned Size = NT.StorageSize;
+  switch (NT.TheCode) {
+  case NativeType::Void:
+    return Mismatch();
+  case NativeType::Bool:
+    if (std::optional<bool> B = V.getAsBoolean()) {
+      storeInt(Addr, Size ? Size : 1, *B);
+      return llvm::Error::success();
+    }
+    return Mismatch();
+  case NativeType::Int:
+    if (std::optional<int64_t> I = V.getAsInteger()) {
+      storeInt(Addr, Size ? Size : 4, *I);
+      return llvm::Error::success();
+    }
+    return Mismatch();
+  case NativeType::Enum:
+    if (std::optional<int64_t> I = enumFromJSON(NT.TheEnum, V)) {
+      storeInt(Addr, Size ? Size : 4, *I);
+      return llvm::Error::success();
+    }
+    return Mismatch();
+  case NativeType::Float:
+    if (std::optional<double> D = floatFromJSON(V)) {
+      if (Size == 8) {
+        double X = float(*D);
+        std::memcpy(Addr, &X, 8);
+      } else {
+        float F = float(*D);
+        std::memcpy(Addr, &F, 4);
+      }
+      return llvm::Error::success();
+    }
+    return Mismatch();
+  case NativeType::String:
+    if (std::optional<llvm::StringRef> S = V.getAsString()) {
+      const char *P = Strings.insert(S->str()).first->c_str();
+      std::memcpy(Addr, &P, sizeof P);
+      return llvm::Error::success();
+    }
+    return Mismatch();
+  case NativeType::Class:
+    if (!NT.TheClass)
+      return Mismatch();
+    return writeClass(*NT.TheClass, Addr, V, Path);
+  }
+  return Mismatch();
+}
+
+llvm::Error ValueIO::writeMember(const NativeClass &C, const NativeFunction &M,
+                                 void *Obj, const Value &V,
+                                 llvm::StringRef Path) {
+  if (M.FieldOffset && !M.ReadOnly)
+    return writeNative(M.Result, static_cast<char *>(Obj) + *M.FieldOffset, V,
+                       Path);
+  void *Setter = thunk(M.Setter);
+  if (M.ReadOnly || !Setter) {
+    // Writing what it already holds is harmless (a replayed recording
+    // lists read-only members too).
+    if (!findDifference(V, readMember(C, M, Obj), Path))
+      return llvm::Error::success();
+    return makeError(Path + " is read-only");
+  }
+  const NativeType &NT = M.Result;
+  if (NT.TheCode == NativeType::Class) {
+    // Read the property, change what the JSON names, write it back.
+    const NativeClass *RC = NT.TheClass;
+    void *Getter = thunk(M.Symbol);
+    if (!RC || !Getter || !M.ResultViaOut)
+      return makeError(Path + " cannot be written by the debugger");
+    size_t Align = RC->Align ? RC->Align : 1, Size = RC->Size ? RC->Size : 1;
+    void *Tmp = llvm::allocate_buffer(Size, Align);
+    std::memset(Tmp, 0, Size);
+    reinterpret_cast<void (*)(void *, const void *)>(Getter)(Tmp, Obj);
+    llvm::Error E = writeClass(*RC, Tmp, V, Path);
+    if (!E)
+      reinterpret_cast<void (*)(void *, const void *)>(Setter)(Obj, Tmp);
+    if (!RC->TriviallyDestructible)
+      if (void *Destroy = thunk(RC->Destroy))
+        reinterpret_cast<void (*)(void *)>(Destroy)(Tmp);
+    llvm::deallocate_buffer(Tmp, Size, Align);
+    return E;
+  }
+  // A scalar travels in its wire type: int32 for int, enum and bool.
+  alignas(8) unsigned char Wire[8] = {};
+  NativeType WireType = NT;
+  WireType.StorageSize = NT.TheCode == NativeType::String ? sizeof(void *) : 4;
+  if (llvm::Error E = writeNative(WireType, Wire, V, Path))
+    return E;
+  switch (NT.TheCode) {
+  case NativeType::Float: {
+    float F;
+    std::memcpy(&F, Wire, 4);
+    reinterpret_cast<void (*)(void *, float)>(Setter)(Obj, F);
+    break;
+  }
+  case NativeType::String: {
+    const char *S;
+    std::memcpy(&S, Wire, sizeof S);
+    reinterpret_cast<void (*)(void *, const char *)>(Setter)(Obj, S);
+    break;
+  }
+  default: {
+    int32_t I;
+    std::memcpy(&I, Wire, 4);
+    reinterpret_cast<void (*)(void *, int32_t)>(Setter)(Obj, I);
+    break;
+  }
+  }
+  return llvm::Error::success();
+}
+
+llvm::Error ValueIO::writeClass(const NativeClass &C, void *Obj,
+                                const Value &V, llvm::StringRef Path) {
+  const llvm::json::Object *O = V.getAsObject();
+  if (!O)
+    return makeError(Path + " must be an object (a " + C.QualifiedName +
+                     "), not " + toJSONString(V));
+  std::vector<llvm::StringRef> Keys;
+  for (const auto &KV : *O)
+    Keys.push_back(KV.first);
+  llvm::sort(Keys);
+  for (llvm::StringRef K : Keys) {
+    const NativeFunction *M = C.findMember(K);
+    std::string Sub = (Path + "." + K).str();
+    if (!M || !M->isData()) {
+      std::string Known;
+      llvm::ListSeparator Sep(", ");
+      for (const NativeFunction &F : C.Members)
+        if (F.isData())
+          Known += (llvm::Twine(Sep) + F.Name).str();
+      return makeError(Sub + ": " + C.QualifiedName + " has no field '" + K +
+                       "'" + (Known.empty() ? "" : " (it has " + Known + ")"));
+    }
+    if (llvm::Error E = writeMember(C, *M, Obj, *O->get(K), Sub))
+      return E;
+  }
+  return llvm::Error::success();
+}
+
+llvm::Error ValueIO::write(const Type *T, void *Addr, const Value &V,
+                           llvm::StringRef Path) {
+  auto Mismatch = [&](const char *What) {
+    return makeError(Path + " must be " + What + ", not " + toJSONString(V));
+  };
+  switch (T->getKind()) {
+  case TypeKind::Error:
+  case TypeKind::Void:
+    return Mismatch("a value");
+  case TypeKind::Int:
+  case TypeKind::TaskState:
+    if (std::optional<int64_t> I = V.getAsInteger()) {
+      storeInt(Addr, 4, *I);
+      return llvm::Error::success();
+    }
+    return Mismatch("an integer");
+  case TypeKind::Enum:
+    if (std::optional<int64_t> I = enumFromJSON(T->getEnum(), V)) {
+      storeInt(Addr, 4, *I);
+      return llvm::Error::success();
+    }
+    return Mismatch("an enum value's name or number");
+  case TypeKind::Float:
+    if (std::optional<double> D = floatFromJSON(V)) {
+      float F = float(*D);
+      std::memcpy(Addr, &F, 4);
+      return llvm::Error::success();
+    }
+    return Mismatch("a number");
+  case TypeKind::Bool:
+    if (std::optional<bool> B = V.getAsBoolean()) {
+      *static_cast<uint8_t *>(Addr) = *B;
+      return llvm::Error::success();
+    }
+    return Mismatch("true or false");
+  case TypeKind::String:
+    if (std::optional<llvm::StringRef> S = V.getAsString()) {
+      const char *P = Strings.insert(S->str()).first->c_str();
+      std::memcpy(Addr, &P, sizeof P);
+      return llvm::Error::success();
+    }
+    return Mismatch("a string");
+  case TypeKind::Class:
+    return writeClass(*T->getClass(), Addr, V, Path);
+  }
+  return Mismatch("a value");
+}

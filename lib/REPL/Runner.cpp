@@ -1,0 +1,316 @@
+//===- Runner.cpp - loading a behavior into the JIT; `bsc run` ------------===//
+//
+// The same path serves `bsc run` and the REPL: generate the behavior for
+// the host with probes (CodeGenOptions::Probes), link the standard modules
+// and bindings as a program links them, start a session, and then run
+// cycles under the session's guard. Everything the runner prints about the
+// behavior (traces, outputs, recordings) goes through bsc/Debug.
+//
+//===----------------------------------------------------------------------===//
+#include "bsc/REPL/Debugger.h"
+#include "bsc/Bind/Bind.h"
+#include "bsc/CodeGen/Target.h"
+#include "bsc/Debug/Values.h"
+#include "llvm/ADT/StringExtras.h"
+#include "llvm/ADT/StringSet.h"
+#include "llvm/Demangle/Demangle.h"
+#include "llvm/Support/FileSystem.h"
+#include "llvm/Support/MemoryBuffer.h"
+#include "llvm/Support/ToolOutputFile.h"
+#include <csignal>
+#include <cstring>
+
+using namespace bsc;
+
+bool bsc::checkBindingImports(Compilation &C, const llvm::Module &M,
+                                llvm::ArrayRef<std::string> BindObjects) {
+  llvm::StringSet<> BindingSymbols;
+  for (const std::string &S : bind::getBindingSymbols(C.Checked.BindingModules))
+    BindingSymbols.insert(S);
+  std::vector<std::string> Imports;
+  for (const llvm::GlobalValue &GV : M.global_values())
+    if (GV.isDeclaration() && BindingSymbols.contains(GV.getName()))
+      Imports.push_back(GV.getName().str());
+  std::vector<std::string> Missing =
+      bind::findUndefinedSymbols(BindObjects, Imports);
+  for (const std::string &S : Missing)
+    C.Diags.report(llvm::SMLoc(), diag::err_stale_binding_symbol)
+        << llvm::demangle(S);
+  return Missing.empty();
+}
+
+llvm::Expected<std::unique_ptr<LoadedBehavior>>
+bsc::loadBehavior(Compilation &C, const CallableDecl &Entry,
+                  const LoadOptions &Opts) {
+  auto L = std::make_unique<LoadedBehavior>();
+  auto JITOrErr = BehaviorJIT::create();
+  if (!JITOrErr)
+    return JITOrErr.takeError();
+  L->JIT = std::move(*JITOrErr);
+  BehaviorJIT &JIT = *L->JIT;
+
+  CodeGenOptions CGOpts;
+  CGOpts.BehaviorName = C.Modules.front()->Name;
+  CGOpts.Probes = true;
+  CGOpts.ExternalFunctions = Opts.ExternalFunctions;
+  auto Ctx = std::make_unique<llvm::LLVMContext>();
+  std::unique_ptr<llvm::Module> M = emitLLVM(
+      C.Checked, *Ctx, JIT.getTriple(), JIT.getDataLayout(), CGOpts, L->Layout);
+  if (llvm::Error E = verifyGeneratedModule(*M))
+    return E;
+  L->Entry = &Entry;
+  L->EntrySymbol = getEntrySymbol(CGOpts.BehaviorName, Entry);
+  L->Tables = debug::buildDebugTables(C.Checked, L->Layout, C.SM);
+  if (!checkBindingImports(C, *M, Opts.BindObjects))
+    return nullptr;
+  // The standard modules' thunks from the host runtime archive, then the
+  // --bind objects, as a program links them.
+  for (const std::string &Path : Opts.StandardModules)
+    if (llvm::Error E = JIT.addArchive(Path))
+      return E;
+  for (const std::string &Path : Opts.BindObjects)
+    if (llvm::Error E = JIT.addObjectFile(Path)) {
+      // A library the loader refuses is the user's to fix.
+      bool Reported = false;
+      E = llvm::handleErrors(std::move(E), [&](const BindingLoadError &BL) {
+        C.Diags.report(llvm::SMLoc(), diag::err_bind_load)
+            << BL.Path << BL.Message;
+        Reported = true;
+      });
+      if (E)
+        return E;
+      return nullptr;
+    }
+  if (llvm::Error E = JIT.addModule(std::move(M), std::move(Ctx), Opts.OptLevel))
+    return E;
+  if (const NativeModule *World = C.Checked.World) {
+    L->InputClass = World->Input;
+    L->OutputClass = World->Output;
+    for (auto [Class, Obj] : {std::pair(World->Input, &L->Input),
+                              std::pair(World->Output, &L->Output)})
+      if (Class)
+        *Obj = {size_t(Class->Size), size_t(Class->Align), Class->Construct,
+                Class->TriviallyDestructible ? "" : Class->Destroy};
+  }
+  return L;
+}
+
+llvm::Expected<std::unique_ptr<BehaviorSession>>
+bsc::startSession(Compilation &C, LoadedBehavior &L) {
+  auto S = BehaviorSession::start(*L.JIT, L.Layout.InfoSymbol, L.EntrySymbol,
+                                  L.Input, L.Output);
+  if (S)
+    return S;
+  // A stale binding module is the user's to fix, not an internal error.
+  llvm::Error E = llvm::handleErrors(S.takeError(), [&](const StaleBindingError &SB) {
+    C.Diags.report(llvm::SMLoc(), diag::err_stale_binding_module) << SB.Module;
+  });
+  if (E)
+    return std::move(E);
+  return nullptr;
+}
+
+/// "SIGSEGV (segmentation fault)".
+static std::string describeSignal(int Sig) {
+  const char *Name = Sig == SIGSEGV   ? "SIGSEGV"
+                     : Sig == SIGBUS  ? "SIGBUS"
+                     : Sig == SIGFPE  ? "SIGFPE"
+                     : Sig == SIGILL  ? "SIGILL"
+                                      : "signal";
+  return std::string(Name) + " (" + strsignal(Sig) + ")";
+}
+
+bool bsc::reportOutcome(Compilation &C, const LoadedBehavior &L,
+                        const BehaviorSession::Outcome &O, uint32_t Cycle,
+                        unsigned LimitMs) {
+  auto Site = [&](uint32_t N) -> const DebugSite * {
+    return N && N <= L.Layout.Sites.size() ? &L.Layout.Sites[N - 1] : nullptr;
+  };
+  switch (O.K) {
+  case BehaviorSession::Outcome::Completed:
+    return true;
+  case BehaviorSession::Outcome::TimedOut:
+    if (const DebugSite *N = Site(O.NativeSite))
+      C.Diags.report(N->Loc, diag::err_cycle_runaway_native)
+          << Cycle << LimitMs << N->Native;
+    else if (const DebugSite *Loop = Site(O.LoopSite))
+      C.Diags.report(Loop->Loc, diag::err_cycle_runaway)
+          << Cycle << LimitMs << Loop->In->getQualifiedName();
+    else
+      C.Diags.report(llvm::SMLoc(), diag::err_cycle_runaway_unknown)
+          << Cycle << LimitMs;
+    return false;
+  case BehaviorSession::Outcome::Crashed:
+    if (const DebugSite *N = Site(O.NativeSite))
+      C.Diags.report(N->Loc, diag::err_cycle_crash_native)
+          << Cycle << describeSignal(O.Signal) << N->Native;
+    else
+      C.Diags.report(llvm::SMLoc(), diag::err_cycle_crash)
+          << Cycle << describeSignal(O.Signal);
+    return false;
+  }
+  return true;
+}
+
+namespace {
+/// One line of a replay file, checked.
+struct ReplayLine {
+  llvm::SMLoc Loc; ///< Its first character.
+  const llvm::json::Value *Input = nullptr, *Output = nullptr;
+  llvm::json::Value Parsed = nullptr;
+};
+
+/// Reads a JSONL replay file into the SourceMgr (so that its errors have
+/// carets) and checks the shape of each line. Returns false after reporting.
+bool readReplay(Compilation &C, const LoadedBehavior &L, llvm::StringRef Path,
+                std::vector<ReplayLine> &Lines) {
+  unsigned ID = addSourceFile(C, Path);
+  if (!ID)
+    return false;
+  llvm::StringRef Text = C.SM.getMemoryBuffer(ID)->getBuffer();
+  bool OK = true;
+  llvm::SmallVector<llvm::StringRef, 0> Raw;
+  Text.split(Raw, '\n');
+  for (llvm::StringRef R : Raw) {
+    llvm::SMLoc Loc = llvm::SMLoc::getFromPointer(R.data());
+    if (R.trim().empty())
+      continue;
+    llvm::Expected<llvm::json::Value> V = llvm::json::parse(R);
+    if (!V) {
+      C.Diags.report(Loc, diag::err_replay_json) << llvm::toString(V.takeError());
+      OK = false;
+      continue;
+    }
+    ReplayLine Line{Loc, nullptr, nullptr, std::move(*V)};
+    const llvm::json::Object *O = Line.Parsed.getAsObject();
+    if (!O) {
+      C.Diags.report(Loc, diag::err_replay_not_object);
+      OK = false;
+      continue;
+    }
+    for (const auto &KV : *O) {
+      llvm::StringRef K = KV.first;
+      if (K == "input" || K == "output") {
+        const NativeClass *Class = K == "input" ? L.InputClass : L.OutputClass;
+        if (!Class) {
+          C.Diags.report(Loc, diag::err_replay_no_world) << K;
+          OK = false;
+        }
+        (K == "input" ? Line.Input : Line.Output) = &KV.second;
+      } else if (K != "cycle") {
+        C.Diags.report(Loc, diag::err_replay_unknown_key) << K;
+        OK = false;
+      }
+    }
+    Lines.push_back(std::move(Line));
+  }
+  if (OK && Lines.empty()) {
+    C.Diags.report(llvm::SMLoc(), diag::err_replay_empty) << Path;
+    OK = false;
+  }
+  return OK;
+}
+} // namespace
+
+llvm::Expected<bool> bsc::runBehavior(Compilation &C, LoadedBehavior &L,
+                                      const RunOptions &Opts,
+                                      llvm::raw_ostream &OS) {
+  std::vector<ReplayLine> Replay;
+  if (!Opts.ReplayPath.empty()) {
+    if (Opts.CyclesGiven) {
+      C.Diags.report(llvm::SMLoc(), diag::err_conflicting_options)
+          << "--cycles" << "--replay";
+      return false;
+    }
+    if (!readReplay(C, L, Opts.ReplayPath, Replay))
+      return false;
+  }
+  std::unique_ptr<llvm::ToolOutputFile> Record;
+  if (!Opts.RecordPath.empty()) {
+    std::error_code EC;
+    Record = std::make_unique<llvm::ToolOutputFile>(Opts.RecordPath, EC,
+                                                    llvm::sys::fs::OF_Text);
+    if (EC) {
+      C.Diags.report(llvm::SMLoc(), diag::err_cannot_write_output)
+          << Opts.RecordPath << EC.message();
+      return false;
+    }
+  }
+
+  auto SessionOrErr = startSession(C, L);
+  if (!SessionOrErr)
+    return SessionOrErr.takeError();
+  if (!*SessionOrErr)
+    return false;
+  BehaviorSession &S = **SessionOrErr;
+  debug::ValueIO Values([&](llvm::StringRef Sym) { return L.JIT->lookup(Sym); });
+  const TaskDecl *EntryTask = llvm::dyn_cast<TaskDecl>(L.Entry);
+  std::optional<uint64_t> EntryFrame;
+  for (const BehaviorLayout::Task &T : L.Layout.Tasks)
+    if (T.Decl == EntryTask)
+      EntryFrame = T.FrameOffset;
+  bool ReportedFailure = false;
+
+  unsigned Cycles = Replay.empty() ? Opts.Cycles : Replay.size();
+  for (unsigned I = 0; I < Cycles; ++I) {
+    uint32_t Cycle = S.getCycle() + 1;
+    const ReplayLine *Line = Replay.empty() ? nullptr : &Replay[I];
+    if (Line && Line->Input)
+      if (llvm::Error E =
+              Values.writeClass(*L.InputClass, S.getInput(), *Line->Input, "input")) {
+        C.Diags.report(Line->Loc, diag::err_replay_value)
+            << llvm::toString(std::move(E));
+        return false;
+      }
+    BehaviorSession::Outcome O = S.runCycle(Opts.CycleLimitMs);
+    if (!reportOutcome(C, L, O, Cycle, Opts.CycleLimitMs))
+      return false;
+
+    llvm::json::Object Rec{{"cycle", int64_t(Cycle)}};
+    if (L.InputClass)
+      Rec["input"] = Values.readClass(*L.InputClass, S.getInput());
+    llvm::json::Value Out =
+        L.OutputClass ? Values.readClass(*L.OutputClass, S.getOutput())
+                      : llvm::json::Value(nullptr);
+    if (Opts.Trace)
+      OS << "cycle " << Cycle << ": "
+         << debug::formatTraceLine(L.Tables,
+                                   debug::takeSnapshot(S.getState(), &S.getInfo()))
+         << "\n";
+    if (Opts.PrintOutput && L.OutputClass) {
+      debug::printJSON(OS, llvm::json::Object{{"cycle", int64_t(Cycle)},
+                                              {"output", Out}});
+      OS << "\n";
+    }
+    OS.flush();
+    if (L.OutputClass)
+      Rec["output"] = Out;
+    if (Record) {
+      debug::printJSON(Record->os(), llvm::json::Value(std::move(Rec)));
+      Record->os() << "\n";
+    }
+    if (EntryFrame && !ReportedFailure) {
+      int32_t State;
+      std::memcpy(&State,
+                  static_cast<char *>(S.getState()) + *EntryFrame +
+                      offsetof(bs_frame_header, state),
+                  sizeof State);
+      if (State < 0) {
+        C.Diags.report(L.Entry->getLoc(), diag::warn_entry_failed)
+            << L.Entry->getQualifiedName() << State << Cycle;
+        ReportedFailure = true;
+      }
+    }
+    if (Line && Line->Output)
+      if (auto D = debug::findDifference(*Line->Output, Out, "output")) {
+        C.Diags.report(Line->Loc, diag::err_replay_mismatch)
+            << Cycle << D->Path << D->Recorded << D->Got;
+        if (Record)
+          Record->keep();
+        return false;
+      }
+  }
+  if (Record)
+    Record->keep();
+  return true;
+}
