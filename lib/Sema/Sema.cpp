@@ -114,6 +114,7 @@ bool Sema::run(llvm::ArrayRef<ModuleAST *> Modules) {
         Out.Funcs.push_back(F);
     }
 
+  exportCalls();
   checkCallGraph();
   return !HadError;
 }

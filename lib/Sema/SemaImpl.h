@@ -193,6 +193,8 @@ public:
   void checkYield(YieldStmt *S);
   const Type *checkTaskState(TaskStateExpr *E);
   void recordCall(CallableDecl *Callee, llvm::SMLoc Loc);
+  /// Fills Behavior::Calls from Calls.
+  void exportCalls();
   void checkCallGraph();
 
   //--- State ----------------------------------------------------------------

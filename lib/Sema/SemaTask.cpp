@@ -9,7 +9,8 @@
 // call chain cannot exhaust the compiler's stack. Each strongly connected
 // component with a cycle is reported once, as the shortest cycle through
 // its first callable in module and source order, so the output is
-// deterministic.
+// deterministic. The edges are also exported as Behavior::Calls, for the
+// DOT writer of CallGraph.h.
 //
 //===----------------------------------------------------------------------===//
 #include "SemaImpl.h"
@@ -53,6 +54,31 @@ const Type *Sema::checkTaskState(TaskStateExpr *E) {
 void Sema::recordCall(CallableDecl *Callee, llvm::SMLoc Loc) {
   if (CurCallable)
     Calls[CurCallable].push_back({Callee, Loc});
+}
+
+void Sema::exportCalls() {
+  auto Export = [&](const CallableDecl *Caller) {
+    auto It = Calls.find(Caller);
+    if (It == Calls.end())
+      return;
+    size_t First = Out.Calls.size();
+    for (const CallEdge &Edge : It->second)
+      Out.Calls.push_back({Caller, Edge.Callee, Edge.Loc});
+    // Sorted, so that source order does not rest on the order in which the
+    // checker visits expressions; a caller's calls all lie in its own
+    // buffer, so their pointers order them.
+    std::stable_sort(Out.Calls.begin() + First, Out.Calls.end(),
+                     [](const CallSite &A, const CallSite &B) {
+                       return A.Loc.getPointer() < B.Loc.getPointer();
+                     });
+  };
+  for (ModuleAST *M : Out.Modules)
+    for (CallableDecl *C : M->Decls) {
+      Export(C);
+      if (auto *T = llvm::dyn_cast<TaskDecl>(C))
+        for (FuncDecl *F : T->NestedFuncs)
+          Export(F);
+    }
 }
 
 namespace {

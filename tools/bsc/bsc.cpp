@@ -7,6 +7,7 @@
 //   bsc [options] FILE.bs...          a program linked with the runtime shim
 //   bsc -c / -S                       an object / assembly to embed
 //   bsc --emit-header                 the typed C header of the behavior
+//   bsc --emit=graph                  the call graph of funcs and tasks (DOT)
 //   bsc run [options] FILE.bs...      JIT on the host, N cycles of the entry
 //
 // Everything the user can get wrong on the command line (a bad option value,
@@ -23,6 +24,7 @@
 #include "bsc/REPL/Debugger.h"
 #include "bsc/Parse/Lexer.h"
 #include "bsc/Parse/Parser.h"
+#include "bsc/Sema/CallGraph.h"
 #include "llvm/ADT/ScopeExit.h"
 #include "llvm/ADT/StringExtras.h"
 #include "llvm/ADT/StringSet.h"
@@ -41,7 +43,7 @@ using namespace bsc;
 namespace cl = llvm::cl;
 
 namespace {
-enum class EmitKind { Default, Tokens, AST, TypedAST, LLVM, Asm, Obj };
+enum class EmitKind { Default, Tokens, AST, TypedAST, Graph, LLVM, Asm, Obj };
 
 cl::OptionCategory BscCategory("bsc options");
 cl::SubCommand RunCmd("run", "Run a behavior on the host in a JIT, one call "
@@ -108,6 +110,8 @@ cl::opt<EmitKind> Emit(
                clEnumValN(EmitKind::AST, "ast", "the syntax tree (parse only)"),
                clEnumValN(EmitKind::TypedAST, "typed-ast",
                           "the syntax tree after semantic checks"),
+               clEnumValN(EmitKind::Graph, "graph",
+                          "the call graph of funcs and tasks (Graphviz DOT)"),
                clEnumValN(EmitKind::LLVM, "llvm", "the LLVM IR (after -O)"),
                clEnumValN(EmitKind::Asm, "asm", "the target's assembly"),
                clEnumValN(EmitKind::Obj, "obj", "the object file")),
@@ -308,6 +312,20 @@ std::unique_ptr<llvm::ToolOutputFile> openOutput(Compilation &C,
     return nullptr;
   }
   return Out;
+}
+
+/// `--emit=graph`: the static call graph of the checked behavior, to -o or
+/// stdout; nothing when the behavior has errors.
+int emitGraph(Compilation &C, const FrontendOptions &Opts) {
+  if (!runFrontend(C, Opts))
+    return finish(C);
+  auto Out = openOutput(C, OutputFile.empty() ? "-" : OutputFile.getValue(),
+                        true);
+  if (!Out)
+    return finish(C);
+  writeCallGraphDOT(C.Checked, C.SM, Out->os());
+  Out->keep();
+  return finish(C);
 }
 
 /// `<first input without .bs><Ext>` in the current folder.
@@ -643,6 +661,8 @@ int main(int argc, char **argv) {
   case EmitKind::AST:
   case EmitKind::TypedAST:
     return emitAST(C, Opts);
+  case EmitKind::Graph:
+    return emitGraph(C, Opts);
   case EmitKind::Default:
   case EmitKind::LLVM:
   case EmitKind::Asm:

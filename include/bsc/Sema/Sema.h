@@ -7,6 +7,18 @@
 
 namespace bsc {
 
+/// One call of a func or task in the body of another func or task: an edge
+/// of the static call graph (`bsc --emit=graph`, the cycle check). Calls of
+/// registered C++ functions and methods are not call sites here.
+struct CallSite {
+  /// The func or task whose body holds the call (a nested func, not its
+  /// task, for a call in a nested func's body).
+  const CallableDecl *Caller;
+  const CallableDecl *Callee;
+  /// The callee's name in the call, in the caller's file.
+  llvm::SMLoc Loc;
+};
+
 /// A checked behavior: every module compiled together (whole program) and
 /// what later phases need without walking the tree again.
 struct Behavior {
@@ -15,6 +27,10 @@ struct Behavior {
   std::vector<TaskDecl *> Tasks;
   /// Every func, nested ones included, in module then source order.
   std::vector<FuncDecl *> Funcs;
+  /// Every call of a func or task, grouped by caller in module and source
+  /// order (a task, then its nested funcs), each caller's calls in source
+  /// order. A call whose callee did not resolve is left out.
+  std::vector<CallSite> Calls;
   /// The native modules some module requires.
   std::vector<const NativeModule *> NativeModules;
   /// The module declaring `input`/`output`, if the registry has one.
