@@ -353,7 +353,6 @@ llvm::Value *FunctionEmitter::emitCall(const CallExpr &E) {
   case CallKind::Task: {
     // Tasks and funcs alike: (state, args...). A task call runs one step.
     llvm::Function *Callee = CGM.getFunction(E.Target);
-    CGM.noteCall(&D, E.Target);
     llvm::SmallVector<llvm::Value *, 4> Args = {StatePtr};
     llvm::AllocaInst *Out = nullptr;
     if (ModuleEmitter::returnsClass(*E.Target)) {

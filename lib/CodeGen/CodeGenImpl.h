@@ -132,10 +132,6 @@ public:
 
   // Debugging probes (CodeGenOptions::Probes) -------------------------------
 
-  /// Records a call of a func or task (BehaviorLayout::Calls).
-  void noteCall(const CallableDecl *Caller, const CallableDecl *Callee) {
-    Layout.Calls.emplace_back(Caller, Callee);
-  }
   /// Records a site; returns its number (from 1).
   unsigned addSite(DebugSite Site);
   /// `bs.probe.loop` or `bs.probe.native`, defined on first use.

@@ -33,8 +33,8 @@ DebugTables debug::buildDebugTables(const Behavior &B,
   // call the func).
   llvm::DenseMap<const CallableDecl *, llvm::SetVector<const CallableDecl *>>
       Callees;
-  for (auto [Caller, Callee] : Layout.Calls)
-    Callees[Caller].insert(Callee);
+  for (const CallSite &Call : B.Calls)
+    Callees[Call.Caller].insert(Call.Callee);
   std::vector<std::set<unsigned>> Callers(Layout.Tasks.size());
   for (const BehaviorLayout::Task &LT : Layout.Tasks) {
     unsigned From = TaskIndex.lookup(LT.Decl);

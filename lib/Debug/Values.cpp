@@ -142,9 +142,12 @@ std::optional<Difference> debug::findDifference(const Value &Recorded,
   // Numbers compare as the floats (or ints) they are; a number written as
   // a float's shortest decimal reads back as that float.
   std::optional<double> RN = floatFromJSON(Recorded), GN = floatFromJSON(Got);
+  std::optional<int64_t> RI = Recorded.getAsInteger(), GI = Got.getAsInteger();
   bool Same;
-  if (RN && GN)
-    Same = (std::isnan(*RN) && std::isnan(*GN)) || *RN == *GN;
+  if (RI && GI)
+    Same = *RI == *GI;
+  else if (RN && GN) // Every non-integer number here is a b-script float.
+    Same = (std::isnan(*RN) && std::isnan(*GN)) || float(*RN) == float(*GN);
   else
     Same = Recorded == Got;
   if (Same)

@@ -136,17 +136,17 @@ bool bsc::reportOutcome(Compilation &C, const LoadedBehavior &L,
     else if (const DebugSite *Loop = Site(O.LoopSite))
       C.Diags.report(Loop->Loc, diag::err_cycle_runaway)
           << Cycle << LimitMs << Loop->In->getQualifiedName();
-    else
-      C.Diags.report(llvm::SMLoc(), diag::err_cycle_runaway_unknown)
-          << Cycle << LimitMs;
+    else // Only C++ the probes do not mark (life-cycle thunks) is left.
+      C.Diags.report(llvm::SMLoc(), diag::err_cycle_runaway_native)
+          << Cycle << LimitMs << "a constructor or destructor";
     return false;
   case BehaviorSession::Outcome::Crashed:
     if (const DebugSite *N = Site(O.NativeSite))
       C.Diags.report(N->Loc, diag::err_cycle_crash_native)
           << Cycle << describeSignal(O.Signal) << N->Native;
     else
-      C.Diags.report(llvm::SMLoc(), diag::err_cycle_crash)
-          << Cycle << describeSignal(O.Signal);
+      C.Diags.report(llvm::SMLoc(), diag::err_cycle_crash_native)
+          << Cycle << describeSignal(O.Signal) << "a constructor or destructor";
     return false;
   }
   return true;
@@ -156,8 +156,10 @@ namespace {
 /// One line of a replay file, checked.
 struct ReplayLine {
   llvm::SMLoc Loc; ///< Its first character.
-  const llvm::json::Value *Input = nullptr, *Output = nullptr;
   llvm::json::Value Parsed = nullptr;
+  const llvm::json::Value *get(llvm::StringRef Key) const {
+    return Parsed.getAsObject()->get(Key);
+  }
 };
 
 /// Reads a JSONL replay file into the SourceMgr (so that its errors have
@@ -177,11 +179,23 @@ bool readReplay(Compilation &C, const LoadedBehavior &L, llvm::StringRef Path,
       continue;
     llvm::Expected<llvm::json::Value> V = llvm::json::parse(R);
     if (!V) {
-      C.Diags.report(Loc, diag::err_replay_json) << llvm::toString(V.takeError());
+      // llvm::json says "[line:col, byte=N]: what"; point the caret there.
+      std::string Msg = llvm::toString(V.takeError());
+      llvm::StringRef Rest = Msg;
+      size_t Byte = 0;
+      if (Rest.consume_front("[") && Rest.contains("byte=")) {
+        Rest = Rest.split("byte=").second;
+        auto [Num, What] = Rest.split("]: ");
+        if (!Num.getAsInteger(10, Byte) && Byte <= R.size()) {
+          Loc = llvm::SMLoc::getFromPointer(R.data() + Byte);
+          Msg = What.str();
+        }
+      }
+      C.Diags.report(Loc, diag::err_replay_json) << Msg;
       OK = false;
       continue;
     }
-    ReplayLine Line{Loc, nullptr, nullptr, std::move(*V)};
+    ReplayLine Line{Loc, std::move(*V)};
     const llvm::json::Object *O = Line.Parsed.getAsObject();
     if (!O) {
       C.Diags.report(Loc, diag::err_replay_not_object);
@@ -196,7 +210,6 @@ bool readReplay(Compilation &C, const LoadedBehavior &L, llvm::StringRef Path,
           C.Diags.report(Loc, diag::err_replay_no_world) << K;
           OK = false;
         }
-        (K == "input" ? Line.Input : Line.Output) = &KV.second;
       } else if (K != "cycle") {
         C.Diags.report(Loc, diag::err_replay_unknown_key) << K;
         OK = false;
@@ -255,9 +268,9 @@ llvm::Expected<bool> bsc::runBehavior(Compilation &C, LoadedBehavior &L,
   for (unsigned I = 0; I < Cycles; ++I) {
     uint32_t Cycle = S.getCycle() + 1;
     const ReplayLine *Line = Replay.empty() ? nullptr : &Replay[I];
-    if (Line && Line->Input)
+    if (const llvm::json::Value *In = Line ? Line->get("input") : nullptr)
       if (llvm::Error E =
-              Values.writeClass(*L.InputClass, S.getInput(), *Line->Input, "input")) {
+              Values.writeClass(*L.InputClass, S.getInput(), *In, "input")) {
         C.Diags.report(Line->Loc, diag::err_replay_value)
             << llvm::toString(std::move(E));
         return false;
@@ -301,8 +314,8 @@ llvm::Expected<bool> bsc::runBehavior(Compilation &C, LoadedBehavior &L,
         ReportedFailure = true;
       }
     }
-    if (Line && Line->Output)
-      if (auto D = debug::findDifference(*Line->Output, Out, "output")) {
+    if (const llvm::json::Value *Recorded = Line ? Line->get("output") : nullptr)
+      if (auto D = debug::findDifference(*Recorded, Out, "output")) {
         C.Diags.report(Line->Loc, diag::err_replay_mismatch)
             << Cycle << D->Path << D->Recorded << D->Got;
         if (Record)

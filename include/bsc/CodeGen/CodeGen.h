@@ -104,10 +104,6 @@ struct BehaviorLayout {
   /// With CodeGenOptions::Probes: the sites, numbered from 1 (0 in a probe
   /// global means "none").
   std::vector<DebugSite> Sites;
-  /// Every call of a func or task, caller first, in the order emitted
-  /// (duplicates kept): the static call graph the debugger's activation
-  /// trees follow.
-  std::vector<std::pair<const CallableDecl *, const CallableDecl *>> Calls;
   /// With CodeGenOptions::Instrument: the declared symbol of the tables.
   std::string DebugTablesSymbol;
 };

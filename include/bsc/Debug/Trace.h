@@ -61,8 +61,8 @@ struct DebugTables {
   std::vector<Task> Tasks; ///< In bs_behavior_info.tasks order.
 };
 
-/// Builds the tables from a checked behavior and its layout (whose Calls
-/// give the call graph).
+/// Builds the tables from a checked behavior (whose Calls give the call
+/// graph) and its layout.
 DebugTables buildDebugTables(const Behavior &B, const BehaviorLayout &Layout,
                              const llvm::SourceMgr &SM);
 
