@@ -21,7 +21,11 @@
 #include "bsc/CodeGen/Target.h"
 #include "bsc/Frontend/Frontend.h"
 #include "bsc/JIT/JIT.h"
+#include "bsc/Debug/Trace.h"
+#include "bsc/Debug/Values.h"
 #include "bsc/REPL/Debugger.h"
+#include "llvm/Object/ObjectFile.h"
+#include "llvm/Support/MemoryBuffer.h"
 #include "bsc/Parse/Lexer.h"
 #include "bsc/Parse/Parser.h"
 #include "bsc/Sema/CallGraph.h"
@@ -48,6 +52,10 @@ enum class EmitKind { Default, Tokens, AST, TypedAST, Graph, LLVM, Asm, Obj };
 cl::OptionCategory BscCategory("bsc options");
 cl::SubCommand RunCmd("run", "Run a behavior on the host in a JIT, one call "
                              "of the entry per cycle");
+cl::SubCommand TraceDecodeCmd(
+    "trace-decode",
+    "Print a robot's trace log as `bsc run --trace` does, with the tables of "
+    "an object compiled with --instrument");
 
 /// Options shared by the compiler and `bsc run` are in both subcommands.
 #define BSC_BOTH cl::sub(cl::SubCommand::getTopLevel()), cl::sub(RunCmd)
@@ -96,6 +104,19 @@ cl::opt<std::string> CycleLimitArg(
              "default 3000, 0: no limit)"),
     cl::value_desc("ms"), cl::init("3000"), cl::cat(BscCategory),
     cl::sub(RunCmd));
+
+cl::opt<bool> InstrumentFlag(
+    "instrument",
+    cl::desc("Embed the debugger's tables (task names, yield lines) in the "
+             "object, for `bsc trace-decode` of robot trace logs"),
+    cl::cat(BscCategory));
+cl::opt<std::string> TraceObject(
+    "object", cl::desc("The object compiled with --instrument"),
+    cl::value_desc("file.o"), cl::cat(BscCategory), cl::sub(TraceDecodeCmd),
+    cl::Required);
+cl::opt<std::string> TraceLog(cl::Positional, cl::desc("<trace log>"),
+                              cl::cat(BscCategory), cl::sub(TraceDecodeCmd),
+                              cl::Required);
 
 cl::opt<bool> SyntaxOnly("fsyntax-only",
                          cl::desc("Check the program; produce no output"),
@@ -457,6 +478,7 @@ int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
     return finish(C);
   }
   CodeGenOptions CGOpts;
+  CGOpts.Instrument = InstrumentFlag;
   CGOpts.BehaviorName = getBehaviorName(C);
   if (CGOpts.BehaviorName.empty())
     return finish(C);
@@ -473,6 +495,10 @@ int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
                CGOpts, Layout);
   if (llvm::Error E = verifyGeneratedModule(*M))
     return finishWithInternalError(C, std::move(E));
+  if (CGOpts.Instrument)
+    defineDebugTables(*M, Layout,
+                      debug::toJSONString(debug::toJSON(
+                          debug::buildDebugTables(C.Checked, Layout, C.SM))));
 
   if (Kind == OutputKind::Header) {
     auto Out = openOutput(C, OutputFile.empty() ? "-" : OutputFile.getValue(), true);
@@ -580,6 +606,53 @@ int runJIT(Compilation &C, const FrontendOptions &FOpts) {
   return finish(C);
 }
 
+/// `bsc trace-decode --object B.o LOG`: the tables from the object's
+/// DebugTablesSection, the records from the log (bscript.h, "Trace logs").
+int decodeTrace(Compilation &C) {
+  auto Fail = [&](const llvm::Twine &Path, const llvm::Twine &Why) {
+    C.Diags.report(llvm::SMLoc(), diag::err_trace_decode)
+        << Path.str() << Why.str();
+    return finish(C);
+  };
+  auto Obj = llvm::object::ObjectFile::createObjectFile(TraceObject);
+  if (!Obj)
+    return Fail(TraceObject, llvm::toString(Obj.takeError()));
+  std::optional<llvm::StringRef> Text;
+  for (const llvm::object::SectionRef &Sec : Obj->getBinary()->sections()) {
+    llvm::Expected<llvm::StringRef> Name = Sec.getName();
+    if (!Name) {
+      llvm::consumeError(Name.takeError());
+      continue;
+    }
+    if (*Name != DebugTablesSection)
+      continue;
+    llvm::Expected<llvm::StringRef> Contents = Sec.getContents();
+    if (!Contents)
+      return Fail(TraceObject, llvm::toString(Contents.takeError()));
+    Text = Contents->split('\0').first;
+  }
+  if (!Text) {
+    C.Diags.report(llvm::SMLoc(), diag::err_no_debug_tables)
+        << TraceObject.getValue();
+    return finish(C);
+  }
+  llvm::Expected<debug::DebugTables> Tables = debug::parseDebugTables(*Text);
+  if (!Tables)
+    return Fail(TraceObject, llvm::toString(Tables.takeError()));
+  auto Log = llvm::MemoryBuffer::getFile(TraceLog, /*IsText=*/false,
+                                         /*RequiresNullTerminator=*/false);
+  if (!Log)
+    return Fail(TraceLog, Log.getError().message());
+  auto Cycles =
+      debug::parseTraceLog((*Log)->getBuffer(), Tables->Tasks.size());
+  if (!Cycles)
+    return Fail(TraceLog, llvm::toString(Cycles.takeError()));
+  for (const debug::LoggedCycle &Cycle : *Cycles)
+    llvm::outs() << "cycle " << Cycle.Cycle << ": "
+                 << debug::formatTraceLine(*Tables, Cycle.Records) << "\n";
+  return finish(C);
+}
+
 /// Reports options of plain compilation given to `bsc run`: llvm::cl lets a
 /// subcommand fall back to the top level's options, which would silently
 /// ignore them (`bsc run -c`).
@@ -631,6 +704,7 @@ int main(int argc, char **argv) {
   llvm::InitLLVM X(argc, argv);
   cl::HideUnrelatedOptions(BscCategory);
   cl::HideUnrelatedOptions(BscCategory, RunCmd);
+  cl::HideUnrelatedOptions(BscCategory, TraceDecodeCmd);
   cl::ParseCommandLineOptions(argc, argv,
                               "bsc: the b-script compiler for robot behaviors\n");
 
@@ -650,6 +724,8 @@ int main(int argc, char **argv) {
 
   if (RunCmd)
     return checkRunOptions(C.Diags) ? runJIT(C, Opts) : finish(C);
+  if (TraceDecodeCmd)
+    return decodeTrace(C);
 
   if (!checkConflicts(C.Diags))
     return finish(C);
