@@ -55,6 +55,8 @@ std::optional<double> debug::floatFromJSON(const Value &V) {
 /// The shortest decimal that reads back as `D` (as a float when `D` is
 /// one, which every b-script float is).
 static std::string formatNumber(double D) {
+  if (D == 0 && std::signbit(D))
+    return "-0.0";
   if (D == std::trunc(D) && std::fabs(D) < 1e15)
     return llvm::formatv("{0}", (long long)D).str();
   bool IsFloat = double(float(D)) == D;
@@ -78,7 +80,7 @@ void debug::printJSON(llvm::raw_ostream &OS, const Value &V) {
     OS << V;
     return;
   case Value::Number:
-    if (std::optional<int64_t> I = V.getAsInteger())
+    if (std::optional<int64_t> I = V.getAsInteger(); I && *I != 0)
       OS << *I;
     else
       OS << formatNumber(*V.getAsNumber());
@@ -144,8 +146,8 @@ std::optional<Difference> debug::findDifference(const Value &Recorded,
   std::optional<double> RN = floatFromJSON(Recorded), GN = floatFromJSON(Got);
   std::optional<int64_t> RI = Recorded.getAsInteger(), GI = Got.getAsInteger();
   bool Same;
-  if (RI && GI)
-    Same = *RI == *GI;
+  if (RI && GI) // Zero's sign is the only thing an int cannot show.
+    Same = *RI == *GI && (*RI != 0 || std::signbit(*RN) == std::signbit(*GN));
   else if (RN && GN) // Every non-integer number here is a b-script float.
     Same = (std::isnan(*RN) && std::isnan(*GN)) || float(*RN) == float(*GN);
   else

@@ -1,11 +1,11 @@
 //===- Debugger.h - running behaviors in the JIT to debug them -*- C++ -*-===//
 //
 // The debugging side of bsc (docs/repl.md): `bsc run` with its trace,
-// record and replay options, and `bsc repl`. Both load a checked behavior
-// into a fresh JIT (loadBehavior) and advance a BehaviorSession cycle by
-// cycle; what they print about the behavior comes from bsc/Debug (values
-// as JSON, activation traces), so the REPL, the runner and a decoded robot
-// log agree word for word.
+// record and replay options. It loads a checked behavior into a fresh JIT
+// (loadBehavior) and advances a BehaviorSession cycle by cycle; what it
+// prints about the behavior comes from bsc/Debug (values as JSON,
+// activation traces), so the runner and a decoded robot log agree word for
+// word. The REPL (issue 10) is to be built on the same pieces.
 //
 // User mistakes (an unreadable replay file, a runaway cycle, a crash in
 // registered C++) are diagnostics in the Compilation's engine; llvm::Errors
@@ -91,18 +91,6 @@ llvm::Expected<bool> runBehavior(Compilation &C, LoadedBehavior &L,
 bool reportOutcome(Compilation &C, const LoadedBehavior &L,
                    const BehaviorSession::Outcome &O, uint32_t Cycle,
                    unsigned LimitMs);
-
-/// `bsc repl`: reads lines from `In` (a terminal gets a prompt with
-/// history and completion; otherwise the lines run as a batch) and answers
-/// on `OS`. Returns the exit status.
-struct ReplOptions {
-  FrontendOptions Frontend;
-  LoadOptions Load;
-  std::string EntryName;
-  std::string BatchFile; ///< --batch: read lines from this file.
-  unsigned CycleLimitMs = DefaultCycleLimitMs;
-};
-int runRepl(const ReplOptions &Opts, llvm::raw_ostream &OS);
 
 } // namespace bsc
 

@@ -1,0 +1,182 @@
+//===- DebugTest.cpp - values as JSON, activation trees, trace logs -------===//
+#include "bsc/AST/Native.h"
+#include "bsc/Debug/Trace.h"
+#include "bsc/Debug/Values.h"
+#include "gtest/gtest.h"
+#include <cmath>
+#include <cstring>
+
+using namespace bsc;
+using namespace bsc::debug;
+
+namespace {
+
+TEST(DebugValuesTest, FloatsPrintShortestAndReadBackExactly) {
+  for (float F : {0.1f, 1000.5f, -3.25e-5f, 1.0f / 3.0f, 16777217.0f, 1e30f,
+                  -0.0f, 1.17549435e-38f}) {
+    std::string S = toJSONString(floatToJSON(F));
+    llvm::Expected<llvm::json::Value> V = llvm::json::parse(S);
+    ASSERT_TRUE(bool(V)) << S;
+    std::optional<double> D = floatFromJSON(*V);
+    ASSERT_TRUE(D.has_value());
+    float Back = float(*D);
+    EXPECT_EQ(0, std::memcmp(&Back, &F, sizeof F)) << S;
+  }
+  EXPECT_EQ("0.1", toJSONString(floatToJSON(0.1f)));
+  EXPECT_EQ("1000.5", toJSONString(floatToJSON(1000.5f)));
+  EXPECT_EQ("3", toJSONString(floatToJSON(3.0f)));
+}
+
+TEST(DebugValuesTest, NonFiniteFloatsAreStrings) {
+  EXPECT_EQ("\"NaN\"", toJSONString(floatToJSON(std::nan(""))));
+  EXPECT_EQ("\"Infinity\"", toJSONString(floatToJSON(HUGE_VAL)));
+  EXPECT_EQ("\"-Infinity\"", toJSONString(floatToJSON(-HUGE_VAL)));
+  EXPECT_TRUE(std::isnan(*floatFromJSON("NaN")));
+  EXPECT_FALSE(floatFromJSON("nan").has_value());
+}
+
+TEST(DebugValuesTest, DifferencesNameThePathAndCompareAsFloats) {
+  llvm::json::Value Recorded =
+      llvm::json::Object{{"a", 1}, {"b", llvm::json::Object{{"x", 0.1}}}};
+  llvm::json::Value Same =
+      llvm::json::Object{{"a", 1}, {"b", llvm::json::Object{{"x", double(0.1f)}}}};
+  EXPECT_FALSE(findDifference(Recorded, Same, "output").has_value());
+  llvm::json::Value Other =
+      llvm::json::Object{{"a", 2}, {"b", llvm::json::Object{{"x", 0.1}}}};
+  std::optional<Difference> D = findDifference(Recorded, Other, "output");
+  ASSERT_TRUE(D.has_value());
+  EXPECT_EQ("output.a", D->Path);
+  EXPECT_EQ("1", D->Recorded);
+  EXPECT_EQ("2", D->Got);
+  // NaN equals NaN; members the recording lacks are not compared.
+  EXPECT_FALSE(findDifference(llvm::json::Object{{"n", "NaN"}},
+                              llvm::json::Object{{"n", "NaN"}, {"m", 1}}, "o"));
+}
+
+/// A class {int32 i; double d (a b-script float); bool b} read and written
+/// at its offsets, as the JIT's values are.
+TEST(DebugValuesTest, FieldsByOffset) {
+  struct Obj {
+    int32_t I;
+    double D;
+    bool B;
+  } O = {7, 0.5, true};
+  NativeClass C;
+  C.Name = "Obj";
+  C.QualifiedName = "M::Obj";
+  auto Field = [&](const char *Name, NativeType::Code Code, uint64_t Offset,
+                   uint32_t Size) {
+    NativeFunction F;
+    F.Kind = NativeFunction::Field;
+    F.Name = Name;
+    F.FieldOffset = Offset;
+    F.Result.TheCode = Code;
+    F.Result.StorageSize = Size;
+    C.Members.push_back(F);
+  };
+  Field("i", NativeType::Int, offsetof(Obj, I), 4);
+  Field("d", NativeType::Float, offsetof(Obj, D), 8);
+  Field("b", NativeType::Bool, offsetof(Obj, B), 1);
+  ValueIO IO([](llvm::StringRef) -> void * { return nullptr; });
+  EXPECT_EQ("{\"b\":true,\"d\":0.5,\"i\":7}", toJSONString(IO.readClass(C, &O)));
+  llvm::Error E = IO.writeClass(
+      C, &O, llvm::json::Object{{"i", -3}, {"d", 0.1}}, "input");
+  ASSERT_FALSE(bool(E));
+  EXPECT_EQ(-3, O.I);
+  EXPECT_EQ(double(0.1f), O.D); // Stored as the b-script float it is.
+  EXPECT_TRUE(O.B);
+  E = IO.writeClass(C, &O, llvm::json::Object{{"i", "x"}}, "input");
+  EXPECT_EQ("input.i must be an integer, not \"x\"", llvm::toString(std::move(E)));
+  E = IO.writeClass(C, &O, llvm::json::Object{{"j", 1}}, "input");
+  EXPECT_EQ("input.j: M::Obj has no field 'j' (it has i, d, b)",
+            llvm::toString(std::move(E)));
+}
+
+/// walk (0) is called by look (1) and main (2); look and head (3) by main.
+DebugTables makeTables() {
+  DebugTables T;
+  T.Tasks.resize(4);
+  const char *Names[] = {"walk", "look", "main", "head"};
+  for (unsigned I = 0; I < 4; ++I) {
+    T.Tasks[I].Name = std::string("M::") + Names[I];
+    T.Tasks[I].ShortName = Names[I];
+    T.Tasks[I].File = "M.bs";
+    T.Tasks[I].Line = 10 * (I + 1);
+    T.Tasks[I].YieldLines = {10 * I + 11, 10 * I + 12};
+  }
+  T.Tasks[0].Callers = {1, 2};
+  T.Tasks[1].Callers = {2};
+  T.Tasks[3].Callers = {2};
+  return T;
+}
+
+TEST(DebugTraceTest, ParentIsTheFirstActiveCaller) {
+  DebugTables T = makeTables();
+  EXPECT_EQ("main > look > walk [running, M.bs:11]",
+            formatTraceLine(T, {{0, 1, 1}, {1, 1, 1}, {2, 1, 1}}));
+  // main is done but was called: it is walk's parent (look did not run).
+  EXPECT_EQ("main > walk [state 3, M.bs:12]",
+            formatTraceLine(T, {{0, 2, 3}, {2, 0, 0}}));
+  EXPECT_EQ("main > look > walk [done]",
+            formatTraceLine(T, {{0, 0, 0}, {1, 1, 1}, {2, 1, 1}}));
+  // Two leaves: a path each, children in table order.
+  EXPECT_EQ("main > look [running, M.bs:21]; main > head [done]",
+            formatTraceLine(T, {{1, 1, 1}, {2, 1, 1}, {3, 0, 0}}));
+  EXPECT_EQ("look [failure, M.bs:22]",
+            formatTraceLine(T, {{1, 2, -1}}));
+  EXPECT_EQ("idle", formatTraceLine(T, {}));
+  // Records of unknown tasks are dropped rather than trusted.
+  EXPECT_EQ("idle", formatTraceLine(T, {{7, 1, 1}}));
+}
+
+TEST(DebugTraceTest, TablesSurviveJSON) {
+  DebugTables T = makeTables();
+  T.Tasks[0].Fields = {{"n", "int", true}, {"i", "float", false}};
+  llvm::Expected<DebugTables> Back =
+      parseDebugTables(toJSONString(toJSON(T)));
+  ASSERT_TRUE(bool(Back));
+  ASSERT_EQ(4u, Back->Tasks.size());
+  EXPECT_EQ("M::look", Back->Tasks[1].Name);
+  EXPECT_EQ(std::vector<unsigned>({1, 2}), Back->Tasks[0].Callers);
+  EXPECT_EQ(std::vector<unsigned>({21, 22}), Back->Tasks[1].YieldLines);
+  EXPECT_EQ("float", Back->Tasks[0].Fields[1].Type);
+  EXPECT_FALSE(Back->Tasks[0].Fields[1].IsParam);
+  for (const char *Bad : {"", "[]", "{\"version\":2,\"tasks\":[]}",
+                          "{\"version\":1,\"tasks\":[{\"name\":\"a\"}]}",
+                          "{\"version\":1,\"tasks\":[{\"name\":\"a\",\"short\":"
+                          "\"a\",\"file\":\"f\",\"line\":1,\"yields\":[],"
+                          "\"callers\":[5],\"fields\":[]}]}"}) {
+    llvm::Expected<DebugTables> R = parseDebugTables(Bad);
+    EXPECT_FALSE(bool(R)) << Bad;
+    llvm::consumeError(R.takeError());
+  }
+}
+
+TEST(DebugTraceTest, LogsAreCheckedRecordByRecord) {
+  // Cycle 5 with one record {task 1, resume 2, state -1}.
+  const char Log[] = "\5\0\0\0\1\0\0\0\1\0\2\0\xff\xff\xff\xff";
+  auto Cycles = parseTraceLog(llvm::StringRef(Log, 16), 3);
+  ASSERT_TRUE(bool(Cycles));
+  ASSERT_EQ(1u, Cycles->size());
+  EXPECT_EQ(5u, (*Cycles)[0].Cycle);
+  EXPECT_EQ(2, (*Cycles)[0].Records[0].resume);
+  EXPECT_EQ(-1, (*Cycles)[0].Records[0].state);
+  for (size_t Cut : {4, 8, 12}) {
+    auto R = parseTraceLog(llvm::StringRef(Log, Cut), 3);
+    EXPECT_FALSE(bool(R)) << Cut;
+    llvm::consumeError(R.takeError());
+  }
+  auto R = parseTraceLog(llvm::StringRef(Log, 16), 1); // Task 1 of 1.
+  EXPECT_FALSE(bool(R));
+  llvm::consumeError(R.takeError());
+}
+
+} // namespace
+
+namespace {
+TEST(DebugValuesTest, NegativeZeroIsNotZero) {
+  EXPECT_EQ("-0.0", toJSONString(floatToJSON(-0.0f)));
+  EXPECT_TRUE(findDifference(floatToJSON(0.0f), floatToJSON(-0.0f), "x"));
+  EXPECT_FALSE(findDifference(floatToJSON(-0.0f), floatToJSON(-0.0f), "x"));
+}
+} // namespace
