@@ -18,8 +18,8 @@ library) and runs bsc on each variant with a time limit.
   fuzz BSC OBJ --cmd ARGS [--cmd ARGS...]
       sets each field (sh_type, sh_offset, sh_size, sh_entsize, sh_link,
       sh_info, sh_addralign) of each section header, one at a time, to a
-      few nasty values; every run must exit 0 or 1 (1 with a `bsc: error:`)
-      without "LLVM ERROR".
+      few nasty values; every run must exit 0 or 1 (1 with an error
+      message) without "LLVM ERROR".
 
 Every run must end within --timeout seconds (lit's own timeout is not per
 test). Prints one line per failure and a summary; exits 1 on any failure.
@@ -27,6 +27,7 @@ test). Prints one line per failure and a summary; exits 1 on any failure.
 import argparse
 import concurrent.futures
 import os
+import re
 import shlex
 import struct
 import subprocess
@@ -142,6 +143,19 @@ def cases(elf):
          f"(0x{elf.get(symtab, 'sh_offset'):x}) + sh_size (0x{huge:x}) that "
          f"is greater than the file size (0x{len(elf.data):x})"),
     ]
+    text = elf.find(lambda i: elf.names[i].startswith('.text')
+                    and elf.get(i, 'sh_size') > 0)
+    out += [
+        ('text-nobits', elf.patched(text, 'sh_type', SHT_NOBITS),
+         f"section '{elf.names[text]}': section [index {text}] holds code "
+         f"but has type SHT_NOBITS"),
+        ('text-at-0', elf.patched(text, 'sh_offset', 0),
+         f"section '{elf.names[text]}': section [index {text}] overlaps "
+         f"the ELF header or the section header table"),
+        ('strtab-empty', elf.patched(elf.get(symtab, 'sh_link'), 'sh_size', 1),
+         f"symbol table '.symtab': symbol 1 has its name outside the string "
+         f"table"),
+    ]
     if dynsym is not None:
         out.append(('dynsym-huge', elf.patched(dynsym, 'sh_size', huge),
                     f"symbol table '.dynsym': section [index {dynsym}] has a "
@@ -178,6 +192,11 @@ def run(bsc, cmd, path, timeout):
     return p.returncode, p.stderr.decode(errors='replace')
 
 
+# An error of bsc: `bsc: error:`, or one at a place in the script (a
+# damaged object may read as one without the module the script requires).
+DIAG_LINE = re.compile(r'^(bsc: error: |\S.*:\d+:\d+: error: )')
+
+
 def judge(status, err, timeout):
     """Why a run is not an orderly end (exit 0, or 1 with `bsc: error:`),
     or None."""
@@ -189,8 +208,8 @@ def judge(status, err, timeout):
         return f'killed by signal {-status}\n' + err[-2000:]
     if status not in (0, 1):
         return f'exit status {status}\n' + err[-2000:]
-    if status == 1 and not any(l.startswith('bsc: error: ') for l in err.splitlines()):
-        return 'exit status 1 without `bsc: error:`\n' + err[-2000:]
+    if status == 1 and not any(DIAG_LINE.match(l) for l in err.splitlines()):
+        return 'exit status 1 without a diagnostic\n' + err[-2000:]
     return None
 
 

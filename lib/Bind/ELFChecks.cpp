@@ -12,6 +12,7 @@
 //===----------------------------------------------------------------------===//
 #include "ELFChecks.h"
 #include "llvm/BinaryFormat/ELF.h"
+#include "llvm/ADT/STLExtras.h"
 #include "llvm/Object/ELF.h"
 
 using namespace llvm;
@@ -30,6 +31,12 @@ public:
 private:
   const ELFFile<ELFT> &EF;
   typename ELFT::ShdrRange Secs;
+  /// The bytes of the file each section (or header: Sec null) occupies.
+  struct Extent {
+    uint64_t Offset, Size;
+    const Shdr *Sec;
+  };
+  std::vector<Extent> Extents;
 
   std::string nameOf(const Shdr &S) const {
     Expected<StringRef> N = EF.getSectionName(S);
@@ -79,8 +86,12 @@ SectionChecker<ELFT>::linkedSymbols(const Shdr &S) const {
     return createStringError(inconvertibleErrorCode(),
                              indexOf(S) + " has sh_link " + Twine(S.sh_link) +
                                  ", which is not a symbol table");
+  // A relocatable's relocations use its .symtab (ELFObjectFile reads only
+  // that one); a library's dynamic relocations use .dynsym.
   const Shdr &Link = Secs[S.sh_link];
-  if (Link.sh_type != ELF::SHT_SYMTAB && Link.sh_type != ELF::SHT_DYNSYM)
+  if (Link.sh_type != ELF::SHT_SYMTAB &&
+      (Link.sh_type != ELF::SHT_DYNSYM ||
+       EF.getHeader().e_type == ELF::ET_REL))
     return createStringError(inconvertibleErrorCode(),
                              indexOf(S) + " has sh_link " + Twine(S.sh_link) +
                                  ", which is not a symbol table");
@@ -98,6 +109,14 @@ Error SectionChecker<ELFT>::checkRelocations(
     return damaged(S,
                    indexOf(S) + " has sh_info " + Twine(S.sh_info) +
                        ", which is not a section");
+  // The section the relocations patch (a relocatable's, or one that
+  // SHF_INFO_LINK names) must have bytes to patch: the JIT writes into it.
+  bool Patches = EF.getHeader().e_type == ELF::ET_REL ||
+                 (S.sh_flags & ELF::SHF_INFO_LINK);
+  if (Patches && S.sh_info != 0 &&
+      Secs[S.sh_info].sh_type == ELF::SHT_NOBITS)
+    return damaged(S, indexOf(S) + " patches section [index " +
+                          Twine(S.sh_info) + "], which has no contents");
   // ELFObjectFile takes a relocation's symbol index on trust (and so do
   // its accessors that end the process when the symbol is not there).
   std::optional<uint64_t> NumSyms;
@@ -149,10 +168,15 @@ template <class ELFT> Error SectionChecker<ELFT>::run() {
           "section 'bs_modules': " + indexOf(S) + " has type " +
               getELFSectionTypeName(EF.getHeader().e_machine, S.sh_type) +
               " (expected SHT_PROGBITS)");
+    // Code without bytes: the JIT would run zeros.
+    if (S.sh_type == ELF::SHT_NOBITS && (S.sh_flags & ELF::SHF_EXECINSTR))
+      return damaged(S, indexOf(S) + " holds code but has type SHT_NOBITS");
     if (S.sh_type != ELF::SHT_NOBITS) {
       Expected<ArrayRef<uint8_t>> Contents = EF.getSectionContents(S);
       if (!Contents)
         return damaged(S, Contents.takeError());
+      if (S.sh_size)
+        Extents.push_back({uint64_t(S.sh_offset), uint64_t(S.sh_size), &S});
     }
     switch (S.sh_type) {
     case ELF::SHT_SYMTAB:
@@ -167,6 +191,12 @@ template <class ELFT> Error SectionChecker<ELFT>::run() {
         return damaged(S,
                        indexOf(S) + " has sh_info " + Twine(S.sh_info) +
                            " beyond its " + Twine(Syms->size()) + " symbols");
+      // The walks skip a symbol whose name cannot be read, which would
+      // silently lose a descriptor or a thunk.
+      for (const auto &Sym : *Syms)
+        if (Sym.st_name >= Strings->size())
+          return damaged(S, "symbol " + Twine(&Sym - Syms->begin()) +
+                                " has its name outside the string table");
       break;
     }
     case ELF::SHT_RELR:
@@ -183,6 +213,29 @@ template <class ELFT> Error SectionChecker<ELFT>::run() {
       break;
     }
   }
+  // No two sections share bytes, and none holds the ELF header or the
+  // section header table (compilers and linkers lay them out apart; a
+  // header whose sh_offset moved makes the JIT load other bytes as code).
+  const auto &H = EF.getHeader();
+  Extents.push_back({0, uint64_t(H.e_ehsize), nullptr});
+  Extents.push_back(
+      {uint64_t(H.e_shoff), uint64_t(Secs.size()) * sizeof(Shdr), nullptr});
+  llvm::sort(Extents, [](const Extent &A, const Extent &B) {
+    return A.Offset < B.Offset;
+  });
+  for (size_t I = 1; I < Extents.size(); ++I) {
+    const Extent &Prev = Extents[I - 1], &Cur = Extents[I];
+    if (Cur.Offset - Prev.Offset >= Prev.Size)
+      continue;
+    const Extent &Named = Cur.Sec ? Cur : Prev;
+    const Extent &Other = Cur.Sec ? Prev : Cur;
+    return damaged(*Named.Sec,
+                   indexOf(*Named.Sec) + " overlaps " +
+                       (Other.Sec ? indexOf(*Other.Sec)
+                                  : std::string("the ELF header or the "
+                                                "section header table")));
+  }
+
   // Relocations last: their symbols are counted in tables checked above,
   // and a damaged symbol table is reported as itself.
   for (const Shdr &S : Secs.drop_front()) {
