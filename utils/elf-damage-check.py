@@ -145,6 +145,12 @@ def cases(elf):
     ]
     text = elf.find(lambda i: elf.names[i].startswith('.text')
                     and elf.get(i, 'sh_size') > 0)
+    bss = elf.find(lambda i: elf.get(i, 'sh_type') == SHT_NOBITS)
+    if elf.kind == 'object' and bss is not None:
+        out.append(('bss-huge', elf.patched(bss, 'sh_size', 0xffffffff),
+                    f"section '{elf.names[bss]}': section [index {bss}] has "
+                    f"sh_size 0xffffffff, more than bsc allows for zero-filled "
+                    f"data (0x10000000)"))
     out += [
         ('text-nobits', elf.patched(text, 'sh_type', SHT_NOBITS),
          f"section '{elf.names[text]}': section [index {text}] holds code "

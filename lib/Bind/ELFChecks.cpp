@@ -6,19 +6,29 @@
 // sh_entsize equals the entry size, sh_size is a multiple of it and
 // sh_offset + sh_size lies in the file), plus what those walks take on
 // trust: sh_link of a symbol or relocation table, the symbol index of
-// every relocation, the type of `bs_modules`. Only the first problem of a
-// file is reported: the rest would be follow-on noise.
+// every relocation, symbol names inside their string table, the type of
+// `bs_modules`. `bsc run` then hands the file to the JIT, which runs its
+// code: so sections may not overlap each other or the headers, code may
+// not be SHT_NOBITS, relocations must patch a section with contents, and
+// zero-filled data has a size limit (found by fuzzing every header field
+// through `bsc run`). Only the first
+// problem of a file is reported: the rest would be follow-on noise.
 //
 //===----------------------------------------------------------------------===//
 #include "ELFChecks.h"
-#include "llvm/BinaryFormat/ELF.h"
 #include "llvm/ADT/STLExtras.h"
+#include "llvm/BinaryFormat/ELF.h"
 #include "llvm/Object/ELF.h"
 
 using namespace llvm;
 using namespace llvm::object;
 
 namespace {
+
+/// The largest zero-filled (SHT_NOBITS) section of a relocatable: 256 MiB,
+/// more than a robot has memory. The JIT allocates and zeroes what the
+/// header says, and crashes or takes minutes on sizes near 4 GiB.
+constexpr uint64_t MaxZeroFillSize = uint64_t(1) << 28;
 
 template <class ELFT> class SectionChecker {
 public:
@@ -171,6 +181,12 @@ template <class ELFT> Error SectionChecker<ELFT>::run() {
     // Code without bytes: the JIT would run zeros.
     if (S.sh_type == ELF::SHT_NOBITS && (S.sh_flags & ELF::SHF_EXECINSTR))
       return damaged(S, indexOf(S) + " holds code but has type SHT_NOBITS");
+    if (S.sh_type == ELF::SHT_NOBITS &&
+        EF.getHeader().e_type == ELF::ET_REL && S.sh_size > MaxZeroFillSize)
+      return damaged(S, indexOf(S) + " has sh_size 0x" +
+                            Twine::utohexstr(S.sh_size) +
+                            ", more than bsc allows for zero-filled data (0x" +
+                            Twine::utohexstr(MaxZeroFillSize) + ")");
     if (S.sh_type != ELF::SHT_NOBITS) {
       Expected<ArrayRef<uint8_t>> Contents = EF.getSectionContents(S);
       if (!Contents)
