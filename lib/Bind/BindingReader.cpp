@@ -28,6 +28,7 @@
 // The record layout mirrors bs::detail::rec in include/bscript/Bind.h.
 //
 //===----------------------------------------------------------------------===//
+#include "ELFChecks.h"
 #include "bsc/Bind/Bind.h"
 #include "llvm/ADT/DenseMap.h"
 #include "llvm/ADT/StringExtras.h"
@@ -483,9 +484,14 @@ void ObjectReader::indexRelocations() {
     }
     if (*Target == Obj.section_end())
       continue;
+    // Only REL and RELA (checkSectionHeaders refused CREL, and checked
+    // that the entries, their symbols and the sh_link are all there).
+    uint32_t Type = ELFSectionRef(S).getType();
+    if (Type != ELF::SHT_REL && Type != ELF::SHT_RELA)
+      continue;
     uint64_t TargetIndex = (*Target)->getIndex();
     auto &Map = RelocsBySection[TargetIndex];
-    bool IsRela = ELFSectionRef(S).getType() == ELF::SHT_RELA;
+    bool IsRela = Type == ELF::SHT_RELA;
     for (const RelocationRef &R : S.relocations()) {
       int64_t Addend = 0;
       if (IsRela) {
@@ -1079,8 +1085,12 @@ void ObjectReader::readModules(std::vector<BoundModule> &Out) {
       Errs.add(File, *Name, Data.takeError());
       continue;
     }
-    readDescriptor(*Name, cantFail(Sym.getValue()), (*Sec)->getIndex(), *Data,
-                   Out);
+    Expected<uint64_t> Value = Sym.getValue();
+    if (!Value) {
+      Errs.add(File, *Name, Value.takeError());
+      continue;
+    }
+    readDescriptor(*Name, *Value, (*Sec)->getIndex(), *Data, Out);
   }
 }
 
@@ -1183,6 +1193,12 @@ void Reader::readBinary(Binary &Bin, StringRef Name) {
                  Triple::getArchTypeName(Obj->getArch()) + ", " +
                  Twine(Obj->getBytesInAddress() * 8) + "-bit; bsc compiles for " +
                  Target.str() + ")");
+    return;
+  }
+  // Every walk below (and ObjectReader's, and the JIT's load of the same
+  // file in `bsc run`) trusts the section headers that this checks.
+  if (Error E = checkSectionHeaders(*Obj)) {
+    Errs.add(Name, "", std::move(E));
     return;
   }
   // GCC's -flto objects hold GIMPLE, not the descriptor's bytes, unless

@@ -7,6 +7,7 @@
 // against the bindings' signatures (docs/bindings.md, staleness).
 //
 //===----------------------------------------------------------------------===//
+#include "ELFChecks.h"
 #include "bsc/AST/Native.h"
 #include "bsc/Bind/Bind.h"
 #include "llvm/ADT/StringSet.h"
@@ -75,6 +76,14 @@ static void addDefinedSymbols(object::Binary &Bin, StringSet<> &Defined) {
   // .symtab also lists what -fvisibility=hidden or a version script hid,
   // which a program cannot link against.
   auto *ELF = dyn_cast<object::ELFObjectFileBase>(&Bin);
+  // The symbol walks trust the section headers; the binding reader has
+  // reported a damaged file already.
+  if (ELF) {
+    if (Error E = bind::checkSectionHeaders(*ELF)) {
+      consumeError(std::move(E));
+      return;
+    }
+  }
   if (ELF && ELF->getEType() == ELF::ET_DYN) {
     AddFrom(ELF->getDynamicSymbolIterators());
     return;

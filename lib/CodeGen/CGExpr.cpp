@@ -148,17 +148,22 @@ static unsigned getCopyUnit(const NativeClass *C) {
   return 1;
 }
 
-void FunctionEmitter::emitClassInit(const NativeClass *C, llvm::Value *Addr) {
+void ModuleEmitter::emitClassInit(llvm::IRBuilderBase &IRB,
+                                  const NativeClass *C, llvm::Value *Addr) {
   // Explicit stores, never memset (no libc in the object).
   unsigned U = getCopyUnit(C);
-  llvm::Type *UnitTy = Builder.getIntNTy(U * 8);
+  llvm::Type *UnitTy = IRB.getIntNTy(U * 8);
   for (uint64_t Off = 0; Off < C->Size; Off += U)
-    Builder.CreateAlignedStore(
+    IRB.CreateAlignedStore(
         llvm::ConstantInt::get(UnitTy, 0),
-        Builder.CreateConstInBoundsGEP1_64(Builder.getInt8Ty(), Addr, Off),
+        IRB.CreateConstInBoundsGEP1_64(IRB.getInt8Ty(), Addr, Off),
         llvm::Align(U));
   if (!C->Construct.empty())
-    Builder.CreateCall(CGM.getLifeThunk(C->Construct, 1), {Addr});
+    IRB.CreateCall(getLifeThunk(C->Construct, 1), {Addr});
+}
+
+void FunctionEmitter::emitClassInit(const NativeClass *C, llvm::Value *Addr) {
+  CGM.emitClassInit(Builder, C, Addr);
 }
 
 void FunctionEmitter::emitClassCopy(const NativeClass *C, llvm::Value *Dst,

@@ -614,7 +614,30 @@ void ModuleEmitter::emitProgramMain() {
       Start, Refused);
   IRB.SetInsertPoint(Refused);
   IRB.CreateRet(IRB.CreateCall(Report, {Info, InitResult}, "status"));
+
+  // `input` and `output` of the world module are objects on main's stack,
+  // constructed as `bsc run` constructs them (zeroed, then the construct
+  // thunk) once the state is accepted; generated code reaches them through
+  // the pointers bs_begin_cycle stores in the state header, so a behavior
+  // that reads input must never get null. The driver refuses a class that
+  // can be neither constructed nor start as zero bytes.
   IRB.SetInsertPoint(Start);
+  llvm::Constant *Null = llvm::ConstantPointerNull::get(
+      llvm::PointerType::getUnqual(Ctx));
+  llvm::Value *WorldObjects[2] = {Null, Null};
+  const NativeClass *WorldClasses[2] = {
+      B.World ? B.World->Input : nullptr, B.World ? B.World->Output : nullptr};
+  for (unsigned K = 0; K < 2; ++K) {
+    const NativeClass *C = WorldClasses[K];
+    if (!C)
+      continue;
+    llvm::Type *Ty = getClassMemoryType(C);
+    auto *A = new llvm::AllocaInst(Ty, 0, K == 0 ? "input" : "output",
+                                   llvm::cast<llvm::Instruction>(InitResult));
+    A->setAlignment(M.getDataLayout().getABITypeAlign(Ty));
+    emitClassInit(IRB, C, A);
+    WorldObjects[K] = A;
+  }
   IRB.CreateBr(Cond);
 
   // for (i = 0; i < cycles; ++i) { bs_begin_cycle(...); entry(state); }
@@ -627,9 +650,7 @@ void ModuleEmitter::emitProgramMain() {
       Body, Done);
 
   IRB.SetInsertPoint(Body);
-  llvm::Constant *Null = llvm::ConstantPointerNull::get(
-      llvm::PointerType::getUnqual(Ctx));
-  IRB.CreateCall(Begin, {State, Null, Null});
+  IRB.CreateCall(Begin, {State, WorldObjects[0], WorldObjects[1]});
   llvm::Function *Callee = getFunction(Entry);
   llvm::SmallVector<llvm::Value *, 4> Args = {State};
   // The driver refuses entries with parameters; zeros keep the IR valid.
@@ -640,9 +661,14 @@ void ModuleEmitter::emitProgramMain() {
                  Body);
   IRB.CreateBr(Cond);
 
-  // The end of the behavior: the class values running tasks still hold.
+  // The end of the behavior: the class values running tasks still hold,
+  // then the input and output objects (in `bsc run`'s order).
   IRB.SetInsertPoint(Done);
   IRB.CreateCall(Destroy, {State, Info});
+  for (unsigned K = 0; K < 2; ++K)
+    if (needsDestroy(WorldClasses[K]))
+      IRB.CreateCall(getLifeThunk(WorldClasses[K]->Destroy, 1),
+                     {WorldObjects[K]});
   IRB.CreateRet(llvm::ConstantInt::get(I32, 0));
 }
 

@@ -113,6 +113,10 @@ public:
   /// bytes with the class's alignment ([Size x i8] when Align is 1, else an
   /// array of Align-sized units whose ABI alignment is Align).
   llvm::Type *getClassMemoryType(const NativeClass *C);
+  /// Constructs a value of `C` at `Addr` with `IRB`: zeroes its storage
+  /// with explicit stores, then runs the construct thunk (if any).
+  void emitClassInit(llvm::IRBuilderBase &IRB, const NativeClass *C,
+                     llvm::Value *Addr);
   /// Whether a func returns a class value (through a hidden `ptr` result
   /// parameter after the state).
   static bool returnsClass(const CallableDecl &D);

@@ -304,8 +304,25 @@ const CallableDecl *findEntry(Compilation &C) {
   return nullptr;
 }
 
-/// Finds the entry of a program or a JIT run: it must take no parameters.
+/// Finds the entry of a program or a JIT run: it must take no parameters,
+/// and the program must be able to construct the world's `input` and
+/// `output` itself (a class without default constructor may only start as
+/// zero bytes if it copies as bytes and is trivially destructible, as
+/// Sema's checkDefaultConstructible says).
 const CallableDecl *findProgramEntry(Compilation &C) {
+  if (const NativeModule *World = C.Checked.World) {
+    bool OK = true;
+    for (auto [Name, Class] :
+         {std::pair("input", World->Input), std::pair("output", World->Output)})
+      if (Class && !Class->DefaultConstructible &&
+          !(Class->CopiesAsBytes && Class->TriviallyDestructible)) {
+        C.Diags.report(llvm::SMLoc(), diag::err_world_not_default_constructible)
+            << Name << Class->QualifiedName;
+        OK = false;
+      }
+    if (!OK)
+      return nullptr;
+  }
   const CallableDecl *Entry = findEntry(C);
   if (Entry && !Entry->Params.empty()) {
     C.Diags.report(Entry->getLoc(), diag::err_entry_has_params)
