@@ -71,11 +71,9 @@ bsc::loadBehavior(Compilation &C, const CallableDecl &Entry,
   for (const std::string &Path : Opts.BindObjects)
     if (llvm::Error E = JIT.addObjectFile(Path)) {
       // A library the loader refuses is the user's to fix.
-      bool Reported = false;
       E = llvm::handleErrors(std::move(E), [&](const BindingLoadError &BL) {
         C.Diags.report(llvm::SMLoc(), diag::err_bind_load)
             << BL.Path << BL.Message;
-        Reported = true;
       });
       if (E)
         return E;
