@@ -104,7 +104,7 @@ bsc::startSession(Compilation &C, LoadedBehavior &L) {
     C.Diags.report(llvm::SMLoc(), diag::err_stale_binding_module) << SB.Module;
   });
   if (E)
-    return std::move(E);
+    return E;
   return nullptr;
 }
 
