@@ -37,7 +37,7 @@ std::string bsc::getEntrySymbol(llvm::StringRef BehaviorName,
 /// The name of the internal function of a func or task: `bs.M.f`, and
 /// `bs.M.task.f` for a func nested in a task. Dots cannot occur in
 /// b-script names, so these never clash with each other or with exports.
-std::string bsc::getInternalName(const CallableDecl &D) {
+static std::string getInternalName(const CallableDecl &D) {
   std::string S = "bs.";
   if (D.Module)
     S += D.Module->Name + ".";
@@ -326,11 +326,8 @@ void ModuleEmitter::declareFunctions() {
     for (const ParamDecl *P : D->Params)
       Params.push_back(getValueType(P->Ty));
     auto *FTy = llvm::FunctionType::get(Result, Params, false);
-    auto *F = llvm::Function::Create(
-        FTy,
-        Opts.ExternalFunctions ? llvm::GlobalValue::ExternalLinkage
-                               : llvm::GlobalValue::InternalLinkage,
-        getInternalName(*D), M);
+    auto *F = llvm::Function::Create(FTy, llvm::GlobalValue::InternalLinkage,
+                                     getInternalName(*D), M);
     addCommonAttributes(F);
     F->getArg(0)->setName("state");
     if (ClassResult)
@@ -552,8 +549,9 @@ void ModuleEmitter::emitInfo() {
 llvm::Constant *ModuleEmitter::getDebugTables() {
   if (!Opts.Instrument)
     return llvm::ConstantPointerNull::get(llvm::PointerType::getUnqual(Ctx));
-  // Declared here, defined by defineDebugTables once the whole module (and
-  // so the call graph the tables list) has been emitted.
+  // Declared here and defined by defineDebugTables: lib/Debug builds the
+  // tables from the layout this module produces, and CodeGen cannot depend
+  // on it.
   Layout.DebugTablesSymbol = "bs_" + Opts.BehaviorName + "_debug_tables";
   return M.getOrInsertGlobal(Layout.DebugTablesSymbol,
                              llvm::Type::getInt8Ty(Ctx));

@@ -52,7 +52,6 @@ bsc::loadBehavior(Compilation &C, const CallableDecl &Entry,
   CodeGenOptions CGOpts;
   CGOpts.BehaviorName = C.Modules.front()->Name;
   CGOpts.Probes = true;
-  CGOpts.ExternalFunctions = Opts.ExternalFunctions;
   auto Ctx = std::make_unique<llvm::LLVMContext>();
   std::unique_ptr<llvm::Module> M = emitLLVM(
       C.Checked, *Ctx, JIT.getTriple(), JIT.getDataLayout(), CGOpts, L->Layout);
@@ -277,12 +276,12 @@ llvm::Expected<bool> bsc::runBehavior(Compilation &C, LoadedBehavior &L,
     if (!reportOutcome(C, L, O, Cycle, Opts.CycleLimitMs))
       return false;
 
-    llvm::json::Object Rec{{"cycle", int64_t(Cycle)}};
-    if (L.InputClass)
-      Rec["input"] = Values.readClass(*L.InputClass, S.getInput());
-    llvm::json::Value Out =
-        L.OutputClass ? Values.readClass(*L.OutputClass, S.getOutput())
-                      : llvm::json::Value(nullptr);
+    // The objects are read as JSON only for what asks for them: a plain
+    // run of many cycles does no more than the robot would.
+    const llvm::json::Value *Recorded = Line ? Line->get("output") : nullptr;
+    llvm::json::Value Out = nullptr;
+    if (L.OutputClass && (Record || Opts.PrintOutput || Recorded))
+      Out = Values.readClass(*L.OutputClass, S.getOutput());
     if (Opts.Trace)
       OS << "cycle " << Cycle << ": "
          << debug::formatTraceLine(L.Tables,
@@ -294,9 +293,12 @@ llvm::Expected<bool> bsc::runBehavior(Compilation &C, LoadedBehavior &L,
       OS << "\n";
     }
     OS.flush();
-    if (L.OutputClass)
-      Rec["output"] = Out;
     if (Record) {
+      llvm::json::Object Rec{{"cycle", int64_t(Cycle)}};
+      if (L.InputClass)
+        Rec["input"] = Values.readClass(*L.InputClass, S.getInput());
+      if (L.OutputClass)
+        Rec["output"] = Out;
       debug::printJSON(Record->os(), llvm::json::Value(std::move(Rec)));
       Record->os() << "\n";
     }
@@ -312,7 +314,7 @@ llvm::Expected<bool> bsc::runBehavior(Compilation &C, LoadedBehavior &L,
         ReportedFailure = true;
       }
     }
-    if (const llvm::json::Value *Recorded = Line ? Line->get("output") : nullptr)
+    if (Recorded)
       if (auto D = debug::findDifference(*Recorded, Out, "output")) {
         C.Diags.report(Line->Loc, diag::err_replay_mismatch)
             << Cycle << D->Path << D->Recorded << D->Got;

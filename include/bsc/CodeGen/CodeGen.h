@@ -42,10 +42,6 @@ struct CodeGenOptions {
   /// (standalone programs and `bsc run`).
   const CallableDecl *ProgramEntry = nullptr;
   unsigned ProgramCycles = 1;
-  /// Funcs and tasks get external linkage under their internal names
-  /// (`bs.M.f`), so that code compiled later into the same JIT (a REPL
-  /// line) can call them. Results do not change; only the JIT sets it.
-  bool ExternalFunctions = false;
   /// Debugging probes for the JIT (docs/repl.md): each loop's head stores
   /// its site number into the i32 global `bs.probe.loop`, and each call of
   /// registered C++ stores its site into `bs.probe.native` before the call
@@ -113,11 +109,6 @@ struct BehaviorLayout {
 /// it after emitLLVM and before optimising.
 void defineDebugTables(llvm::Module &M, const BehaviorLayout &Layout,
                        llvm::StringRef JSON);
-
-/// The symbol of a func or task's generated function: `bs.M.f`, and
-/// `bs.M.task.f` for a func nested in a task (external with
-/// CodeGenOptions::ExternalFunctions).
-std::string getInternalName(const CallableDecl &D);
 
 /// Builds the IR of `B` for `Triple`/`DL`. Never fails on a behavior that
 /// Sema accepted.

@@ -112,9 +112,10 @@ private:
 };
 
 /// A behavior running in the JIT: its state and its `input` and `output`
-/// objects, advanced one cycle at a time by `bsc run`'s runner. Each cycle runs under a guard: a watchdog stops a cycle that runs
-/// longer than its limit (a loop without `yield`), and a signal raised in
-/// registered C++ (SIGSEGV, ...) ends the cycle instead of the process.
+/// objects, advanced one cycle at a time by `bsc run`'s runner. Each cycle
+/// runs under a guard: a watchdog stops a cycle that runs longer than its
+/// limit (a loop without `yield`), and a signal raised in registered C++
+/// (SIGSEGV, ...) ends the cycle instead of the process.
 /// Either leaves the state as it was at that moment; the driver reports it
 /// and stops. The guard uses SIGALRM and the fault signals while the session
 /// lives, and puts the previous handlers back at its end.
@@ -146,7 +147,6 @@ public:
   void *getOutput() const { return Output; }
   const bs_behavior_info &getInfo() const { return *Info; }
   uint32_t getCycle() const;
-  BehaviorJIT &getJIT() const { return JIT; }
 
 private:
   BehaviorSession(BehaviorJIT &JIT) : JIT(JIT) {}

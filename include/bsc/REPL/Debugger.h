@@ -31,8 +31,6 @@ struct LoadOptions {
   /// The files of the standard modules and the --bind objects, as for
   /// FrontendOptions.
   std::vector<std::string> StandardModules, BindObjects;
-  /// Funcs and tasks callable by later modules (the REPL's lines).
-  bool ExternalFunctions = false;
 };
 
 /// Reports every thunk or descriptor that `M` imports from the binding
