@@ -46,6 +46,8 @@ llvm::Value *FunctionEmitter::getDeclAddress(const Decl *Dcl) {
     // A task's locals are in its frame, also when a nested func uses them.
     if (const auto *T = llvm::dyn_cast_or_null<TaskDecl>(V->Owner))
       return getFrameFieldPtr(T, CGM.getFrame(T).Fields.lookup(V));
+    if (llvm::Value *Fixed = CGM.getReplSlot(V))
+      return Fixed;
     assert(Slots.count(V) && "local of another func");
     return Slots.lookup(V);
   }

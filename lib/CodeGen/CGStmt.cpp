@@ -134,7 +134,8 @@ void FunctionEmitter::emitDecl(const DeclStmt &S) {
         emitClassCopy(C, Addr, emitExpr(V->Init), /*DstConstructed=*/false);
       else
         emitClassInit(C, Addr);
-      if (ModuleEmitter::needsDestroy(C))
+      // A REPL variable outlives its line; the REPL destroys it.
+      if (ModuleEmitter::needsDestroy(C) && !CGM.getReplSlot(V))
         Live.push_back({C, Addr});
       return;
     }

@@ -326,7 +326,7 @@ void ModuleEmitter::declareFunctions() {
     for (const ParamDecl *P : D->Params)
       Params.push_back(getValueType(P->Ty));
     auto *FTy = llvm::FunctionType::get(Result, Params, false);
-    auto *F = llvm::Function::Create(FTy, llvm::GlobalValue::InternalLinkage,
+    auto *F = llvm::Function::Create(FTy, getFunctionLinkage(),
                                      getInternalName(*D), M);
     addCommonAttributes(F);
     F->getArg(0)->setName("state");
@@ -352,7 +352,7 @@ void ModuleEmitter::declareFunctions() {
       continue;
     FI.Destroy = llvm::Function::Create(
         llvm::FunctionType::get(llvm::Type::getVoidTy(Ctx), {Ptr}, false),
-        llvm::GlobalValue::InternalLinkage, getInternalName(*T) + ".destroy",
+        getFunctionLinkage(), getInternalName(*T) + ".destroy",
         M);
     addCommonAttributes(FI.Destroy);
     FI.Destroy->getArg(0)->setName("state");
@@ -750,7 +750,8 @@ void FunctionEmitter::emitFuncPrologue() {
     emitStore(P->Ty, Arg, Slot);
   }
   for (const VarDecl *V : D.Locals)
-    Slots[V] = CreateSlot(V->Ty, V->getName().Name);
+    if (!CGM.getReplSlot(V))
+      Slots[V] = CreateSlot(V->Ty, V->getName().Name);
 }
 
 void FunctionEmitter::emitFuncEpilogue() {
@@ -794,5 +795,52 @@ std::unique_ptr<llvm::Module> bsc::emitLLVM(const Behavior &B,
     M->setSourceFileName(B.Modules.front()->Path);
   Layout = BehaviorLayout();
   ModuleEmitter(B, *M, Named, Layout).run();
+  return M;
+}
+
+//===----------------------------------------------------------------------===//
+// REPL lines
+//===----------------------------------------------------------------------===//
+
+llvm::Value *ModuleEmitter::getReplSlot(const Decl *D) {
+  if (!ReplSlots)
+    return nullptr;
+  auto It = ReplSlots->find(D);
+  if (It == ReplSlots->end())
+    return nullptr;
+  llvm::Type *I64 = llvm::Type::getInt64Ty(Ctx);
+  return llvm::ConstantExpr::getIntToPtr(llvm::ConstantInt::get(I64, It->second),
+                                         llvm::PointerType::getUnqual(Ctx));
+}
+
+void ModuleEmitter::runReplLine(
+    const FuncDecl &Line, llvm::StringRef Symbol,
+    const llvm::DenseMap<const Decl *, uint64_t> &Slots) {
+  ReplSlots = &Slots;
+  // The same types and declarations as the behavior's module, no bodies.
+  layoutState();
+  declareFunctions();
+  auto *F = llvm::Function::Create(
+      llvm::FunctionType::get(llvm::Type::getVoidTy(Ctx),
+                              {llvm::PointerType::getUnqual(Ctx)}, false),
+      llvm::GlobalValue::ExternalLinkage, Symbol, M);
+  addCommonAttributes(F);
+  F->getArg(0)->setName("state");
+  Functions[&Line] = F;
+  FunctionEmitter(*this, Line).run();
+}
+
+std::unique_ptr<llvm::Module>
+bsc::emitReplLine(const Behavior &B, const FuncDecl &Line,
+                  llvm::StringRef Symbol, llvm::LLVMContext &Ctx,
+                  const llvm::Triple &Triple, const llvm::DataLayout &DL,
+                  const llvm::DenseMap<const Decl *, uint64_t> &Slots) {
+  auto M = std::make_unique<llvm::Module>(Symbol, Ctx);
+  M->setTargetTriple(Triple.str());
+  M->setDataLayout(DL);
+  CodeGenOptions Opts;
+  Opts.ExternalFunctions = true;
+  BehaviorLayout Layout;
+  ModuleEmitter(B, *M, Opts, Layout).runReplLine(Line, Symbol, Slots);
   return M;
 }

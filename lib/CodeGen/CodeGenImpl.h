@@ -134,6 +134,13 @@ public:
   const CodeGenOptions &getOptions() const { return Opts; }
   llvm::Module &getModule() { return M; }
 
+  /// The fixed address of a REPL variable (emitReplLine), as a constant
+  /// pointer; null for every other declaration.
+  llvm::Value *getReplSlot(const Decl *D);
+  /// emitReplLine: declares the behavior's functions and emits `Line`.
+  void runReplLine(const FuncDecl &Line, llvm::StringRef Symbol,
+                   const llvm::DenseMap<const Decl *, uint64_t> &Slots);
+
   // Debugging probes (CodeGenOptions::Probes) -------------------------------
 
   /// Records a site; returns its number (from 1).
@@ -146,6 +153,11 @@ private:
   /// Every func and task of the behavior, in source order.
   std::vector<const CallableDecl *> getSourceOrder() const;
   void layoutState();
+  /// Internal, or external with CodeGenOptions::ExternalFunctions.
+  llvm::GlobalValue::LinkageTypes getFunctionLinkage() const {
+    return Opts.ExternalFunctions ? llvm::GlobalValue::ExternalLinkage
+                                  : llvm::GlobalValue::InternalLinkage;
+  }
   void declareFunctions();
   void emitEntries();
   /// `bs.<M>.<task>.destroy` of every frame with a LiveField, and the
@@ -170,6 +182,8 @@ private:
   llvm::StringMap<llvm::Constant *> Strings;
   llvm::GlobalVariable *Info = nullptr;
   llvm::Function *BehaviorDestroy = nullptr; ///< Null: nothing to destroy.
+  /// emitReplLine: the REPL's variables at their addresses.
+  const llvm::DenseMap<const Decl *, uint64_t> *ReplSlots = nullptr;
 };
 
 /// Lowers the body of one func or task into its (already declared) function.
@@ -321,7 +335,8 @@ private:
   llvm::IRBuilder<> Builder;
   llvm::Value *StatePtr;    ///< The first argument.
   /// Allocas of a func's parameters and locals.
-  llvm::DenseMap<const Decl *, llvm::AllocaInst *> Slots;
+  /// (A REPL variable's slot is its fixed address: ReplSlots.)
+  llvm::DenseMap<const Decl *, llvm::Value *> Slots;
   /// Where `break` and `continue` of the innermost loops go.
   struct LoopTargets {
     llvm::BasicBlock *Break;

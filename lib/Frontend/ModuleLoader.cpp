@@ -222,3 +222,49 @@ bool bsc::runFrontend(Compilation &C, const FrontendOptions &Opts) {
       checkBehavior(C.Modules, C.Ctx, C.Diags, C.Checked, &C.Natives);
   return Loaded && Checked;
 }
+
+/// Finds --entry: `Module::name`, or `name` in the first input's module.
+static const CallableDecl *findEntry(Compilation &C, llvm::StringRef Spec) {
+  auto [ModName, Name] = Spec.rsplit("::");
+  if (Name.empty() && !Spec.contains("::")) {
+    Name = Spec;
+    ModName = C.Modules.empty() ? "" : llvm::StringRef(C.Modules.front()->Name);
+  }
+  for (ModuleAST *M : C.Checked.Modules) {
+    if (M->Name != ModName)
+      continue;
+    for (CallableDecl *D : M->Decls)
+      if (D->getName().Name == Name)
+        return D;
+  }
+  C.Diags.report(llvm::SMLoc(), diag::err_no_entry) << Spec;
+  return nullptr;
+}
+
+// A class without default constructor may only start as zero bytes if it
+// copies as bytes and is trivially destructible, as Sema's
+// checkDefaultConstructible says.
+const CallableDecl *bsc::findProgramEntry(Compilation &C,
+                                          llvm::StringRef Spec) {
+  if (const NativeModule *World = C.Checked.World) {
+    bool OK = true;
+    for (auto [Name, Class] :
+         {std::pair("input", World->Input), std::pair("output", World->Output)})
+      if (Class && !Class->DefaultConstructible &&
+          !(Class->CopiesAsBytes && Class->TriviallyDestructible)) {
+        C.Diags.report(llvm::SMLoc(), diag::err_world_not_default_constructible)
+            << Name << Class->QualifiedName;
+        OK = false;
+      }
+    if (!OK)
+      return nullptr;
+  }
+  const CallableDecl *Entry = findEntry(C, Spec);
+  if (Entry && !Entry->Params.empty()) {
+    C.Diags.report(Entry->getLoc(), diag::err_entry_has_params)
+        << Entry->getQualifiedName();
+    return nullptr;
+  }
+  return Entry;
+}
+

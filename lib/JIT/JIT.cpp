@@ -294,6 +294,11 @@ BehaviorSession::start(BehaviorJIT &JIT, llvm::StringRef InfoSymbol,
     return E;
   if (llvm::Error E = S->callThunk(OutputSpec.Construct, S->Output))
     return E;
+  // What bs_begin_cycle stores each cycle, already before the first one:
+  // the REPL may read and write them between cycles.
+  auto *Header = static_cast<bs_state_header *>(S->State);
+  Header->input = S->Input;
+  Header->output = S->Output;
   installGuard();
   return S;
 }
@@ -319,17 +324,22 @@ uint32_t BehaviorSession::getCycle() const {
 }
 
 BehaviorSession::Outcome BehaviorSession::runCycle(unsigned LimitMs) {
+  bs_begin_cycle(State, Input, Output);
+  return runGuarded(Entry, LimitMs);
+}
+
+BehaviorSession::Outcome BehaviorSession::runGuarded(void (*Fn)(void *),
+                                                     unsigned LimitMs) {
   Outcome Result;
   if (LoopProbe)
     *LoopProbe = 0;
   if (NativeProbe)
     *NativeProbe = 0;
-  bs_begin_cycle(State, Input, Output);
   if (sigsetjmp(CycleJump, 1) == 0) {
     InCycle = 1;
     if (LimitMs)
       setTimer(LimitMs);
-    Entry(State);
+    Fn(State);
     InCycle = 0;
     if (LimitMs)
       setTimer(0);

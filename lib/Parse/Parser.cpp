@@ -283,6 +283,32 @@ BlockStmt *Parser::parseBlockBody(bool IsTaskBody) {
   return Block;
 }
 
+/// repl-line ::= statement* EOF
+BlockStmt *Parser::parseReplLine() {
+  llvm::SMLoc Start = Tok.Loc;
+  BlockStmt *Block = make<BlockStmt>(rangeFrom(Start));
+  while (Tok.isNot(tok::eof) && !Diags.tooManyErrors()) {
+    const char *Before = Tok.Loc.getPointer();
+    tok::Kind BeforeKind = Tok.Kind;
+    if (Tok.is(tok::indent)) {
+      diag(Tok.Loc, diag::err_unexpected_indent);
+      skipBlock();
+    } else if (Stmt *S = parseStatement()) {
+      Block->Stmts.push_back(S);
+    }
+    if (Tok.Loc.getPointer() == Before && Tok.Kind == BeforeKind)
+      consume();
+  }
+  Block->setRange(rangeFrom(Start));
+  return Block;
+}
+
+BlockStmt *bsc::parseReplLine(const llvm::SourceMgr &SM, unsigned BufferID,
+                              ASTContext &Ctx, DiagnosticEngine &Diags) {
+  Parser P(SM, BufferID, Ctx, Diags);
+  return P.parseReplLine();
+}
+
 ModuleAST *bsc::parseModule(const llvm::SourceMgr &SM, unsigned BufferID,
                             llvm::StringRef ModuleName, ASTContext &Ctx,
                             DiagnosticEngine &Diags) {

@@ -35,6 +35,7 @@ public:
          DiagnosticEngine &Diags);
 
   ModuleAST *parseModule(llvm::StringRef Name);
+  BlockStmt *parseReplLine();
 
 private:
   //--- Parser.cpp: tokens, diagnostics, recovery, declarations ------------

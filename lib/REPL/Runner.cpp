@@ -222,9 +222,19 @@ bool readReplay(Compilation &C, const LoadedBehavior &L, llvm::StringRef Path,
 }
 } // namespace
 
-llvm::Expected<bool> bsc::runBehavior(Compilation &C, LoadedBehavior &L,
-                                      const RunOptions &Opts,
-                                      llvm::raw_ostream &OS) {
+llvm::json::Value bsc::recordCycle(debug::ValueIO &Values,
+                                   const LoadedBehavior &L,
+                                   const BehaviorSession &S) {
+  llvm::json::Object Rec{{"cycle", int64_t(S.getCycle())}};
+  if (L.InputClass)
+    Rec["input"] = Values.readClass(*L.InputClass, S.getInput());
+  if (L.OutputClass)
+    Rec["output"] = Values.readClass(*L.OutputClass, S.getOutput());
+  return Rec;
+}
+
+bool bsc::runBehavior(Compilation &C, LoadedBehavior &L, BehaviorSession &S,
+                      const RunOptions &Opts, llvm::raw_ostream &OS) {
   std::vector<ReplayLine> Replay;
   if (!Opts.ReplayPath.empty()) {
     if (Opts.CyclesGiven) {
@@ -247,12 +257,6 @@ llvm::Expected<bool> bsc::runBehavior(Compilation &C, LoadedBehavior &L,
     }
   }
 
-  auto SessionOrErr = startSession(C, L);
-  if (!SessionOrErr)
-    return SessionOrErr.takeError();
-  if (!*SessionOrErr)
-    return false;
-  BehaviorSession &S = **SessionOrErr;
   debug::ValueIO Values([&](llvm::StringRef Sym) { return L.JIT->lookup(Sym); });
   const TaskDecl *EntryTask = llvm::dyn_cast<TaskDecl>(L.Entry);
   std::optional<uint64_t> EntryFrame;
@@ -279,8 +283,11 @@ llvm::Expected<bool> bsc::runBehavior(Compilation &C, LoadedBehavior &L,
     // The objects are read as JSON only for what asks for them: a plain
     // run of many cycles does no more than the robot would.
     const llvm::json::Value *Recorded = Line ? Line->get("output") : nullptr;
+    llvm::json::Value Rec = Record ? recordCycle(Values, L, S) : nullptr;
     llvm::json::Value Out = nullptr;
-    if (L.OutputClass && (Record || Opts.PrintOutput || Recorded))
+    if (Record && L.OutputClass)
+      Out = *Rec.getAsObject()->get("output");
+    else if (L.OutputClass && (Opts.PrintOutput || Recorded))
       Out = Values.readClass(*L.OutputClass, S.getOutput());
     if (Opts.Trace)
       OS << "cycle " << Cycle << ": "
@@ -294,12 +301,7 @@ llvm::Expected<bool> bsc::runBehavior(Compilation &C, LoadedBehavior &L,
     }
     OS.flush();
     if (Record) {
-      llvm::json::Object Rec{{"cycle", int64_t(Cycle)}};
-      if (L.InputClass)
-        Rec["input"] = Values.readClass(*L.InputClass, S.getInput());
-      if (L.OutputClass)
-        Rec["output"] = Out;
-      debug::printJSON(Record->os(), llvm::json::Value(std::move(Rec)));
+      debug::printJSON(Record->os(), Rec);
       Record->os() << "\n";
     }
     if (EntryFrame && !ReportedFailure) {

@@ -428,3 +428,75 @@ bool bsc::checkBehavior(llvm::ArrayRef<ModuleAST *> Modules, ASTContext &Ctx,
   Sema S(Ctx, Diags, Out, Natives);
   return S.run(Modules);
 }
+
+//===----------------------------------------------------------------------===//
+// REPL lines
+//===----------------------------------------------------------------------===//
+
+ReplChecker::ReplChecker(ASTContext &Ctx, DiagnosticEngine &Diags,
+                         const Behavior &B, const NativeRegistry *Natives,
+                         ModuleAST *Context)
+    : Ctx(Ctx), Context(Context),
+      S(std::make_unique<sema::Sema>(Ctx, Diags, Scratch, Natives)) {
+  S->buildModuleTables(B.Modules);
+  S->Repl = true;
+}
+
+ReplChecker::~ReplChecker() = default;
+
+std::optional<ReplChecker::Line> ReplChecker::check(BlockStmt *Body,
+                                                    unsigned Number) {
+  Line L;
+  std::string Name = "repl" + std::to_string(Number);
+  L.Func = Ctx.create<FuncDecl>(
+      Body->getRange(),
+      Ident{Ctx.saveString(Name), Body->getRange().Start});
+  L.Func->Module = Context;
+  L.Func->Body = Body;
+  L.Func->ResultTy = Ctx.getTypes().getVoid();
+
+  S->HadError = false;
+  S->CurModule = S->InfoOf.lookup(Context);
+  S->CurTask = nullptr;
+  S->CurCallable = L.Func;
+  S->LoopDepth = 0;
+  S->Scopes.clear();
+  S->pushScope();
+  for (VarDecl *V : Vars)
+    S->Scopes.back().push_back({V->getName().Name, V});
+  S->pushScope();
+  for (Stmt *&St : Body->Stmts) {
+    auto *ES = llvm::dyn_cast<ExprStmt>(St);
+    if (!ES || St != Body->Stmts.back() || !ES->E) {
+      S->checkStmt(St);
+      continue;
+    }
+    // The value of the last expression is shown: it initialises a hidden
+    // local, the result.
+    const Type *T;
+    if (auto *C = llvm::dyn_cast<CallExpr>(ES->E))
+      T = C->Ty = S->checkCall(C, /*AsStatement=*/true);
+    else
+      T = S->checkExpr(ES->E);
+    if (T->isError() || T->isVoid())
+      continue;
+    L.Result = Ctx.create<VarDecl>(ES->getRange(),
+                                   Ident{"", ES->getRange().Start},
+                                   QualifiedName(), ES->E);
+    L.Result->Ty = T;
+    L.Result->Owner = L.Func;
+    L.Func->Locals.push_back(L.Result);
+    St = Ctx.create<DeclStmt>(ES->getRange(), L.Result);
+  }
+  S->Scopes.clear();
+  S->CurCallable = nullptr;
+  S->CurModule = nullptr;
+  if (S->HadError)
+    return std::nullopt;
+  for (VarDecl *V : L.Func->Locals)
+    if (V != L.Result) {
+      L.NewVars.push_back(V);
+      Vars.push_back(V);
+    }
+  return L;
+}

@@ -203,6 +203,9 @@ public:
   DiagnosticEngine &Diags;
   Behavior &Out;
   bool HadError = false;
+  /// Checking a REPL line (ReplChecker): `input` is writable and `output`
+  /// readable.
+  bool Repl = false;
 
   std::vector<std::unique_ptr<ModuleInfo>> ModuleInfos;
   llvm::DenseMap<const ModuleAST *, ModuleInfo *> InfoOf;

@@ -285,53 +285,6 @@ std::string getBehaviorName(Compilation &C) {
   return C.Modules.empty() ? "" : C.Modules.front()->Name;
 }
 
-/// Finds --entry: `Module::name`, or `name` in the first input's module.
-const CallableDecl *findEntry(Compilation &C) {
-  llvm::StringRef Spec = EntryName;
-  auto [ModName, Name] = Spec.rsplit("::");
-  if (Name.empty() && !Spec.contains("::")) {
-    Name = Spec;
-    ModName = C.Modules.empty() ? "" : llvm::StringRef(C.Modules.front()->Name);
-  }
-  for (ModuleAST *M : C.Checked.Modules) {
-    if (M->Name != ModName)
-      continue;
-    for (CallableDecl *D : M->Decls)
-      if (D->getName().Name == Name)
-        return D;
-  }
-  C.Diags.report(llvm::SMLoc(), diag::err_no_entry) << EntryName.getValue();
-  return nullptr;
-}
-
-/// Finds the entry of a program or a JIT run: it must take no parameters,
-/// and the program must be able to construct the world's `input` and
-/// `output` itself (a class without default constructor may only start as
-/// zero bytes if it copies as bytes and is trivially destructible, as
-/// Sema's checkDefaultConstructible says).
-const CallableDecl *findProgramEntry(Compilation &C) {
-  if (const NativeModule *World = C.Checked.World) {
-    bool OK = true;
-    for (auto [Name, Class] :
-         {std::pair("input", World->Input), std::pair("output", World->Output)})
-      if (Class && !Class->DefaultConstructible &&
-          !(Class->CopiesAsBytes && Class->TriviallyDestructible)) {
-        C.Diags.report(llvm::SMLoc(), diag::err_world_not_default_constructible)
-            << Name << Class->QualifiedName;
-        OK = false;
-      }
-    if (!OK)
-      return nullptr;
-  }
-  const CallableDecl *Entry = findEntry(C);
-  if (Entry && !Entry->Params.empty()) {
-    C.Diags.report(Entry->getLoc(), diag::err_entry_has_params)
-        << Entry->getQualifiedName();
-    return nullptr;
-  }
-  return Entry;
-}
-
 /// Opens `Path` for writing ("-" is stdout); reports failure.
 std::unique_ptr<llvm::ToolOutputFile> openOutput(Compilation &C,
                                                  llvm::StringRef Path,
@@ -500,7 +453,7 @@ int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
   if (CGOpts.BehaviorName.empty())
     return finish(C);
   if (Kind == OutputKind::Program) {
-    CGOpts.ProgramEntry = findProgramEntry(C);
+    CGOpts.ProgramEntry = findProgramEntry(C, EntryName);
     if (!CGOpts.ProgramEntry)
       return finish(C);
     CGOpts.ProgramCycles = BOpts.Cycles;
@@ -605,7 +558,7 @@ int runJIT(Compilation &C, const FrontendOptions &FOpts) {
   OptionsOK &= parseCycleLimit(C.Diags, ROpts.CycleLimitMs);
   if (!runFrontend(C, FOpts) || !OptionsOK)
     return finish(C);
-  const CallableDecl *Entry = findProgramEntry(C);
+  const CallableDecl *Entry = findProgramEntry(C, EntryName);
   if (!Entry)
     return finish(C);
   LoadOptions LOpts;
@@ -617,9 +570,11 @@ int runJIT(Compilation &C, const FrontendOptions &FOpts) {
     return finishWithInternalError(C, Loaded.takeError());
   if (!*Loaded)
     return finish(C);
-  llvm::Expected<bool> Ran = runBehavior(C, **Loaded, ROpts, llvm::outs());
-  if (!Ran)
-    return finishWithInternalError(C, Ran.takeError());
+  auto Session = startSession(C, **Loaded);
+  if (!Session)
+    return finishWithInternalError(C, Session.takeError());
+  if (*Session)
+    runBehavior(C, **Loaded, **Session, ROpts, llvm::outs());
   return finish(C);
 }
 

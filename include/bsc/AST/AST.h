@@ -19,6 +19,7 @@
 #include "llvm/ADT/StringRef.h"
 #include "llvm/Support/Casting.h"
 #include "llvm/Support/SMLoc.h"
+#include "llvm/Support/StringSaver.h"
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -594,8 +595,13 @@ public:
   /// Modules in the order they were created.
   std::vector<ModuleAST *> getModules() const;
   TypeContext &getTypes() { return Types; }
+  /// A copy of `S` that lives as long as the context: names of nodes made
+  /// without source text (the REPL's lines).
+  llvm::StringRef saveString(llvm::StringRef S) { return Saver.save(S); }
 
 private:
+  llvm::BumpPtrAllocator Alloc;
+  llvm::StringSaver Saver{Alloc};
   std::vector<std::unique_ptr<Node>> Nodes;
   std::vector<std::unique_ptr<ModuleAST>> Modules;
   TypeContext Types;

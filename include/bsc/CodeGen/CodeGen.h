@@ -25,6 +25,7 @@
 #define BSC_CODEGEN_CODEGEN_H
 
 #include "bsc/Sema/Sema.h"
+#include "llvm/ADT/DenseMap.h"
 #include "llvm/IR/DataLayout.h"
 #include "llvm/IR/LLVMContext.h"
 #include "llvm/IR/Module.h"
@@ -42,6 +43,11 @@ struct CodeGenOptions {
   /// (standalone programs and `bsc run`).
   const CallableDecl *ProgramEntry = nullptr;
   unsigned ProgramCycles = 1;
+  /// Funcs and tasks (and frames' destroy functions) get external linkage
+  /// under their internal names (`bs.M.f`), so that the REPL's lines,
+  /// compiled later into the same JIT (emitReplLine), can call them.
+  /// Results do not change; only the REPL sets it.
+  bool ExternalFunctions = false;
   /// Debugging probes for the JIT (docs/repl.md): each loop's head stores
   /// its site number into the i32 global `bs.probe.loop`, and each call of
   /// registered C++ stores its site into `bs.probe.native` before the call
@@ -109,6 +115,19 @@ struct BehaviorLayout {
 /// it after emitLLVM and before optimising.
 void defineDebugTables(llvm::Module &M, const BehaviorLayout &Layout,
                        llvm::StringRef JSON);
+
+/// Builds the IR of a REPL line (ReplChecker::Line::Func) as
+/// `void @<Symbol>(ptr state)` in a module of its own that only declares the
+/// behavior's funcs and tasks: it runs in the JIT that holds the behavior,
+/// compiled with CodeGenOptions::ExternalFunctions. `Slots` gives the
+/// addresses of the REPL's variables (the line's result among them), which
+/// live in the REPL rather than on the stack and are not destroyed by the
+/// line.
+std::unique_ptr<llvm::Module>
+emitReplLine(const Behavior &B, const FuncDecl &Line, llvm::StringRef Symbol,
+             llvm::LLVMContext &Ctx, const llvm::Triple &Triple,
+             const llvm::DataLayout &DL,
+             const llvm::DenseMap<const Decl *, uint64_t> &Slots);
 
 /// Builds the IR of `B` for `Triple`/`DL`. Never fails on a behavior that
 /// Sema accepted.

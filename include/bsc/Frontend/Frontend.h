@@ -87,6 +87,12 @@ bool loadModules(Compilation &C, const FrontendOptions &Opts);
 /// loadModules, then checkBehavior. Returns false if an error was reported.
 bool runFrontend(Compilation &C, const FrontendOptions &Opts);
 
+/// The entry of a program, a JIT run or the REPL, named by `Spec`
+/// (`Module::name`, or `name` in the first input's module): it must exist
+/// and take no parameters, and the world's `input` and `output` must be
+/// constructible without arguments. Reports and returns null otherwise.
+const CallableDecl *findProgramEntry(Compilation &C, llvm::StringRef Spec);
+
 /// --verify: compares the reported diagnostics with the `# expected-error
 /// {{text}}` (also -warning, -note; `@+N`/`@-N` for another line) comments of
 /// the source buffers. Each diagnostic must match an expectation on its line

@@ -141,6 +141,8 @@ public:
   /// Begins the next cycle and calls the entry; a cycle still running after
   /// `LimitMs` milliseconds (0: no limit) is stopped.
   Outcome runCycle(unsigned LimitMs);
+  /// Calls `Fn(state)` under the same guard, between cycles (a REPL line).
+  Outcome runGuarded(void (*Fn)(void *), unsigned LimitMs);
 
   void *getState() const { return State; }
   void *getInput() const { return Input; }

@@ -19,6 +19,12 @@ ModuleAST *parseModule(const llvm::SourceMgr &SM, unsigned BufferID,
                        llvm::StringRef ModuleName, ASTContext &Ctx,
                        DiagnosticEngine &Diags);
 
+/// Parses a line typed at `bsc repl` (the whole buffer `BufferID`): the
+/// statements of a func body, one per line, at column 1. Diagnostics as for
+/// a module; the result is never null.
+BlockStmt *parseReplLine(const llvm::SourceMgr &SM, unsigned BufferID,
+                         ASTContext &Ctx, DiagnosticEngine &Diags);
+
 } // namespace bsc
 
 #endif

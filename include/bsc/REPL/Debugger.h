@@ -17,6 +17,7 @@
 
 #include "bsc/CodeGen/CodeGen.h"
 #include "bsc/Debug/Trace.h"
+#include "bsc/Debug/Values.h"
 #include "bsc/Frontend/Frontend.h"
 #include "bsc/JIT/JIT.h"
 #include <memory>
@@ -78,11 +79,16 @@ struct RunOptions {
 /// 10 to 33 ms), short enough that a runaway loop is noticed at once.
 constexpr unsigned DefaultCycleLimitMs = 3000;
 
-/// Runs the loaded behavior as `bsc run` does. Returns false if it reported
-/// an error (a replayed output that differs, a runaway or crashed cycle).
-llvm::Expected<bool> runBehavior(Compilation &C, LoadedBehavior &L,
-                                 const RunOptions &Opts,
-                                 llvm::raw_ostream &OS);
+/// Runs cycles of a session as `bsc run` does. Returns false if it
+/// reported an error (a replayed output that differs, a runaway or crashed
+/// cycle).
+bool runBehavior(Compilation &C, LoadedBehavior &L, BehaviorSession &S,
+                 const RunOptions &Opts, llvm::raw_ostream &OS);
+
+/// One line of a recording: `{"cycle":N,"input":{...},"output":{...}}` for
+/// the cycle the session just ran.
+llvm::json::Value recordCycle(debug::ValueIO &Values, const LoadedBehavior &L,
+                              const BehaviorSession &S);
 
 /// What ended a cycle early, as a diagnostic (at the loop or the call of
 /// registered C++ the probes name). Returns false after reporting.

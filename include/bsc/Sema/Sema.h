@@ -4,6 +4,8 @@
 
 #include "bsc/AST/AST.h"
 #include "bsc/Basic/Diagnostic.h"
+#include <memory>
+#include <optional>
 
 namespace bsc {
 
@@ -59,6 +61,47 @@ struct Behavior {
 bool checkBehavior(llvm::ArrayRef<ModuleAST *> Modules, ASTContext &Ctx,
                    DiagnosticEngine &Diags, Behavior &Out,
                    const NativeRegistry *Natives = nullptr);
+
+namespace sema {
+class Sema;
+} // namespace sema
+
+/// Checks the lines typed at `bsc repl` against a behavior checkBehavior
+/// accepted, as the body of a new func in the scope of one of its modules
+/// (the entry's: its funcs, tasks and `requires` are visible). What the
+/// REPL allows beyond a func body: writing `input` and reading `output`
+/// (between cycles the debugger plays the world), an expression of any
+/// type as a statement (its value is shown), and variables that outlive
+/// the line (visible to every later line).
+class ReplChecker {
+public:
+  ReplChecker(ASTContext &Ctx, DiagnosticEngine &Diags, const Behavior &B,
+              const NativeRegistry *Natives, ModuleAST *Context);
+  ~ReplChecker();
+
+  /// A checked line: the func to generate and run once.
+  struct Line {
+    FuncDecl *Func = nullptr;
+    /// The last statement was an expression with a value: this local of
+    /// Func (not visible to later lines) holds it.
+    VarDecl *Result = nullptr;
+    /// Variables the line declares; they stay visible to later lines.
+    std::vector<VarDecl *> NewVars;
+  };
+  /// Checks `Body` (from parseReplLine) as line number `Number`; std::nullopt
+  /// after reporting an error. A line with an error declares nothing.
+  std::optional<Line> check(BlockStmt *Body, unsigned Number);
+
+  /// Every variable declared so far, oldest first.
+  llvm::ArrayRef<VarDecl *> getVariables() const { return Vars; }
+
+private:
+  ASTContext &Ctx;
+  ModuleAST *Context;
+  Behavior Scratch; ///< What the checker's Sema records; unused.
+  std::unique_ptr<sema::Sema> S;
+  std::vector<VarDecl *> Vars;
+};
 
 } // namespace bsc
 
