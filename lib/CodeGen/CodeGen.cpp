@@ -286,7 +286,7 @@ void ModuleEmitter::layoutState() {
     const FrameInfo &FI = Frames[T];
     uint64_t FrameOffset = SL->getElementOffset(FI.StateFieldNo);
     const llvm::StructLayout *FL = DL.getStructLayout(FI.Ty);
-    BehaviorLayout::Task Entry{T, FrameOffset, {}};
+    BehaviorLayout::Task Entry{T, FrameOffset, DL.getTypeStoreSize(FI.Ty), {}};
     auto Add = [&](const Decl *D, const Type *Ty) {
       Entry.Fields.push_back(
           {D, Ty, FrameOffset + FL->getElementOffset(FI.Fields.lookup(D))});

@@ -52,6 +52,7 @@ bsc::loadBehavior(Compilation &C, const CallableDecl &Entry,
   CodeGenOptions CGOpts;
   CGOpts.BehaviorName = C.Modules.front()->Name;
   CGOpts.Probes = true;
+  CGOpts.ExternalFunctions = Opts.ExternalFunctions;
   auto Ctx = std::make_unique<llvm::LLVMContext>();
   std::unique_ptr<llvm::Module> M = emitLLVM(
       C.Checked, *Ctx, JIT.getTriple(), JIT.getDataLayout(), CGOpts, L->Layout);

@@ -24,6 +24,7 @@
 #include "bsc/Debug/Trace.h"
 #include "bsc/Debug/Values.h"
 #include "bsc/REPL/Debugger.h"
+#include "bsc/REPL/Repl.h"
 #include "llvm/Object/ObjectFile.h"
 #include "llvm/Support/MemoryBuffer.h"
 #include "bsc/Parse/Lexer.h"
@@ -52,6 +53,8 @@ enum class EmitKind { Default, Tokens, AST, TypedAST, Graph, LLVM, Asm, Obj };
 cl::OptionCategory BscCategory("bsc options");
 cl::SubCommand RunCmd("run", "Run a behavior on the host in a JIT, one call "
                              "of the entry per cycle");
+cl::SubCommand ReplCmd("repl", "Debug a behavior in a JIT: step cycles, look "
+                               "at tasks, evaluate b-script between cycles");
 cl::SubCommand TraceDecodeCmd(
     "trace-decode",
     "Print a robot's trace log as `bsc run --trace` does, with the tables of "
@@ -59,19 +62,21 @@ cl::SubCommand TraceDecodeCmd(
 
 /// Options shared by the compiler and `bsc run` are in both subcommands.
 #define BSC_BOTH cl::sub(cl::SubCommand::getTopLevel()), cl::sub(RunCmd)
+/// ...and those the REPL takes too.
+#define BSC_ALL BSC_BOTH, cl::sub(ReplCmd)
 
 cl::list<std::string> InputFiles(cl::Positional, cl::desc("<file.bs>..."),
-                                 cl::cat(BscCategory), BSC_BOTH);
+                                 cl::cat(BscCategory), BSC_ALL);
 cl::list<std::string> IncludeDirs("I", cl::Prefix,
                                   cl::desc("Search folder for required modules"),
                                   cl::value_desc("dir"), cl::cat(BscCategory),
-                                  BSC_BOTH);
+                                  BSC_ALL);
 cl::opt<std::string>
     EntryName("entry",
               cl::desc("The task or func called once per cycle (default: "
                        "'main' of the first file's module)"),
               cl::value_desc("Module::name"), cl::init("main"),
-              cl::cat(BscCategory), BSC_BOTH);
+              cl::cat(BscCategory), BSC_ALL);
 cl::opt<std::string> CyclesArg("cycles",
                                cl::desc("Execution cycles to run (default 1)"),
                                cl::value_desc("N"), cl::init("1"),
@@ -79,7 +84,7 @@ cl::opt<std::string> CyclesArg("cycles",
 cl::opt<std::string> OptLevelArg("O", cl::Prefix,
                                  cl::desc("Optimisation level 0..3 (default 0)"),
                                  cl::value_desc("level"), cl::init("0"),
-                                 cl::cat(BscCategory), BSC_BOTH);
+                                 cl::cat(BscCategory), BSC_ALL);
 
 cl::opt<std::string> RecordFile(
     "record",
@@ -103,7 +108,12 @@ cl::opt<std::string> CycleLimitArg(
     cl::desc("Stop a cycle that runs longer than this (milliseconds; "
              "default 3000, 0: no limit)"),
     cl::value_desc("ms"), cl::init("3000"), cl::cat(BscCategory),
-    cl::sub(RunCmd));
+    cl::sub(RunCmd), cl::sub(ReplCmd));
+cl::opt<std::string> BatchFile(
+    "batch",
+    cl::desc("Read the REPL's lines from this file, without a prompt (also "
+             "when standard input is not a terminal)"),
+    cl::value_desc("file"), cl::cat(BscCategory), cl::sub(ReplCmd));
 
 cl::opt<bool> InstrumentFlag(
     "instrument",
@@ -172,7 +182,7 @@ cl::list<std::string>
                 cl::desc("A binding object, archive or shared library "
                          "registering C++ for the scripts (repeatable; read "
                          "for -target)"),
-                cl::value_desc("obj"), cl::cat(BscCategory), BSC_BOTH);
+                cl::value_desc("obj"), cl::cat(BscCategory), BSC_ALL);
 cl::opt<bool> DumpBindings("dump-bindings",
                            cl::desc("Print what the standard modules and the "
                                     "--bind objects register, and exit"),
@@ -578,6 +588,28 @@ int runJIT(Compilation &C, const FrontendOptions &FOpts) {
   return finish(C);
 }
 
+/// `bsc repl`: checks the options, then hands over to the REPL, which loads
+/// (and reloads) the files itself.
+int runReplCommand(Compilation &C, const FrontendOptions &FOpts) {
+  BackendOptions BOpts;
+  bool OK = parseBackendOptions(C.Diags, BOpts);
+  ReplOptions Opts;
+  OK &= parseCycleLimit(C.Diags, Opts.CycleLimitMs);
+  if (InputFiles.empty()) {
+    C.Diags.report(llvm::SMLoc(), diag::err_no_input_files);
+    OK = false;
+  }
+  if (!OK)
+    return finish(C);
+  Opts.Frontend = FOpts;
+  Opts.Load.OptLevel = BOpts.Target.OptLevel;
+  Opts.Load.StandardModules = FOpts.StandardModules;
+  Opts.Load.BindObjects = FOpts.BindObjects;
+  Opts.EntryName = EntryName;
+  Opts.BatchFile = BatchFile;
+  return runRepl(Opts, llvm::outs());
+}
+
 /// `bsc trace-decode --object B.o LOG`: the tables from the object's
 /// DebugTablesSection, the records from the log (bscript.h, "Trace logs").
 int decodeTrace(Compilation &C) {
@@ -625,18 +657,18 @@ int decodeTrace(Compilation &C) {
   return finish(C);
 }
 
-/// Reports options of plain compilation given to `bsc run`: llvm::cl lets a
-/// subcommand fall back to the top level's options, which would silently
-/// ignore them (`bsc run -c`).
-bool checkRunOptions(DiagnosticEngine &Diags) {
-  const auto &RunOptions = cl::getRegisteredOptions(RunCmd);
+/// Reports options of plain compilation given to `bsc run` or `bsc repl`:
+/// llvm::cl lets a subcommand fall back to the top level's options, which
+/// would silently ignore them (`bsc run -c`).
+bool checkSubcommandOptions(DiagnosticEngine &Diags, cl::SubCommand &Sub) {
+  const auto &RunOptions = cl::getRegisteredOptions(Sub);
   bool OK = true;
   for (const auto &[Name, Opt] :
        cl::getRegisteredOptions(cl::SubCommand::getTopLevel())) {
     if (Opt->getNumOccurrences() == 0 || RunOptions.count(Name))
       continue;
     Diags.report(llvm::SMLoc(), diag::err_conflicting_options)
-        << ("-" + Name.str()) << "run";
+        << ("-" + Name.str()) << Sub.getName();
     OK = false;
   }
   return OK;
@@ -677,6 +709,7 @@ int main(int argc, char **argv) {
   cl::HideUnrelatedOptions(BscCategory);
   cl::HideUnrelatedOptions(BscCategory, RunCmd);
   cl::HideUnrelatedOptions(BscCategory, TraceDecodeCmd);
+  cl::HideUnrelatedOptions(BscCategory, ReplCmd);
   cl::ParseCommandLineOptions(argc, argv,
                               "bsc: the b-script compiler for robot behaviors\n");
 
@@ -685,7 +718,8 @@ int main(int argc, char **argv) {
   Opts.Inputs.assign(InputFiles.begin(), InputFiles.end());
   Opts.IncludeDirs.assign(IncludeDirs.begin(), IncludeDirs.end());
   Opts.BindObjects.assign(BindObjects.begin(), BindObjects.end());
-  Opts.Target = RunCmd ? resolveTargetTriple("") : resolveTargetTriple(TargetArg);
+  Opts.Target = RunCmd || ReplCmd ? resolveTargetTriple("")
+                                  : resolveTargetTriple(TargetArg);
   Opts.StandardModules = getStandardModules(Opts.Target, argv[0]);
 
   if (DumpBindings) {
@@ -695,7 +729,11 @@ int main(int argc, char **argv) {
   }
 
   if (RunCmd)
-    return checkRunOptions(C.Diags) ? runJIT(C, Opts) : finish(C);
+    return checkSubcommandOptions(C.Diags, RunCmd) ? runJIT(C, Opts)
+                                                   : finish(C);
+  if (ReplCmd)
+    return checkSubcommandOptions(C.Diags, ReplCmd) ? runReplCommand(C, Opts)
+                                                    : finish(C);
   if (TraceDecodeCmd)
     return decodeTrace(C);
 

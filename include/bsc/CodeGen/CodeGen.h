@@ -92,6 +92,7 @@ struct BehaviorLayout {
   struct Task {
     const TaskDecl *Decl;
     uint64_t FrameOffset;
+    uint64_t FrameSize; ///< Of its frame struct, without padding after it.
     /// Parameters in order, then locals in declaration order.
     std::vector<FrameField> Fields;
   };

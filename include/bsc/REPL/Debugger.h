@@ -32,6 +32,8 @@ struct LoadOptions {
   /// The files of the standard modules and the --bind objects, as for
   /// FrontendOptions.
   std::vector<std::string> StandardModules, BindObjects;
+  /// Funcs and tasks callable by the REPL's lines (CodeGenOptions).
+  bool ExternalFunctions = false;
 };
 
 /// Reports every thunk or descriptor that `M` imports from the binding
