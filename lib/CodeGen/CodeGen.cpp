@@ -308,9 +308,10 @@ llvm::GlobalVariable *ModuleEmitter::getProbe(const char *Symbol) {
   if (llvm::GlobalVariable *G = M.getGlobalVariable(Symbol))
     return G;
   llvm::Type *I32 = llvm::Type::getInt32Ty(Ctx);
-  return new llvm::GlobalVariable(M, I32, /*isConstant=*/false,
-                                  llvm::GlobalValue::ExternalLinkage,
-                                  llvm::ConstantInt::get(I32, 0), Symbol);
+  // A REPL line's module uses the behavior module's probes.
+  return new llvm::GlobalVariable(
+      M, I32, /*isConstant=*/false, llvm::GlobalValue::ExternalLinkage,
+      ReplSlots ? nullptr : llvm::ConstantInt::get(I32, 0), Symbol);
 }
 
 void ModuleEmitter::declareFunctions() {
@@ -680,6 +681,11 @@ void ModuleEmitter::run() {
   emitInfo();
   if (Opts.ProgramEntry)
     emitProgramMain();
+  // Both probes exist whenever probes are on: the REPL's lines use them too.
+  if (Opts.Probes) {
+    getProbe(LoopProbeSymbol);
+    getProbe(NativeProbeSymbol);
+  }
 }
 
 //===----------------------------------------------------------------------===//
@@ -834,13 +840,19 @@ std::unique_ptr<llvm::Module>
 bsc::emitReplLine(const Behavior &B, const FuncDecl &Line,
                   llvm::StringRef Symbol, llvm::LLVMContext &Ctx,
                   const llvm::Triple &Triple, const llvm::DataLayout &DL,
-                  const llvm::DenseMap<const Decl *, uint64_t> &Slots) {
+                  const llvm::DenseMap<const Decl *, uint64_t> &Slots,
+                  std::vector<DebugSite> &Sites) {
   auto M = std::make_unique<llvm::Module>(Symbol, Ctx);
   M->setTargetTriple(Triple.str());
   M->setDataLayout(DL);
   CodeGenOptions Opts;
   Opts.ExternalFunctions = true;
+  Opts.Probes = true;
   BehaviorLayout Layout;
+  // The line's sites are numbered after those of the behavior and of the
+  // lines before it: they share the probes.
+  Layout.Sites = std::move(Sites);
   ModuleEmitter(B, *M, Opts, Layout).runReplLine(Line, Symbol, Slots);
+  Sites = std::move(Layout.Sites);
   return M;
 }

@@ -13,6 +13,7 @@
 #include "llvm/Support/Endian.h"
 #include "llvm/Support/Path.h"
 #include "llvm/Support/SourceMgr.h"
+#include <functional>
 #include <set>
 
 using namespace bsc;
@@ -189,16 +190,32 @@ ActiveTree debug::buildActiveTree(const DebugTables &T,
     NodeOfTask[A.task] = Tree.Nodes.size();
     Tree.Nodes.push_back({A, {}});
   }
-  for (unsigned I = 0; I < Tree.Nodes.size(); ++I) {
-    const DebugTables::Task &Task = T.Tasks[Tree.Nodes[I].Record.task];
-    std::optional<unsigned> Parent;
-    for (unsigned Caller : Task.Callers)
-      if (auto It = NodeOfTask.find(Caller); It != NodeOfTask.end()) {
-        Parent = It->second;
-        break;
+  // Each node's parent is its deepest active caller (the first in table
+  // order among equals); depths come from the callers' own choices, which
+  // terminates because tasks cannot call themselves, even indirectly.
+  std::vector<int> Depth(Tree.Nodes.size(), -1);
+  std::vector<std::optional<unsigned>> Parent(Tree.Nodes.size());
+  std::function<int(unsigned)> Place = [&](unsigned N) {
+    if (Depth[N] >= 0)
+      return Depth[N];
+    Depth[N] = 0;
+    const DebugTables::Task &Task = T.Tasks[Tree.Nodes[N].Record.task];
+    for (unsigned Caller : Task.Callers) {
+      auto It = NodeOfTask.find(Caller);
+      if (It == NodeOfTask.end() || It->second == N)
+        continue;
+      int D = Place(It->second) + 1;
+      if (!Parent[N] || D > Depth[N]) {
+        Parent[N] = It->second;
+        Depth[N] = D;
       }
-    if (Parent)
-      Tree.Nodes[*Parent].Children.push_back(I);
+    }
+    return Depth[N];
+  };
+  for (unsigned I = 0; I < Tree.Nodes.size(); ++I) {
+    Place(I);
+    if (Parent[I])
+      Tree.Nodes[*Parent[I]].Children.push_back(I);
     else
       Tree.Roots.push_back(I);
   }

@@ -400,7 +400,8 @@ std::optional<Repl::Compiled> Repl::compileLine(llvm::StringRef Text) {
   auto Ctx = std::make_unique<llvm::LLVMContext>();
   std::unique_ptr<llvm::Module> M =
       emitReplLine(C->Checked, *R.Checked->Func, Symbol, *Ctx,
-                   L->JIT->getTriple(), L->JIT->getDataLayout(), Addresses);
+                   L->JIT->getTriple(), L->JIT->getDataLayout(), Addresses,
+                   L->Layout.Sites);
   if (llvm::Error E = verifyGeneratedModule(*M)) {
     llvm::WithColor::error(llvm::errs(), "bsc")
         << "internal error: " << llvm::toString(std::move(E)) << "\n";
@@ -541,6 +542,13 @@ std::string Repl::checkBreakpoints() {
 }
 
 void Repl::step(unsigned N, bool Report) {
+  // A watch stops on what the cycles change, not on what was changed at
+  // the prompt since it was last looked at.
+  for (Breakpoint &B : Breakpoints)
+    if (B.K == Breakpoint::Watch &&
+        S->runGuarded(B.Eval, Opts.CycleLimitMs).K ==
+            BehaviorSession::Outcome::Completed)
+      B.Last = Values->read(B.Result.Ty, B.Result.Ptr);
   Interrupted = 0;
   auto OldHandler = std::signal(SIGINT, onInterrupt);
   for (unsigned I = 0; I < N; ++I) {
@@ -767,7 +775,7 @@ void Repl::replay(llvm::StringRef Args, llvm::SMLoc Loc) {
   bool OK = runBehavior(*C, *L, *S, R, OS);
   flushDiagnostics();
   OS << "replayed cycles " << Before + 1 << " to " << S->getCycle()
-     << (OK ? "; every output as recorded" : "") << "\n";
+     << (OK ? "; no recorded output differs" : "") << "\n";
 }
 
 void Repl::graph() {

@@ -123,12 +123,15 @@ void defineDebugTables(llvm::Module &M, const BehaviorLayout &Layout,
 /// compiled with CodeGenOptions::ExternalFunctions. `Slots` gives the
 /// addresses of the REPL's variables (the line's result among them), which
 /// live in the REPL rather than on the stack and are not destroyed by the
-/// line.
+/// line. The line has probes like the behavior (CodeGenOptions::Probes,
+/// which the behavior's module must have had); its sites are appended to
+/// `Sites`, the behavior's (BehaviorLayout::Sites) and earlier lines'.
 std::unique_ptr<llvm::Module>
 emitReplLine(const Behavior &B, const FuncDecl &Line, llvm::StringRef Symbol,
              llvm::LLVMContext &Ctx, const llvm::Triple &Triple,
              const llvm::DataLayout &DL,
-             const llvm::DenseMap<const Decl *, uint64_t> &Slots);
+             const llvm::DenseMap<const Decl *, uint64_t> &Slots,
+             std::vector<DebugSite> &Sites);
 
 /// Builds the IR of `B` for `Triple`/`DL`. Never fails on a behavior that
 /// Sema accepted.

@@ -8,10 +8,10 @@
 //
 // The records carry no caller: recording one would cost instructions in
 // every task call. The hierarchy is rebuilt from the static call graph in
-// DebugTables instead: a task's parent is the first active task (in table
-// order) that can call it, directly or through funcs. Only a task that two
-// active tasks both can call is ambiguous, and then the first one wins, on
-// every target alike (docs/repl.md).
+// DebugTables instead: a task's parent is the deepest active task that can
+// call it, directly or through funcs (the first in table order among
+// equals). Only a task that two active tasks both can call is ambiguous,
+// and then this rule decides, on every target alike (docs/repl.md).
 //
 // DebugTables are the static half: task names, yield lines, frame fields,
 // callers. bsc builds them from the checked behavior; `bsc --instrument`
