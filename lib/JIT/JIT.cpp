@@ -49,12 +49,17 @@ void StaleBindingError::log(llvm::raw_ostream &OS) const {
 
 BehaviorJIT::~BehaviorJIT() = default;
 
-llvm::Expected<std::unique_ptr<BehaviorJIT>> BehaviorJIT::create() {
+llvm::Expected<std::unique_ptr<BehaviorJIT>>
+BehaviorJIT::create(unsigned OptLevel) {
   initializeTargets();
   auto JTMB = llvm::orc::JITTargetMachineBuilder::detectHost();
   if (!JTMB)
     return JTMB.takeError();
   JTMB->setRelocationModel(llvm::Reloc::PIC_);
+  // -O0 is for quick turnaround (the REPL's :reload): the fast instruction
+  // selector and no machine-level optimisation, as llc -O0 does.
+  if (OptLevel == 0)
+    JTMB->setCodeGenOptLevel(llvm::CodeGenOptLevel::None);
   auto DL = JTMB->getDefaultDataLayoutForTarget();
   if (!DL)
     return DL.takeError();

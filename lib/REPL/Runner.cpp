@@ -43,7 +43,7 @@ llvm::Expected<std::unique_ptr<LoadedBehavior>>
 bsc::loadBehavior(Compilation &C, const CallableDecl &Entry,
                   const LoadOptions &Opts) {
   auto L = std::make_unique<LoadedBehavior>();
-  auto JITOrErr = BehaviorJIT::create();
+  auto JITOrErr = BehaviorJIT::create(Opts.OptLevel);
   if (!JITOrErr)
     return JITOrErr.takeError();
   L->JIT = std::move(*JITOrErr);

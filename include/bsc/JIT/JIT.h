@@ -62,7 +62,9 @@ public:
   /// Creates the JIT for the host CPU. Failures here and below are not the
   /// user's mistakes (the program was checked), so they are llvm::Errors
   /// that the driver prints as internal errors.
-  static llvm::Expected<std::unique_ptr<BehaviorJIT>> create();
+  /// `OptLevel` 0 also selects LLVM's fastest code generation.
+  static llvm::Expected<std::unique_ptr<BehaviorJIT>>
+  create(unsigned OptLevel);
   ~BehaviorJIT();
 
   const llvm::Triple &getTriple() const { return Triple; }
