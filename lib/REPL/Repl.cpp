@@ -152,6 +152,10 @@ private:
 
   /// Why the last cycle should stop `:run`, or empty.
   std::string checkBreakpoints();
+  /// Takes the watches' values as the ones to compare against.
+  void rebaseWatches();
+  /// "stopped after cycle N: why" and the cycle's trace.
+  void reportStop(llvm::StringRef Why);
   /// Prints and forgets the diagnostics so far.
   void flushDiagnostics();
   /// A buffer holding `Text`, named `<repl>`, for carets under a line.
@@ -541,7 +545,7 @@ std::string Repl::checkBreakpoints() {
   return "";
 }
 
-void Repl::step(unsigned N, bool Report) {
+void Repl::rebaseWatches() {
   // A watch stops on what the cycles change, not on what was changed at
   // the prompt since it was last looked at.
   for (Breakpoint &B : Breakpoints)
@@ -549,6 +553,20 @@ void Repl::step(unsigned N, bool Report) {
         S->runGuarded(B.Eval, Opts.CycleLimitMs).K ==
             BehaviorSession::Outcome::Completed)
       B.Last = Values->read(B.Result.Ty, B.Result.Ptr);
+}
+
+void Repl::reportStop(llvm::StringRef Why) {
+  flushDiagnostics();
+  uint32_t Cycle = S->getCycle();
+  OS << "stopped after cycle " << Cycle << ": " << Why << "\n"
+     << "cycle " << Cycle << ": "
+     << debug::formatTraceLine(
+            L->Tables, debug::takeSnapshot(S->getState(), &S->getInfo()))
+     << "\n";
+}
+
+void Repl::step(unsigned N, bool Report) {
+  rebaseWatches();
   Interrupted = 0;
   auto OldHandler = std::signal(SIGINT, onInterrupt);
   for (unsigned I = 0; I < N; ++I) {
@@ -593,12 +611,7 @@ void Repl::step(unsigned N, bool Report) {
     if (Why.empty() && Interrupted)
       Why = "interrupted";
     if (!Why.empty()) {
-      flushDiagnostics();
-      OS << "stopped after cycle " << Cycle << ": " << Why << "\n"
-         << "cycle " << Cycle << ": "
-         << debug::formatTraceLine(
-                L->Tables, debug::takeSnapshot(S->getState(), &S->getInfo()))
-         << "\n";
+      reportStop(Why);
       break;
     }
   }
@@ -771,11 +784,19 @@ void Repl::replay(llvm::StringRef Args, llvm::SMLoc Loc) {
   RunOptions R;
   R.ReplayPath = Args.str();
   R.CycleLimitMs = Opts.CycleLimitMs;
+  std::string Why;
+  R.StopAfterCycle = [&] {
+    Why = checkBreakpoints();
+    return !Why.empty();
+  };
   uint32_t Before = S->getCycle();
+  rebaseWatches();
   bool OK = runBehavior(*C, *L, *S, R, OS);
   flushDiagnostics();
   OS << "replayed cycles " << Before + 1 << " to " << S->getCycle()
      << (OK ? "; no recorded output differs" : "") << "\n";
+  if (!Why.empty())
+    reportStop(Why);
 }
 
 void Repl::graph() {

@@ -325,6 +325,8 @@ bool bsc::runBehavior(Compilation &C, LoadedBehavior &L, BehaviorSession &S,
           Record->keep();
         return false;
       }
+    if (Opts.StopAfterCycle && Opts.StopAfterCycle())
+      break;
   }
   if (Record)
     Record->keep();

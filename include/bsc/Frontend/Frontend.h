@@ -4,8 +4,8 @@
 // line, read the standard modules (`io`, from the runtime archive) and the
 // binding objects (--bind) into native modules, parse the
 // files, follow their `requires` to sibling `.bs` files (or native
-// modules), and check the whole behavior. The driver and the JIT runner
-// start here. Nothing here prints; diagnostics collect in
+// modules), and check the whole behavior. The driver, the JIT runner
+// and the REPL all start here. Nothing here prints; diagnostics collect in
 // the Compilation's DiagnosticEngine.
 //
 //===----------------------------------------------------------------------===//

@@ -114,7 +114,7 @@ private:
 };
 
 /// A behavior running in the JIT: its state and its `input` and `output`
-/// objects, advanced one cycle at a time by `bsc run`'s runner. Each cycle
+/// objects, advanced one cycle at a time by `bsc run` or the REPL. Each cycle
 /// runs under a guard: a watchdog stops a cycle that runs longer than its
 /// limit (a loop without `yield`), and a signal raised in registered C++
 /// (SIGSEGV, ...) ends the cycle instead of the process.

@@ -1,11 +1,11 @@
 //===- Debugger.h - running behaviors in the JIT to debug them -*- C++ -*-===//
 //
 // The debugging side of bsc (docs/repl.md): `bsc run` with its trace,
-// record and replay options. It loads a checked behavior into a fresh JIT
-// (loadBehavior) and advances a BehaviorSession cycle by cycle; what it
-// prints about the behavior comes from bsc/Debug (values as JSON,
-// activation traces), so the runner and a decoded robot log agree word for
-// word. The REPL (issue 10) is to be built on the same pieces.
+// record and replay options, and the pieces the REPL (Repl.h) shares with
+// it. Both load a checked behavior into a fresh JIT (loadBehavior) and
+// advance a BehaviorSession cycle by cycle; what they print about the
+// behavior comes from bsc/Debug (values as JSON, activation traces), so the
+// runner, the REPL and a decoded robot log agree word for word.
 //
 // User mistakes (an unreadable replay file, a runaway cycle, a crash in
 // registered C++) are diagnostics in the Compilation's engine; llvm::Errors
@@ -20,6 +20,7 @@
 #include "bsc/Debug/Values.h"
 #include "bsc/Frontend/Frontend.h"
 #include "bsc/JIT/JIT.h"
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -75,6 +76,8 @@ struct RunOptions {
   std::string RecordPath, ReplayPath;
   bool Trace = false, PrintOutput = false;
   unsigned CycleLimitMs = 0;
+  /// Called after each cycle (the REPL's breakpoints); true stops the run.
+  std::function<bool()> StopAfterCycle;
 };
 
 /// The default --cycle-limit: long enough for any real cycle (a robot's is
