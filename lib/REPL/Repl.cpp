@@ -53,32 +53,6 @@ void onInterrupt(int) { Interrupted = 1; }
 /// breakpoint stops, also in batch mode.
 constexpr unsigned MaxCycles = 1000000;
 
-/// The commands, for `:help`, completion and suggestions.
-struct CommandInfo {
-  const char *Name, *Args, *Help;
-};
-constexpr CommandInfo Commands[] = {
-    {"step", "[N]", "run N cycles (1), printing what changed in output"},
-    {"run", "[N]", "run until a breakpoint, a failure of the entry, Ctrl-C "
-                   "or N cycles (1000000)"},
-    {"tasks", "", "the tasks of the last cycle: states, waiting lines, "
-                  "parameters and locals"},
-    {"break", "TASK|FILE:LINE|failure",
-     "stop after a cycle in which TASK ran, a task waits at a yield on "
-     "FILE:LINE, or a task failed"},
-    {"watch", "EXPR", "stop after a cycle that changed the value of EXPR"},
-    {"breaks", "", "list the breakpoints and watches"},
-    {"delete", "[N]", "delete breakpoint N, or all"},
-    {"reload", "", "recompile the edited files, keeping the state of every "
-                   "task whose frame did not change"},
-    {"record", "FILE|off", "append each cycle's input and output to FILE"},
-    {"replay", "FILE", "run a recording: feed its inputs, compare outputs"},
-    {"graph", "", "the call graph as DOT, the tasks of the last cycle "
-                  "filled"},
-    {"help", "", "this list"},
-    {"quit", "", "leave (so does the end of input)"},
-};
-
 /// Storage of a REPL variable or a line's result: aligned, zeroed.
 struct Slot {
   void *Ptr = nullptr;
@@ -133,19 +107,31 @@ private:
   std::string describe(const Type *T, const void *Addr);
   std::string formatValue(const Type *T, const llvm::json::Value &V);
 
-  // Commands.
+  // Commands: each takes the text after its name and the place of the line
+  // (for carets).
+  using Handler = void (Repl::*)(llvm::StringRef Args, llvm::SMLoc Loc);
+  struct CommandInfo {
+    const char *Name, *Args, *Help;
+    Handler Run;
+  };
+  /// Every command, for dispatch, `:help`, completion and suggestions.
+  static llvm::ArrayRef<CommandInfo> getCommands();
   void command(llvm::StringRef Name, llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdStep(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdRun(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdTasks(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdBreak(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdWatch(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdBreaks(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdDelete(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdReload(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdRecord(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdReplay(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdGraph(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdHelp(llvm::StringRef Args, llvm::SMLoc Loc);
+  /// Reports arguments given to a command that takes none; true if none.
+  bool noArgs(llvm::StringRef Name, llvm::StringRef Args, llvm::SMLoc Loc);
   void step(unsigned N, bool Report);
-  void showTasks();
-  void addBreakpoint(llvm::StringRef Args, llvm::SMLoc Loc);
-  void addWatch(llvm::StringRef Args, llvm::SMLoc Loc);
-  void listBreakpoints();
-  void deleteBreakpoints(llvm::StringRef Args, llvm::SMLoc Loc);
-  void reload();
-  void record(llvm::StringRef Args, llvm::SMLoc Loc);
-  void replay(llvm::StringRef Args, llvm::SMLoc Loc);
-  void graph();
-  void help();
   /// Parses `:step N`'s N (empty: `Default`); reports and returns 0 if bad.
   unsigned parseCount(llvm::StringRef Cmd, llvm::StringRef Arg,
                       unsigned Default, llvm::SMLoc Loc);
@@ -333,7 +319,9 @@ bool Repl::start() {
   return NewC && load(std::move(NewC));
 }
 
-void Repl::reload() {
+void Repl::cmdReload(llvm::StringRef Args, llvm::SMLoc Loc) {
+  if (!noArgs("reload", Args, Loc))
+    return;
   std::unique_ptr<Compilation> NewC = compileFiles();
   if (!NewC || !load(std::move(NewC))) {
     C->Diags.report(llvm::SMLoc(), diag::err_repl_reload_failed);
@@ -618,7 +606,9 @@ void Repl::step(unsigned N, bool Report) {
   std::signal(SIGINT, OldHandler);
 }
 
-void Repl::showTasks() {
+void Repl::cmdTasks(llvm::StringRef Args, llvm::SMLoc Loc) {
+  if (!noArgs("tasks", Args, Loc))
+    return;
   if (S->getCycle() == 0) {
     OS << "no cycle has run yet\n";
     return;
@@ -658,7 +648,7 @@ void Repl::showTasks() {
     Print(R, 1);
 }
 
-void Repl::addBreakpoint(llvm::StringRef Args, llvm::SMLoc Loc) {
+void Repl::cmdBreak(llvm::StringRef Args, llvm::SMLoc Loc) {
   Breakpoint B;
   B.Number = NextBreakpoint;
   B.Text = Args.str();
@@ -693,7 +683,7 @@ void Repl::addBreakpoint(llvm::StringRef Args, llvm::SMLoc Loc) {
   Breakpoints.push_back(std::move(B));
 }
 
-void Repl::addWatch(llvm::StringRef Args, llvm::SMLoc Loc) {
+void Repl::cmdWatch(llvm::StringRef Args, llvm::SMLoc Loc) {
   if (Args.empty()) {
     C->Diags.report(Loc, diag::err_repl_missing_argument)
         << "watch" << "an expression";
@@ -723,7 +713,9 @@ void Repl::addWatch(llvm::StringRef Args, llvm::SMLoc Loc) {
   Breakpoints.push_back(std::move(B));
 }
 
-void Repl::listBreakpoints() {
+void Repl::cmdBreaks(llvm::StringRef Args, llvm::SMLoc Loc) {
+  if (!noArgs("breaks", Args, Loc))
+    return;
   if (Breakpoints.empty())
     OS << "no breakpoints\n";
   for (const Breakpoint &B : Breakpoints)
@@ -731,7 +723,7 @@ void Repl::listBreakpoints() {
        << ": " << B.Text << "\n";
 }
 
-void Repl::deleteBreakpoints(llvm::StringRef Args, llvm::SMLoc Loc) {
+void Repl::cmdDelete(llvm::StringRef Args, llvm::SMLoc Loc) {
   if (Args.empty()) {
     for (Breakpoint &B : Breakpoints)
       destroySlot(B.Result);
@@ -753,7 +745,7 @@ void Repl::deleteBreakpoints(llvm::StringRef Args, llvm::SMLoc Loc) {
   OS << "deleted " << Args << "\n";
 }
 
-void Repl::record(llvm::StringRef Args, llvm::SMLoc Loc) {
+void Repl::cmdRecord(llvm::StringRef Args, llvm::SMLoc Loc) {
   if (Args.empty()) {
     C->Diags.report(Loc, diag::err_repl_missing_argument)
         << "record" << "a file name or 'off'";
@@ -775,7 +767,7 @@ void Repl::record(llvm::StringRef Args, llvm::SMLoc Loc) {
   OS << "recording cycles to " << Args << "\n";
 }
 
-void Repl::replay(llvm::StringRef Args, llvm::SMLoc Loc) {
+void Repl::cmdReplay(llvm::StringRef Args, llvm::SMLoc Loc) {
   if (Args.empty()) {
     C->Diags.report(Loc, diag::err_repl_missing_argument)
         << "replay" << "a file name";
@@ -799,7 +791,9 @@ void Repl::replay(llvm::StringRef Args, llvm::SMLoc Loc) {
     reportStop(Why);
 }
 
-void Repl::graph() {
+void Repl::cmdGraph(llvm::StringRef Args, llvm::SMLoc Loc) {
+  if (!noArgs("graph", Args, Loc))
+    return;
   llvm::DenseSet<const CallableDecl *> Active;
   for (const bs_activation &A :
        debug::takeSnapshot(S->getState(), &S->getInfo()))
@@ -807,8 +801,8 @@ void Repl::graph() {
   writeCallGraphDOT(C->Checked, C->SM, OS, &Active);
 }
 
-void Repl::help() {
-  for (const CommandInfo &Cmd : Commands) {
+void Repl::cmdHelp(llvm::StringRef, llvm::SMLoc) {
+  for (const CommandInfo &Cmd : getCommands()) {
     std::string Head = (":" + llvm::Twine(Cmd.Name) +
                         (*Cmd.Args ? " " + llvm::Twine(Cmd.Args) : ""))
                            .str();
@@ -819,65 +813,89 @@ void Repl::help() {
         "`float k = 2.5`), between cycles.\n";
 }
 
+bool Repl::noArgs(llvm::StringRef Name, llvm::StringRef Args,
+                  llvm::SMLoc Loc) {
+  if (Args.empty())
+    return true;
+  C->Diags.report(Loc, diag::err_repl_extra_argument) << Name << Args;
+  return false;
+}
+
+void Repl::cmdStep(llvm::StringRef Args, llvm::SMLoc Loc) {
+  if (unsigned N = parseCount("step", Args, 1, Loc))
+    step(N, /*Report=*/true);
+}
+
+void Repl::cmdRun(llvm::StringRef Args, llvm::SMLoc Loc) {
+  unsigned N = parseCount("run", Args, MaxCycles, Loc);
+  if (!N)
+    return;
+  uint32_t Before = S->getCycle();
+  step(N, /*Report=*/false);
+  if (S->getCycle() - Before == N)
+    OS << "ran " << N << " cycles to cycle " << S->getCycle() << "\n";
+}
+
+llvm::ArrayRef<Repl::CommandInfo> Repl::getCommands() {
+  static const CommandInfo Commands[] = {
+      {"step", "[N]", "run N cycles (1), printing what changed in output",
+       &Repl::cmdStep},
+      {"run", "[N]",
+       "run until a breakpoint, a failure of the entry, Ctrl-C or N cycles "
+       "(1000000)",
+       &Repl::cmdRun},
+      {"tasks", "",
+       "the tasks of the last cycle: states, waiting lines, parameters and "
+       "locals",
+       &Repl::cmdTasks},
+      {"break", "TASK|FILE:LINE|failure",
+       "stop after a cycle in which TASK ran, a task waits at a yield on "
+       "FILE:LINE, or a task failed",
+       &Repl::cmdBreak},
+      {"watch", "EXPR", "stop after a cycle that changed the value of EXPR",
+       &Repl::cmdWatch},
+      {"breaks", "", "list the breakpoints and watches", &Repl::cmdBreaks},
+      {"delete", "[N]", "delete breakpoint N, or all", &Repl::cmdDelete},
+      {"reload", "",
+       "recompile the edited files, keeping the state of every task whose "
+       "frame did not change",
+       &Repl::cmdReload},
+      {"record", "FILE|off", "append each cycle's input and output to FILE",
+       &Repl::cmdRecord},
+      {"replay", "FILE",
+       "run a recording: feed its inputs, compare outputs",
+       &Repl::cmdReplay},
+      {"graph", "",
+       "the call graph as DOT, the tasks of the last cycle filled",
+       &Repl::cmdGraph},
+      {"help", "", "this list", &Repl::cmdHelp},
+      {"quit", "", "leave (so does the end of input)", nullptr},
+  };
+  return Commands;
+}
+
 void Repl::command(llvm::StringRef Name, llvm::StringRef Args,
                    llvm::SMLoc Loc) {
-  auto NoArgs = [&] {
-    if (Args.empty())
-      return true;
-    C->Diags.report(Loc, diag::err_repl_extra_argument) << Name << Args;
-    return false;
-  };
-  if (Name == "step") {
-    if (unsigned N = parseCount(Name, Args, 1, Loc))
-      step(N, /*Report=*/true);
-  } else if (Name == "run") {
-    if (unsigned N = parseCount(Name, Args, MaxCycles, Loc)) {
-      uint32_t Before = S->getCycle();
-      step(N, /*Report=*/false);
-      if (S->getCycle() - Before == N)
-        OS << "ran " << N << " cycles to cycle " << S->getCycle() << "\n";
+  for (const CommandInfo &Cmd : getCommands())
+    if (Name == Cmd.Name && Cmd.Run) {
+      (this->*Cmd.Run)(Args, Loc);
+      flushDiagnostics();
+      return;
     }
-  } else if (Name == "tasks") {
-    if (NoArgs())
-      showTasks();
-  } else if (Name == "break") {
-    addBreakpoint(Args, Loc);
-  } else if (Name == "watch") {
-    addWatch(Args, Loc);
-  } else if (Name == "breaks") {
-    if (NoArgs())
-      listBreakpoints();
-  } else if (Name == "delete") {
-    deleteBreakpoints(Args, Loc);
-  } else if (Name == "reload") {
-    if (NoArgs())
-      reload();
-  } else if (Name == "record") {
-    record(Args, Loc);
-  } else if (Name == "replay") {
-    replay(Args, Loc);
-  } else if (Name == "graph") {
-    if (NoArgs())
-      graph();
-  } else if (Name == "help") {
-    help();
-  } else {
-    // The closest command by edit distance, as clang suggests names.
-    const char *Best = nullptr;
-    unsigned BestDistance = 3;
-    for (const CommandInfo &Cmd : Commands) {
-      unsigned D = Name.edit_distance(Cmd.Name, true, BestDistance);
-      if (D < BestDistance) {
-        BestDistance = D;
-        Best = Cmd.Name;
-      }
+  // The closest command by edit distance, as clang suggests names.
+  const char *Best = nullptr;
+  unsigned BestDistance = 3;
+  for (const CommandInfo &Cmd : getCommands()) {
+    unsigned D = Name.edit_distance(Cmd.Name, true, BestDistance);
+    if (D < BestDistance) {
+      BestDistance = D;
+      Best = Cmd.Name;
     }
-    if (Best)
-      C->Diags.report(Loc, diag::err_repl_unknown_command_suggest)
-          << Name << Best;
-    else
-      C->Diags.report(Loc, diag::err_repl_unknown_command) << Name;
   }
+  if (Best)
+    C->Diags.report(Loc, diag::err_repl_unknown_command_suggest) << Name << Best;
+  else
+    C->Diags.report(Loc, diag::err_repl_unknown_command) << Name;
   flushDiagnostics();
 }
 
@@ -908,7 +926,7 @@ Repl::complete(llvm::StringRef Buffer, size_t Pos) const {
       WordStart == llvm::StringRef::npos ? Before : Before.substr(WordStart + 1);
   std::vector<std::string> Candidates;
   if (Word.starts_with(":")) {
-    for (const CommandInfo &Cmd : Commands)
+    for (const CommandInfo &Cmd : getCommands())
       Candidates.push_back(":" + std::string(Cmd.Name));
   } else if (Word.contains('.')) {
     // Members of `input.` / `output.` chains, by the world's classes.

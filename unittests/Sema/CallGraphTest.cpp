@@ -7,6 +7,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "bsc/Sema/CallGraph.h"
+#include "ParsedModule.h"
 #include "bsc/Parse/Parser.h"
 #include "llvm/Support/MemoryBuffer.h"
 #include "llvm/Support/SourceMgr.h"
@@ -17,33 +18,9 @@ using namespace bsc;
 
 namespace {
 
-/// Parses and checks module `P` from source text.
-struct Parsed {
-  llvm::SourceMgr SM;
-  ASTContext Ctx;
-  DiagnosticEngine Diags;
-  Behavior Out;
-  bool OK = false;
-
-  explicit Parsed(llvm::StringRef Source) {
-    unsigned ID = SM.AddNewSourceBuffer(
-        llvm::MemoryBuffer::getMemBufferCopy(Source, "P.bs"), llvm::SMLoc());
-    ModuleAST *M = parseModule(SM, ID, "P", Ctx, Diags);
-    OK = !Diags.hasErrors() && checkBehavior({M}, Ctx, Diags, Out);
-  }
-
-  const CallableDecl *find(llvm::StringRef QualifiedName) const {
-    for (const ModuleAST *M : Out.Modules)
-      for (const CallableDecl *C : M->Decls) {
-        if (C->getQualifiedName() == QualifiedName)
-          return C;
-        if (const auto *T = llvm::dyn_cast<TaskDecl>(C))
-          for (const FuncDecl *F : T->NestedFuncs)
-            if (F->getQualifiedName() == QualifiedName)
-              return F;
-      }
-    return nullptr;
-  }
+/// Module `P` with its call graph as DOT.
+struct Parsed : ParsedModule {
+  using ParsedModule::ParsedModule;
 
   std::string
   dot(const llvm::DenseSet<const CallableDecl *> *Active = nullptr) const {

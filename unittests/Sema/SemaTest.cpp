@@ -10,6 +10,7 @@
 #include "bsc/Parse/Parser.h"
 #include "bsc/Sema/Sema.h"
 #include "llvm/Support/MemoryBuffer.h"
+#include "ParsedModule.h"
 #include "gtest/gtest.h"
 
 using namespace bsc;
@@ -339,22 +340,7 @@ TEST_F(SemaTest, InputHasNoTypeYet) {
 
 namespace {
 
-/// Parses and checks one module from source text.
-struct Parsed {
-  llvm::SourceMgr SM;
-  ASTContext Ctx;
-  DiagnosticEngine Diags;
-  Behavior Out;
-  ModuleAST *M = nullptr;
-  bool OK = false;
-
-  explicit Parsed(llvm::StringRef Source) {
-    unsigned ID = SM.AddNewSourceBuffer(
-        llvm::MemoryBuffer::getMemBufferCopy(Source, "P.bs"), llvm::SMLoc());
-    M = parseModule(SM, ID, "P", Ctx, Diags);
-    OK = !Diags.hasErrors() && checkBehavior({M}, Ctx, Diags, Out);
-  }
-};
+using Parsed = ParsedModule;
 
 TEST(SemaParsedTest, NestedFuncsOwnTheirLocalsAndComeInSourceOrder) {
   Parsed P("func first()\n"
