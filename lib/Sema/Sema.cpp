@@ -264,7 +264,43 @@ LookupResult Sema::lookupUnqualified(const Ident &Id, LookupMode Mode) {
   diag(Id.Loc, Mode == LookupMode::Type ? diag::err_unknown_type
                                         : diag::err_undeclared_name)
       << Name << Id.getRange();
+  if (Mode == LookupMode::Value)
+    if (std::optional<std::string> Near = findNearValueName(Name))
+      diag(Id.Loc, diag::note_did_you_mean) << *Near << Id.getRange();
   return R;
+}
+
+std::optional<std::string> Sema::findNearValueName(llvm::StringRef Name) {
+  // Clang's rule of thumb: at most one edit per three characters (rounded
+  // up), and fewer edits than the name has characters (`i` is not a typo
+  // of `p`). Best is one more than what a candidate may need.
+  unsigned Best =
+      std::min<size_t>((Name.size() + 2) / 3, Name.size() - 1) + 1;
+  std::optional<std::string> Result;
+  auto Consider = [&](llvm::StringRef Candidate) {
+    if (Candidate.empty() || Candidate == Name)
+      return;
+    unsigned D = Name.edit_distance(Candidate, true, Best);
+    if (D < Best) {
+      Best = D;
+      Result = Candidate.str();
+    }
+  };
+  for (const Scope &S : Scopes)
+    for (const auto &Entry : S)
+      Consider(Entry.first);
+  if (CurTask)
+    for (FuncDecl *F : CurTask->NestedFuncs)
+      Consider(F->getName().Name);
+  for (const auto &Entry : CurModule->Decls)
+    Consider(Entry.getKey());
+  for (const auto &Entry : CurModule->Requires)
+    Consider(Entry.getKey());
+  if (World || Repl) {
+    Consider("input");
+    Consider("output");
+  }
+  return Result;
 }
 
 LookupResult Sema::lookupEnumValue(const Type *EnumTy, llvm::StringRef EnumName,

@@ -20,6 +20,7 @@
 #include "llvm/ADT/SmallVector.h"
 #include "llvm/ADT/StringMap.h"
 #include "llvm/ADT/StringSet.h"
+#include <optional>
 
 namespace bsc {
 namespace sema {
@@ -98,6 +99,9 @@ public:
   LookupResult lookup(const QualifiedName &N, LookupMode Mode);
   LookupResult lookupUnqualified(const Ident &Id, LookupMode Mode);
   LookupResult lookupQualified(const QualifiedName &N);
+  /// The visible value name closest to `Name` by edit distance, if one is
+  /// close enough to suggest (`did you mean`).
+  std::optional<std::string> findNearValueName(llvm::StringRef Name);
   LookupResult lookupEnumValue(const Type *EnumTy, llvm::StringRef EnumName,
                                const Ident &Value);
   /// The type of a registered enum (`M::E`).
