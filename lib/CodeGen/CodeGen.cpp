@@ -17,6 +17,7 @@
 #include "llvm/IR/DerivedTypes.h"
 #include "llvm/IR/Function.h"
 #include "llvm/IR/GlobalVariable.h"
+#include "llvm/IR/InstIterator.h"
 #include "llvm/Support/ErrorHandling.h"
 #include "llvm/Transforms/Utils/BasicBlockUtils.h"
 
@@ -671,11 +672,47 @@ void ModuleEmitter::emitProgramMain() {
   IRB.CreateRet(llvm::ConstantInt::get(I32, 0));
 }
 
+/// Rounds every float `F` computes to a float in memory (a volatile store
+/// and load, which no optimisation removes) before anything uses it. The
+/// x87 unit computes with 64 mantissa bits and a 15-bit exponent; a value
+/// stored as a float is rounded once more to 24 bits and the float's range.
+/// Rounding twice gives the same result as rounding once for + - * / when
+/// the first precision has at least 2 * 24 + 2 bits (64 does), so the
+/// result is the IEEE float result the host computes with SSE.
+static void narrowX87Floats(llvm::Function &F) {
+  llvm::SmallVector<llvm::Instruction *, 16> Computed;
+  for (llvm::Instruction &I : llvm::instructions(F)) {
+    if (!I.getType()->isFloatTy())
+      continue;
+    // Loads, constants, arguments and phis carry floats that were already
+    // rounded; negation and selection are exact.
+    if (llvm::isa<llvm::BinaryOperator>(I) || llvm::isa<llvm::SIToFPInst>(I) ||
+        llvm::isa<llvm::UIToFPInst>(I) || llvm::isa<llvm::CallInst>(I))
+      Computed.push_back(&I);
+  }
+  if (Computed.empty())
+    return;
+  llvm::IRBuilder<> B(&*F.getEntryBlock().getFirstInsertionPt());
+  llvm::AllocaInst *Slot = B.CreateAlloca(B.getFloatTy(), nullptr, "x87.round");
+  for (llvm::Instruction *I : Computed) {
+    B.SetInsertPoint(I->getNextNode());
+    llvm::StoreInst *Store = B.CreateStore(I, Slot, /*isVolatile=*/true);
+    llvm::Value *Rounded =
+        B.CreateLoad(B.getFloatTy(), Slot, /*isVolatile=*/true,
+                     I->getName() + ".rounded");
+    I->replaceUsesWithIf(Rounded,
+                         [&](llvm::Use &U) { return U.getUser() != Store; });
+  }
+}
+
 void ModuleEmitter::run() {
   layoutState();
   declareFunctions();
-  for (const CallableDecl *D : getSourceOrder())
+  for (const CallableDecl *D : getSourceOrder()) {
     FunctionEmitter(*this, *D).run();
+    if (Opts.NarrowX87Floats)
+      narrowX87Floats(*getFunction(D));
+  }
   emitEntries();
   emitDestroyFunctions();
   emitInfo();

@@ -66,6 +66,11 @@ bool bsc::hasProgramRuntime(const llvm::Triple &T) {
          T.isOSLinux() && T.isOSBinFormatELF();
 }
 
+bool bsc::usesX87Floats(const llvm::TargetMachine &TM) {
+  return TM.getTargetTriple().getArch() == llvm::Triple::x86 &&
+         !TM.getMCSubtargetInfo()->checkFeatures("+sse");
+}
+
 std::optional<unsigned> bsc::parseOptLevel(llvm::StringRef Value) {
   unsigned Level;
   if (Value.size() != 1 || Value.getAsInteger(10, Level) ||

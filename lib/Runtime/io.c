@@ -10,7 +10,15 @@
 
 void bs_io_printi(int32_t value) { printf("%d\n", (int)value); }
 
-void bs_io_printf(float value) { printf("%g\n", (double)value); }
+/* Every NaN prints as "nan": its sign bit depends on where it was made (the
+ * FPU's default NaN is negative, a constant LLVM folded is positive), and
+ * the same program must print the same text on every target. */
+void bs_io_printf(float value) {
+  if (value != value)
+    puts("nan");
+  else
+    printf("%g\n", (double)value);
+}
 
 void bs_io_printb(int32_t value) { puts(value ? "true" : "false"); }
 

@@ -459,6 +459,7 @@ int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
   }
   CodeGenOptions CGOpts;
   CGOpts.Instrument = InstrumentFlag;
+  CGOpts.NarrowX87Floats = usesX87Floats(*TM);
   CGOpts.BehaviorName = getBehaviorName(C);
   if (CGOpts.BehaviorName.empty())
     return finish(C);

@@ -61,6 +61,12 @@ struct CodeGenOptions {
   /// DebugTablesSection, so that a robot's trace log can be decoded offline.
   /// The code of tasks and funcs does not change.
   bool Instrument = false;
+  /// Floats on the x87 unit (usesX87Floats): every float that an operation
+  /// computes (arithmetic, conversion from int, a result of registered C++)
+  /// goes through a float in memory before it is used, so that it has a
+  /// float's precision and range, as on every other target
+  /// (docs/language.md, "Floats").
+  bool NarrowX87Floats = false;
 };
 
 /// The section holding the debug tables of an instrumented object.

@@ -67,6 +67,11 @@ std::string getDefaultCPU(const llvm::Triple &T);
 /// Parses an `-O` value ("0".."3"); std::nullopt if it is not one.
 std::optional<unsigned> parseOptLevel(llvm::StringRef Value);
 
+/// Whether `TM` computes floats on the x87 unit (32-bit x86 without SSE:
+/// the robot's Geode), where a value in a register has 64 mantissa bits
+/// and a wider exponent than a float (CodeGenOptions::NarrowX87Floats).
+bool usesX87Floats(const llvm::TargetMachine &TM);
+
 /// Whether bsc ships a runtime shim a program for `T` links with (host
 /// x86_64 and i586 Linux): only those get standalone programs; every other
 /// target gets objects, assembly and IR.
