@@ -3,6 +3,8 @@
 #   ./dev.sh demo   install what is missing, build, cross-build the paper's
 #                   fib.bs for i586 and run it
 #   ./dev.sh test   install what is missing, build, run the whole test suite
+#   ./dev.sh sanitize  the same suite with bsc built with ASan and UBSan
+#                   (in build-sanitize/)
 # Both work on a fresh Debian 12 machine as root (apt), and are what CI runs.
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -54,8 +56,20 @@ run_tests() {
   return $status
 }
 
+# The whole suite against bsc built with ASan and UBSan. Leaks are not
+# checked: LLVM keeps its registries to the end of the process.
+sanitize() {
+  BUILD=${BSC_BUILD_DIR:-$ROOT/build-sanitize}
+  cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+        -DBSC_SANITIZE=ON >/dev/null
+  cmake --build "$BUILD"
+  ASAN_OPTIONS=detect_leaks=0:abort_on_error=0 \
+  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 run_tests
+}
+
 case "${1:-}" in
   demo) install_missing; build; demo ;;
   test) install_missing; build; run_tests ;;
-  *) echo "usage: $0 demo|test" >&2; exit 2 ;;
+  sanitize) install_missing; sanitize ;;
+  *) echo "usage: $0 demo|test|sanitize" >&2; exit 2 ;;
 esac
