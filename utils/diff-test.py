@@ -112,8 +112,13 @@ def check_seed(seed, args, workdir):
                 CONFIGS[0], cfg, lineterm="", n=2)
             lines = list(diff)
             text = "\n".join(lines[:40]) + ("\n..." if len(lines) > 40 else "")
-            problems.append(f"{CONFIGS[0]} (status {ref_st}) and {cfg} (status {st}) differ:\n"
-                            + text)
+            a, b = ref_out.splitlines(), out.splitlines()
+            at = next((i for i, (x, y) in enumerate(zip(a, b)) if x != y), min(len(a), len(b)))
+            first = (f"first difference at line {at + 1}: "
+                     f"{a[at] if at < len(a) else b'<end>'!r} and "
+                     f"{b[at] if at < len(b) else b'<end>'!r}")
+            problems.append(f"{CONFIGS[0]} (status {ref_st}) and {cfg} (status {st}) differ, "
+                            + first + "\n" + text)
     return seed, problems, outputs, prog
 
 
@@ -148,7 +153,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--bsc", default=os.path.join(HERE, "..", "build", "bin", "bsc"))
     ap.add_argument("--seeds", default="0:100", help="A:B, A inclusive, B exclusive")
-    ap.add_argument("--cycles", type=int, default=6)
+    ap.add_argument("--cycles", type=int, default=8)
     ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
     ap.add_argument("--keep", default="diff-test-failures",
                     help="folder for the programs that fail")

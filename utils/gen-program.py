@@ -137,6 +137,8 @@ class Gen:
             op = r.choice(INT_OPS)
             a = self.int_expr(ctx, depth + 1)
             if op in "/%" and r.random() < 0.5:
+                if r.random() < 0.2:
+                    a = r.choice(["(-2147483647 - 1)", "(-2147483648)", "0x80000000"])
                 b = r.choice(["0", "(-1)", "(0 * " + self.int_expr(ctx, depth + 1) + ")",
                               self.int_expr(ctx, depth + 1)])
             else:
@@ -189,6 +191,9 @@ class Gen:
                 f = r.choice(fs)
                 if self.afford(ctx, f):
                     return self.call_expr(ctx, f, depth)
+        if k == 7:
+            # An int where a float is expected converts implicitly.
+            return self.int_expr(ctx, depth + 1)
         return self.float_expr(ctx, 3)
 
     def bool_expr(self, ctx, depth):
@@ -205,7 +210,11 @@ class Gen:
         if k <= 1:
             return f"({self.int_expr(ctx, depth + 1)} {r.choice(CMP_OPS)} {self.int_expr(ctx, depth + 1)})"
         if k == 2:
-            return f"({self.float_expr(ctx, depth + 1)} {r.choice(CMP_OPS)} {self.float_expr(ctx, depth + 1)})"
+            a, b = self.float_expr(ctx, depth + 1), self.float_expr(ctx, depth + 1)
+            if r.random() < 0.3:
+                # Mixed int and float compare as floats.
+                a = self.int_expr(ctx, depth + 1)
+            return f"({a} {r.choice(CMP_OPS)} {b})"
         if k <= 4:
             # Short circuit: the right operand often prints.
             op = r.choice(["&&", "||"])
@@ -218,6 +227,8 @@ class Gen:
                 b = self.bool_expr(ctx, depth + 1)
             return f"({a} {op} {b})"
         if k == 5:
+            if r.random() < 0.2:
+                return f"bool({self.bool_expr(ctx, depth + 1)})"
             return f"(!{self.bool_expr(ctx, depth + 1)})"
         if k == 6 and self.tasks:
             t = r.choice(self.tasks)
@@ -332,12 +343,20 @@ class Gen:
             self.emit(ind, f"if({self.bool_expr(ctx, 1)})")
             self.emit(ind + 1, r.choice(["break", "continue"]))
             return
+        if k == 16 and ctx.in_task_body and r.random() < 0.3:
+            self.emit(ind, f"if({self.bool_expr(ctx, 1)})")
+            self.emit(ind + 1, f'io::prints("{ctx.owner.name} returns")')
+            self.emit(ind + 1, "return")
+            return
         if k == 15 and ctx.in_task_body:
             y = r.random()
             if y < 0.5:
                 self.emit(ind, "yield")
-            elif y < 0.7:
+            elif y < 0.6:
                 self.emit(ind, f"yield {r.choice(['2', '5', '(-3)', '0'])}")
+            elif y < 0.7:
+                # A computed state: running, done or failure by value.
+                self.emit(ind, f"yield ({self.int_expr(ctx, 2)} % 3)")
             elif y < 0.8:
                 self.emit(ind, f"yield {r.choice(STATES)}")
             else:
