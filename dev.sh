@@ -5,6 +5,8 @@
 #   ./dev.sh test   install what is missing, build, run the whole test suite
 #   ./dev.sh sanitize  the same suite with bsc built with ASan and UBSan
 #                   (in build-sanitize/)
+#   ./dev.sh fuzz frontend|binding [SECONDS]
+#                   a libFuzzer campaign on one target (fuzz/README.md)
 # Both work on a fresh Debian 12 machine as root (apt), and are what CI runs.
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -67,9 +69,36 @@ sanitize() {
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 run_tests
 }
 
+# A libFuzzer campaign (fuzz/README.md): a clang build with coverage and
+# ASan in build-fuzz/, the corpus kept in build-fuzz/corpus-TARGET, seeded
+# from the test suite, and crashing inputs written to build-fuzz/.
+fuzz() {
+  local target=${1:-} seconds=${2:-3600}
+  [[ $target == frontend || $target == binding ]] ||
+    { echo "usage: $0 fuzz frontend|binding [SECONDS]" >&2; exit 2; }
+  PACKAGES+=(libclang-rt-19-dev)
+  install_missing
+  BUILD=${BSC_BUILD_DIR:-$ROOT/build-fuzz}
+  CC=clang-19 CXX=clang++-19 cmake -S "$ROOT" -B "$BUILD" -G Ninja \
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBSC_FUZZ=ON >/dev/null
+  local seeds=("$ROOT/fuzz/corpus/frontend" "$ROOT/test")
+  if [[ $target == binding ]]; then
+    cmake --build "$BUILD" --target bsc-fuzz-binding LitBindObjects BindTestObjects
+    seeds=("$BUILD/test/bind-objects" "$BUILD/unittests/Bind/objects")
+  else
+    cmake --build "$BUILD" --target bsc-fuzz-frontend
+  fi
+  mkdir -p "$BUILD/corpus-$target"
+  cd "$BUILD"
+  ASAN_OPTIONS=detect_leaks=0 "$BUILD/bin/bsc-fuzz-$target" \
+    -max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 \
+    "$BUILD/corpus-$target" "${seeds[@]}"
+}
+
 case "${1:-}" in
   demo) install_missing; build; demo ;;
   test) install_missing; build; run_tests ;;
   sanitize) install_missing; sanitize ;;
-  *) echo "usage: $0 demo|test|sanitize" >&2; exit 2 ;;
+  fuzz) shift; fuzz "$@" ;;
+  *) echo "usage: $0 demo|test|sanitize|fuzz" >&2; exit 2 ;;
 esac
