@@ -157,6 +157,10 @@ template <class ELFT> Error SectionChecker<ELFT>::run() {
                              "section table: " +
                                  toString(SecsOrErr.takeError()));
   Secs = *SecsOrErr;
+  // No section table (e_shoff 0): nothing to walk; the reader then finds no
+  // descriptors.
+  if (Secs.empty())
+    return Error::success();
   for (const Shdr &S : Secs.drop_front()) {
     // Section 0 is the null section (its fields may extend the header);
     // so is a section of type SHT_NULL: nothing reads it.
