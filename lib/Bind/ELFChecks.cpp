@@ -213,10 +213,23 @@ template <class ELFT> Error SectionChecker<ELFT>::run() {
                            " beyond its " + Twine(Syms->size()) + " symbols");
       // The walks skip a symbol whose name cannot be read, which would
       // silently lose a descriptor or a thunk.
-      for (const auto &Sym : *Syms)
+      for (const auto &Sym : *Syms) {
+        std::string Which =
+            "symbol " + std::to_string(&Sym - Syms->begin());
         if (Sym.st_name >= Strings->size())
-          return damaged(S, "symbol " + Twine(&Sym - Syms->begin()) +
-                                " has its name outside the string table");
+          return damaged(S, Which + " has its name outside the string table");
+        // A section index must name a section (or be one of the reserved
+        // ones bsc reads: undefined, absolute, common); a section symbol
+        // is named after its section, which ELFObjectFile looks up
+        // without checking.
+        uint16_t Shndx = Sym.st_shndx;
+        bool Reserved = Shndx >= ELF::SHN_LORESERVE;
+        if (Shndx == ELF::SHN_XINDEX ||
+            (!Reserved && Shndx >= Secs.size()) ||
+            (Sym.getType() == ELF::STT_SECTION && (Shndx == 0 || Reserved)))
+          return damaged(S, Which + " has section index " + Twine(Shndx) +
+                                ", which is not a section");
+      }
       break;
     }
     case ELF::SHT_RELR:
