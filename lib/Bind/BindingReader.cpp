@@ -1168,6 +1168,15 @@ void Reader::readBinary(Binary &Bin, StringRef Name) {
         Errs.add(Member, "", CBuf.takeError());
         continue;
       }
+      // llvm::object::Archive checks where the next member starts, not
+      // that this one ends inside the archive.
+      StringRef Whole = Ar->getMemoryBufferRef().getBuffer();
+      if (!Ar->isThin() &&
+          (CBuf->getBufferStart() < Whole.begin() ||
+           CBuf->getBufferEnd() > Whole.end())) {
+        Errs.add(Member, "", "the member runs past the end of the archive");
+        break;
+      }
       readBuffer(*CBuf, Member);
     }
     if (Err)
