@@ -260,6 +260,10 @@ template <class ELFT> Error SectionChecker<ELFT>::run() {
     const Extent &Prev = Extents[I - 1], &Cur = Extents[I];
     if (Cur.Offset - Prev.Offset >= Prev.Size)
       continue;
+    if (!Cur.Sec && !Prev.Sec)
+      return createStringError(inconvertibleErrorCode(),
+                               "the section header table overlaps the ELF "
+                               "header");
     const Extent &Named = Cur.Sec ? Cur : Prev;
     const Extent &Other = Cur.Sec ? Prev : Cur;
     return damaged(*Named.Sec,
