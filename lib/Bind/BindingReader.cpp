@@ -1184,12 +1184,15 @@ void Reader::readBinary(Binary &Bin, StringRef Name) {
     return;
   }
   auto *Obj = dyn_cast<ELFObjectFileBase>(&Bin);
-  if (!Obj || (Obj->getEType() != ELF::ET_REL &&
-               (Obj->getEType() != ELF::ET_DYN || isProgram(*Obj)))) {
+  auto NotBindable = [&] {
     Errs.add(Name, "",
              "not an ELF relocatable object or shared library (bsc reads the "
              "binding objects that will be linked: built with -c, in an "
              "archive, or linked with -shared)");
+  };
+  if (!Obj ||
+      (Obj->getEType() != ELF::ET_REL && Obj->getEType() != ELF::ET_DYN)) {
+    NotBindable();
     return;
   }
   uint16_t WantMachine =
@@ -1204,10 +1207,14 @@ void Reader::readBinary(Binary &Bin, StringRef Name) {
                  Target.str() + ")");
     return;
   }
-  // Every walk below (and ObjectReader's, and the JIT's load of the same
-  // file in `bsc run`) trusts the section headers that this checks.
+  // Every walk below (the PIE check, ObjectReader's, and the JIT's load of
+  // the same file in `bsc run`) trusts the headers that this checks.
   if (Error E = checkSectionHeaders(*Obj)) {
     Errs.add(Name, "", std::move(E));
+    return;
+  }
+  if (Obj->getEType() == ELF::ET_DYN && isProgram(*Obj)) {
+    NotBindable();
     return;
   }
   // GCC's -flto objects hold GIMPLE, not the descriptor's bytes, unless

@@ -22,8 +22,8 @@
 namespace bsc {
 namespace bind {
 
-/// The first problem with the section headers of `Obj` that would make
-/// ELFObjectFile's walks fault, abort or spin, as "damaged object: ..."
+/// The first problem with the section or program headers of `Obj` that
+/// would make ELFObjectFile's walks fault, abort or spin, as "damaged object: ..."
 /// or "damaged shared library: ..." (lower case, no final period), or
 /// success.
 llvm::Error checkSectionHeaders(const llvm::object::ELFObjectFileBase &Obj);
