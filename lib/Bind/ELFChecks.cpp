@@ -157,20 +157,23 @@ template <class ELFT> Error SectionChecker<ELFT>::run() {
                              "section table: " +
                                  toString(SecsOrErr.takeError()));
   Secs = *SecsOrErr;
-  // Segments: ELFFile::dynamicEntries (which the reader's PIE check and the
-  // loader use) takes PT_DYNAMIC's offset and size on trust.
-  Expected<typename ELFT::PhdrRange> Phdrs = EF.program_headers();
-  if (!Phdrs)
-    return createStringError(inconvertibleErrorCode(),
-                             "program header table: " +
-                                 toString(Phdrs.takeError()));
-  for (const auto &P : *Phdrs)
-    if (P.p_offset > EF.getBufSize() ||
-        P.p_filesz > EF.getBufSize() - P.p_offset)
-      return createStringError(
-          inconvertibleErrorCode(),
-          "program header " + std::to_string(&P - Phdrs->begin()) +
-              " describes bytes beyond the end of the file");
+  // Segments of a shared library: ELFFile::dynamicEntries (which the
+  // reader's PIE check and the loader use) takes PT_DYNAMIC's offset and
+  // size on trust. A relocatable object's program headers are never read.
+  if (EF.getHeader().e_type == ELF::ET_DYN) {
+    Expected<typename ELFT::PhdrRange> Phdrs = EF.program_headers();
+    if (!Phdrs)
+      return createStringError(inconvertibleErrorCode(),
+                               "program header table: " +
+                                   toString(Phdrs.takeError()));
+    for (const auto &P : *Phdrs)
+      if (P.p_offset > EF.getBufSize() ||
+          P.p_filesz > EF.getBufSize() - P.p_offset)
+        return createStringError(
+            inconvertibleErrorCode(),
+            "program header " + std::to_string(&P - Phdrs->begin()) +
+                " describes bytes beyond the end of the file");
+  }
   // No section table (e_shoff 0): nothing to walk; the reader then finds no
   // descriptors.
   if (Secs.empty())
