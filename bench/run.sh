@@ -1,33 +1,110 @@
 #!/usr/bin/env bash
-# Instructions per behavior cycle: bsc's code for Steps.bs against the same
-# state machines hand-written in C (steps_reference.c), both at -O2 on the
-# host, counted by valgrind's callgrind (instruction counts, not seconds, so
-# the shared machines' noise does not matter). Start-up cost cancels out:
-# each program runs at two cycle counts and the difference is divided by the
-# difference in cycles.
-#   bench/run.sh [BUILD_DIR]     (default: build)
+# The performance benchmarks, each against a reference measured in the same
+# run. Instructions are counted by valgrind's callgrind (not seconds), so
+# the shared machines' noise does not matter.
+#
+# 1. The shared benchmark (../shared/bench, ported in bench/shared): the
+#    "soccer" and "wide" behaviors compiled by bsc against the hand-written
+#    protothreads of proto.cpp, both linked with the same harness.h, for i586
+#    (-march=geode) and x86_64. Checks the checksums at -O0 and -O2, then
+#    prints instructions per behavior cycle (callgrind, --toggle-collect on
+#    the harness's bsc_cycle_*), state bytes, heap allocations per cycle and
+#    the ratios bsc / protothreads.
+# 2. Steps.bs, a parent task driving a child state machine, against the same
+#    state machines written in C (steps_reference.c).
+#
+#   bench/run.sh [BUILD_DIR]        (default: build)
+#   BENCH_CYCLES=N                  cycles per callgrind run (default 100000)
 set -euo pipefail
 cd "$(dirname "$0")"
-BUILD=${1:-../build}
+HERE=$PWD
+BUILD=$(cd "${1:-../build}" && pwd)
 BSC=$BUILD/bin/bsc
+SHARED=$(cd ../../shared/bench 2>/dev/null && pwd) ||
+  { echo "bench: ../shared/bench (the shared benchmark) is missing" >&2; exit 1; }
+CYCLES=${BENCH_CYCLES:-100000}
 OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
 command -v valgrind >/dev/null || { echo "bench: valgrind is needed (apt-get install valgrind)" >&2; exit 1; }
 
+# Compiler flags of the shared README's reference build, per target.
+CXX=clang++-19
+declare -A CXXFLAGS=([i586]="--target=i586-linux-gnu -march=geode" [x86_64]="")
+declare -A RUNTIME=([i586]=libbscript_rt_i586.a [x86_64]=libbscript_rt.a)
+
+build_reference() { # target
+  $CXX ${CXXFLAGS[$1]} -std=c++20 -O2 -o "$OUT/proto-$1" "$SHARED/proto.cpp"
+}
+
+build_bsc() { # target behavior opt -> $OUT/bsc-target-behavior-opt
+  local t=$1 b=$2 o=$3 dir=$OUT/$1-$2-$3 glue=()
+  mkdir -p "$dir"
+  [[ $b == wide ]] && glue=(-DBENCH_WIDE)
+  [[ -f $OUT/bind-$t.o ]] ||
+    $CXX ${CXXFLAGS[$t]} -std=c++20 -O2 -I ../include -I "$SHARED" \
+      -c shared/BenchBindings.cpp -o "$OUT/bind-$t.o"
+  local args=(-target "$t" --bind "$OUT/bind-$t.o" --behavior-name bench
+              -I shared "shared/$b.bs")
+  "$BSC" "$o" -c "${args[@]}" -o "$dir/behavior.o"
+  "$BSC" --emit-header "${args[@]}" -o "$dir/behavior.h"
+  $CXX ${CXXFLAGS[$t]} -std=c++20 -O2 "${glue[@]}" -I ../include -I "$SHARED" \
+    -I "$dir" -c shared/bench_bsc.cpp -o "$dir/glue.o"
+  $CXX ${CXXFLAGS[$t]} "$dir/glue.o" "$dir/behavior.o" "$OUT/bind-$t.o" \
+    "$BUILD/lib/${RUNTIME[$t]}" -o "$OUT/bsc-$t-$b$o"
+}
+
+field() { # name line -> value of name=value in the harness's line
+  grep -Eo "(^| )$1=[^ ]+" <<<"$2" | cut -d= -f2
+}
+
+# Instructions inside bsc_cycle_* per cycle, over $CYCLES closed-loop cycles.
+per_cycle() { # program behavior
+  valgrind --tool=callgrind --callgrind-out-file="$OUT/cg.out" \
+    --toggle-collect='bsc_cycle_*' "$1" "$2" count "$CYCLES" >/dev/null 2>"$OUT/cg.err"
+  local total
+  total=$(grep -Eo 'Collected : [0-9]+' "$OUT/cg.err" | grep -Eo '[0-9]+')
+  awk -v t="$total" -v n="$CYCLES" 'BEGIN { printf "%.1f", t / n }'
+}
+
+status=0
+echo "== shared benchmark ($CYCLES cycles; instructions per behavior cycle)"
+printf '%-7s %-7s %10s %10s %6s %12s %10s\n' behavior target protothr bsc-O2 ratio state-bytes heap/cycle
+for t in i586 x86_64; do
+  build_reference "$t"
+  for b in soccer wide; do
+    ref=$("$OUT/proto-$t" "$b" verify)
+    for o in -O0 -O2; do
+      build_bsc "$t" "$b" "$o"
+      got=$("$OUT/bsc-$t-$b$o" "$b" verify)
+      if [[ $(field checksum "$got") != $(field checksum "$ref") ]]; then
+        echo "bench: $b $t $o: checksum $(field checksum "$got"), protothreads $(field checksum "$ref")" >&2
+        status=1
+      fi
+    done
+    p=$(per_cycle "$OUT/proto-$t" "$b")
+    c=$(per_cycle "$OUT/bsc-$t-$b-O2" "$b")
+    printf '%-7s %-7s %10s %10s %6s %12s %10s\n' "$b" "$t" "$p" "$c" \
+      "$(awk -v a="$c" -v b="$p" 'BEGIN { printf "%.2f", a / b }')" \
+      "$(field state_bytes "$ref")/$(field state_bytes "$got")" \
+      "$(field allocs_per_cycle "$got")"
+  done
+done
+((status == 0)) && echo "checksums: bsc at -O0 and -O2 equals the protothreads on both targets"
+
+echo "== Steps.bs against hand-written C (host)"
 N1=10000 N2=60000
 instructions() { # program args... -> total instructions executed
   valgrind --tool=callgrind --callgrind-out-file="$OUT/cg.out" "$@" >/dev/null 2>"$OUT/cg.err"
   grep -Eo 'Collected : [0-9]+' "$OUT/cg.err" | grep -Eo '[0-9]+'
 }
-per_cycle() { # name a b -> per-cycle instructions
-  awk -v a="$2" -v b="$3" -v n1=$N1 -v n2=$N2 'BEGIN { printf "%.2f", (b - a) / (n2 - n1) }'
+steps_per_cycle() { # a b -> per-cycle instructions
+  awk -v a="$1" -v b="$2" -v n1=$N1 -v n2=$N2 'BEGIN { printf "%.2f", (b - a) / (n2 - n1) }'
 }
-
 "$BSC" -O2 --cycles $N1 Steps.bs -o "$OUT/bs1"
 "$BSC" -O2 --cycles $N2 Steps.bs -o "$OUT/bs2"
 cc -O2 steps_reference.c -o "$OUT/ref"
-
-bs=$(per_cycle bs "$(instructions "$OUT/bs1")" "$(instructions "$OUT/bs2")")
-ref=$(per_cycle ref "$(instructions "$OUT/ref" $N1)" "$(instructions "$OUT/ref" $N2)")
+bs=$(steps_per_cycle "$(instructions "$OUT/bs1")" "$(instructions "$OUT/bs2")")
+ref=$(steps_per_cycle "$(instructions "$OUT/ref" $N1)" "$(instructions "$OUT/ref" $N2)")
 echo "instructions per cycle: bsc $bs, hand-written C $ref"
 echo "ratio bsc / C: $(awk -v a="$bs" -v b="$ref" 'BEGIN { printf "%.2f", a / b }')"
+exit $status
