@@ -22,13 +22,31 @@
 using namespace bsc;
 using namespace bsc::codegen;
 
+llvm::LoadInst *FunctionEmitter::createLoad(ModuleEmitter::Access A,
+                                            llvm::Type *Ty, llvm::Value *Addr,
+                                            const llvm::Twine &Name) {
+  llvm::LoadInst *L = Builder.CreateLoad(Ty, Addr, Name);
+  L->setMetadata(llvm::LLVMContext::MD_tbaa, CGM.getAccessTag(A));
+  return L;
+}
+
+llvm::StoreInst *FunctionEmitter::createStore(ModuleEmitter::Access A,
+                                              llvm::Value *V,
+                                              llvm::Value *Addr) {
+  llvm::StoreInst *S = Builder.CreateStore(V, Addr);
+  S->setMetadata(llvm::LLVMContext::MD_tbaa, CGM.getAccessTag(A));
+  return S;
+}
+
+// Variables (frame fields, allocas, REPL slots) are state memory.
 llvm::Value *FunctionEmitter::emitLoad(const Type *T, llvm::Value *Addr,
                                        const llvm::Twine &Name) {
+  using Access = ModuleEmitter::Access;
   if (T->isClass()) // The value is its storage.
     return Addr;
   if (!T->isBool())
-    return Builder.CreateLoad(CGM.getMemoryType(T), Addr, Name);
-  llvm::Value *V = Builder.CreateLoad(CGM.getMemoryType(T), Addr);
+    return createLoad(Access::State, CGM.getMemoryType(T), Addr, Name);
+  llvm::Value *V = createLoad(Access::State, CGM.getMemoryType(T), Addr);
   return Builder.CreateTrunc(V, Builder.getInt1Ty(), Name);
 }
 
@@ -38,7 +56,7 @@ void FunctionEmitter::emitStore(const Type *T, llvm::Value *V,
     return emitClassCopy(T->getClass(), Addr, V, /*DstConstructed=*/true);
   if (T->isBool())
     V = Builder.CreateZExt(V, Builder.getInt8Ty());
-  Builder.CreateStore(V, Addr);
+  createStore(ModuleEmitter::Access::State, V, Addr);
 }
 
 llvm::Value *FunctionEmitter::getDeclAddress(const Decl *Dcl) {
@@ -80,28 +98,29 @@ llvm::Value *FunctionEmitter::getLValueAddress(const Expr *E) {
 llvm::Value *FunctionEmitter::emitFieldAddress(const MemberExpr &E) {
   assert(E.Resolved && E.Resolved->FieldOffset && "not a field");
   llvm::Value *Base = emitExpr(E.Base); // A class value: its storage.
-  return Builder.CreateConstInBoundsGEP1_64(
-      Builder.getInt8Ty(), Base, *E.Resolved->FieldOffset,
-      E.Member.Name + ".addr");
+  return Builder.CreateConstInBoundsGEP1_64(Builder.getInt8Ty(), Base,
+                                            *E.Resolved->FieldOffset,
+                                            E.Member.Name + ".addr");
 }
 
-llvm::Value *FunctionEmitter::emitFieldLoad(const Type *T,
-                                            const NativeType &NT,
+llvm::Value *FunctionEmitter::emitFieldLoad(const Type *T, const NativeType &NT,
                                             llvm::Value *Addr) {
+  const auto Native = ModuleEmitter::Access::Native;
   unsigned Size = NT.StorageSize;
   if (T->isClass())
     return Addr;
   if (T->isFloat()) {
     if (Size == 8)
       return Builder.CreateFPTrunc(
-          Builder.CreateLoad(Builder.getDoubleTy(), Addr), Builder.getFloatTy());
-    return Builder.CreateLoad(Builder.getFloatTy(), Addr);
+          createLoad(Native, Builder.getDoubleTy(), Addr),
+          Builder.getFloatTy());
+    return createLoad(Native, Builder.getFloatTy(), Addr);
   }
   if (T->isString())
-    return Builder.CreateLoad(Builder.getPtrTy(), Addr);
+    return createLoad(Native, Builder.getPtrTy(), Addr);
   if (Size == 0 || Size > 4)
     Size = T->isBool() ? 1 : 4;
-  llvm::Value *V = Builder.CreateLoad(Builder.getIntNTy(Size * 8), Addr);
+  llvm::Value *V = createLoad(Native, Builder.getIntNTy(Size * 8), Addr);
   if (T->isBool())
     return Builder.CreateICmpNE(V, llvm::ConstantInt::get(V->getType(), 0));
   // Narrow storage extends as its C++ type does: int8_t -1 is -1, uint8_t
@@ -114,23 +133,24 @@ llvm::Value *FunctionEmitter::emitFieldLoad(const Type *T,
 
 void FunctionEmitter::emitFieldStore(const Type *T, const NativeType &NT,
                                      llvm::Value *V, llvm::Value *Addr) {
+  const auto Native = ModuleEmitter::Access::Native;
   unsigned Size = NT.StorageSize;
   if (T->isClass())
     return emitClassCopy(T->getClass(), Addr, V, /*DstConstructed=*/true);
   if (T->isFloat()) {
     if (Size == 8)
       V = Builder.CreateFPExt(V, Builder.getDoubleTy());
-    Builder.CreateStore(V, Addr);
+    createStore(Native, V, Addr);
     return;
   }
   if (T->isString()) {
-    Builder.CreateStore(V, Addr);
+    createStore(Native, V, Addr);
     return;
   }
   if (Size == 0 || Size > 4)
     Size = T->isBool() ? 1 : 4;
-  Builder.CreateStore(Builder.CreateZExtOrTrunc(V, Builder.getIntNTy(Size * 8)),
-                      Addr);
+  createStore(Native, Builder.CreateZExtOrTrunc(V, Builder.getIntNTy(Size * 8)),
+              Addr);
 }
 
 llvm::AllocaInst *FunctionEmitter::createClassTemp(const NativeClass *C,
@@ -204,19 +224,18 @@ void FunctionEmitter::emitClassCopy(const NativeClass *C, llvm::Value *Dst,
   }
 }
 
-llvm::Value *FunctionEmitter::emitNativeCall(const NativeFunction &NF,
-                                             llvm::Value *Self,
-                                             llvm::ArrayRef<const Expr *> Args) {
+llvm::Value *
+FunctionEmitter::emitNativeCall(const NativeFunction &NF, llvm::Value *Self,
+                                llvm::ArrayRef<const Expr *> Args) {
   llvm::SmallVector<llvm::Value *, 4> Values;
   for (const Expr *A : Args)
     Values.push_back(emitExpr(A));
   return emitNativeCallWithValues(NF, Self, Values);
 }
 
-llvm::Value *
-FunctionEmitter::emitNativeCallWithValues(const NativeFunction &NF,
-                                          llvm::Value *Self,
-                                          llvm::ArrayRef<llvm::Value *> Values) {
+llvm::Value *FunctionEmitter::emitNativeCallWithValues(
+    const NativeFunction &NF, llvm::Value *Self,
+    llvm::ArrayRef<llvm::Value *> Values) {
   llvm::FunctionCallee Callee = CGM.getNative(NF);
   llvm::FunctionType *FTy = Callee.getFunctionType();
   llvm::SmallVector<llvm::Value *, 6> Args;
@@ -243,8 +262,8 @@ FunctionEmitter::emitNativeCallWithValues(const NativeFunction &NF,
   // The probe names the binding should it crash (CodeGenOptions::Probes).
   bool Probe = CGM.getOptions().Probes;
   if (Probe) {
-    std::string Name = NF.Owner ? NF.Owner->QualifiedName + "::" + NF.Name
-                                : NF.Name;
+    std::string Name =
+        NF.Owner ? NF.Owner->QualifiedName + "::" + NF.Name : NF.Name;
     if (!NF.Owner)
       for (const NativeModule *NM : CGM.getBehavior().NativeModules)
         if (NM->findFunction(NF.Name) == &NF)
@@ -252,10 +271,8 @@ FunctionEmitter::emitNativeCallWithValues(const NativeFunction &NF,
     emitProbe(NativeProbeSymbol,
               CGM.addSite({DebugSite::NativeCall, &D, CurStmtLoc, Name}));
   }
-  llvm::CallInst *Call =
-      Builder.CreateCall(Callee, Args, FTy->getReturnType()->isVoidTy() || Out
-                                           ? ""
-                                           : NF.Name);
+  llvm::CallInst *Call = Builder.CreateCall(
+      Callee, Args, FTy->getReturnType()->isVoidTy() || Out ? "" : NF.Name);
   if (Probe)
     emitProbe(NativeProbeSymbol, 0);
   if (Out) {
@@ -277,8 +294,8 @@ llvm::Value *FunctionEmitter::emitGlobalIOPointer(NameKind K) {
   llvm::Value *Addr = Builder.CreateConstInBoundsGEP2_32(
       CGM.getStateType(), StatePtr, 0, Field,
       K == NameKind::Input ? "input.addr" : "output.addr");
-  return Builder.CreateLoad(Builder.getPtrTy(), Addr,
-                            K == NameKind::Input ? "input" : "output");
+  return createLoad(ModuleEmitter::Access::State, Builder.getPtrTy(), Addr,
+                    K == NameKind::Input ? "input" : "output");
 }
 
 llvm::Value *FunctionEmitter::emitCond(const Expr *E) {
@@ -456,8 +473,8 @@ llvm::Value *FunctionEmitter::emitLogical(const BinaryExpr &E) {
 
   EndBB->insertInto(Fn);
   Builder.SetInsertPoint(EndBB);
-  llvm::PHINode *Phi = Builder.CreatePHI(Builder.getInt1Ty(), 2,
-                                         IsAnd ? "and" : "or");
+  llvm::PHINode *Phi =
+      Builder.CreatePHI(Builder.getInt1Ty(), 2, IsAnd ? "and" : "or");
   Phi->addIncoming(Builder.getInt1(!IsAnd), LHSEnd);
   Phi->addIncoming(R, RHSEnd);
   return Phi;
@@ -566,7 +583,8 @@ llvm::Value *FunctionEmitter::emitConversion(const ConversionExpr &E) {
   if (To->isIntegerTy(1)) {
     // bool(x) is x != 0, as in C (NaN is true).
     if (From->isFloatTy())
-      return Builder.CreateFCmpUNE(V, llvm::ConstantFP::get(From, 0.0), "tobool");
+      return Builder.CreateFCmpUNE(V, llvm::ConstantFP::get(From, 0.0),
+                                   "tobool");
     return Builder.CreateICmpNE(V, llvm::ConstantInt::get(From, 0), "tobool");
   }
   assert(To->isIntegerTy(32) && "conversions produce int, float or bool");

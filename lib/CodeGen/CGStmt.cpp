@@ -159,7 +159,8 @@ void FunctionEmitter::emitDecl(const DeclStmt &S) {
   if (V->Init)
     emitStore(V->Ty, Init, Addr);
   else
-    Builder.CreateStore(Init, Addr); // Already in its memory type.
+    createStore(ModuleEmitter::Access::State, Init,
+                Addr); // Already in its memory type.
 }
 
 void FunctionEmitter::emitAssign(const AssignStmt &S) {

@@ -38,6 +38,7 @@
 
 using namespace bsc;
 using namespace bsc::codegen;
+using Access = ModuleEmitter::Access;
 
 llvm::Value *FunctionEmitter::getFrameFieldPtr(const TaskDecl *T,
                                                unsigned Field) {
@@ -58,8 +59,8 @@ llvm::Value *FunctionEmitter::getFrameFieldPtr(const TaskDecl *T,
 
 llvm::Value *FunctionEmitter::emitTaskState(const TaskDecl *T) {
   // A never-called task reports done: the state starts zeroed.
-  return Builder.CreateLoad(Builder.getInt32Ty(),
-                            getFrameFieldPtr(T, FrameState), "taskstate");
+  return createLoad(Access::State, Builder.getInt32Ty(),
+                    getFrameFieldPtr(T, FrameState), "taskstate");
 }
 
 void FunctionEmitter::emitTaskPrologue() {
@@ -69,16 +70,17 @@ void FunctionEmitter::emitTaskPrologue() {
 
   llvm::Value *CyclePtr = Builder.CreateConstInBoundsGEP2_32(
       CGM.getStateType(), StatePtr, 0, StateCycle, "cycle.addr");
-  llvm::Value *Cycle = Builder.CreateLoad(I32, CyclePtr, "cycle");
+  llvm::Value *Cycle = createLoad(Access::State, I32, CyclePtr, "cycle");
   llvm::Value *StateAddr = getFrameFieldPtr(Task, FrameState);
   llvm::Value *LastAddr = getFrameFieldPtr(Task, FrameLastCycle);
   llvm::Value *ResumeAddr = getFrameFieldPtr(Task, FrameResume);
-  llvm::Value *State = Builder.CreateLoad(I32, StateAddr, "prev.state");
-  llvm::Value *Last = Builder.CreateLoad(I32, LastAddr, "last.cycle");
+  llvm::Value *State = createLoad(Access::State, I32, StateAddr, "prev.state");
+  llvm::Value *Last = createLoad(Access::State, I32, LastAddr, "last.cycle");
   llvm::Value *Finished =
       Builder.CreateICmpSLE(State, Builder.getInt32(TaskDone), "finished");
   llvm::Value *Gap = Builder.CreateSub(Cycle, Last, "gap");
-  llvm::Value *Missed = Builder.CreateICmpUGT(Gap, Builder.getInt32(1), "missed");
+  llvm::Value *Missed =
+      Builder.CreateICmpUGT(Gap, Builder.getInt32(1), "missed");
   llvm::Value *Reset = Builder.CreateOr(Finished, Missed, "must.reset");
 
   llvm::BasicBlock *ResetBB = llvm::BasicBlock::Create(Ctx, "reset", Fn);
@@ -92,7 +94,7 @@ void FunctionEmitter::emitTaskPrologue() {
   Builder.SetInsertPoint(ResetBB);
   if (FI.Destroy)
     Builder.CreateCall(FI.Destroy, {StatePtr});
-  Builder.CreateStore(Builder.getInt32(0), ResumeAddr);
+  createStore(Access::State, Builder.getInt32(0), ResumeAddr);
   for (const ParamDecl *P : Task->Params)
     if (P->Ty->isClass())
       emitClassInit(P->Ty->getClass(),
@@ -102,21 +104,21 @@ void FunctionEmitter::emitTaskPrologue() {
     if (V->Ty->isClass())
       emitClassInit(V->Ty->getClass(), Addr);
     else
-      Builder.CreateStore(CGM.getZeroValue(V->Ty), Addr);
+      createStore(Access::State, CGM.getZeroValue(V->Ty), Addr);
   }
   if (FI.LiveField)
-    Builder.CreateStore(Builder.getInt8(1),
-                        getFrameFieldPtr(Task, FI.LiveField));
+    createStore(Access::State, Builder.getInt8(1),
+                getFrameFieldPtr(Task, FI.LiveField));
   Builder.CreateBr(DispatchBB);
 
   // Parameters are re-evaluated at every call (rule 2): the body reads the
   // arguments; nested funcs read the copies in the frame.
   Builder.SetInsertPoint(DispatchBB);
-  Builder.CreateStore(Cycle, LastAddr);
+  createStore(Access::State, Cycle, LastAddr);
   for (const ParamDecl *P : Task->Params)
     emitStore(P->Ty, Fn->getArg(P->Index + 1),
               getFrameFieldPtr(Task, FI.Fields.lookup(P)));
-  llvm::Value *Resume = Builder.CreateLoad(I32, ResumeAddr, "resume");
+  llvm::Value *Resume = createLoad(Access::State, I32, ResumeAddr, "resume");
   llvm::BasicBlock *StartBB = llvm::BasicBlock::Create(Ctx, "start", Fn);
   // An out-of-range resume point cannot happen (only yields store it); the
   // default restarts the body rather than doing anything undefined.
@@ -128,9 +130,10 @@ void FunctionEmitter::emitTaskFinish() {
   // A finished task's values are dead: the next call resets the frame.
   if (llvm::Function *Destroy = CGM.getFrame(Task).Destroy)
     Builder.CreateCall(Destroy, {StatePtr});
-  Builder.CreateStore(Builder.getInt32(0), getFrameFieldPtr(Task, FrameResume));
-  Builder.CreateStore(Builder.getInt32(TaskDone),
-                      getFrameFieldPtr(Task, FrameState));
+  createStore(Access::State, Builder.getInt32(0),
+              getFrameFieldPtr(Task, FrameResume));
+  createStore(Access::State, Builder.getInt32(TaskDone),
+              getFrameFieldPtr(Task, FrameState));
   Builder.CreateRetVoid();
 }
 
@@ -154,9 +157,9 @@ void FunctionEmitter::emitYield(const YieldStmt &S) {
   llvm::Value *State =
       S.Value ? emitToTaskState(S.Value) : Builder.getInt32(TaskRunning);
   popTemps(0); // The value's temporaries are allocas of this call.
-  Builder.CreateStore(Builder.getInt32(S.ResumePoint),
-                      getFrameFieldPtr(Task, FrameResume));
-  Builder.CreateStore(State, getFrameFieldPtr(Task, FrameState));
+  createStore(Access::State, Builder.getInt32(S.ResumePoint),
+              getFrameFieldPtr(Task, FrameResume));
+  createStore(Access::State, State, getFrameFieldPtr(Task, FrameState));
   Builder.CreateRetVoid();
 
   llvm::BasicBlock *ResumeBB = llvm::BasicBlock::Create(

@@ -18,6 +18,7 @@
 #include "llvm/IR/Function.h"
 #include "llvm/IR/GlobalVariable.h"
 #include "llvm/IR/InstIterator.h"
+#include "llvm/IR/MDBuilder.h"
 #include "llvm/Support/ErrorHandling.h"
 #include "llvm/Transforms/Utils/BasicBlockUtils.h"
 
@@ -48,14 +49,6 @@ static std::string getInternalName(const CallableDecl &D) {
   return S + D.getName().Name.str();
 }
 
-/// Whether a func or task can be called from C: every parameter is int,
-/// float or bool (bscript.h).
-static bool isExportable(const CallableDecl &D) {
-  for (const ParamDecl *P : D.Params)
-    if (!P->Ty || !(P->Ty->isInt() || P->Ty->isFloat() || P->Ty->isBool()))
-      return false;
-  return !ModuleEmitter::returnsClass(D);
-}
 
 //===----------------------------------------------------------------------===//
 // ModuleEmitter
@@ -63,7 +56,16 @@ static bool isExportable(const CallableDecl &D) {
 
 ModuleEmitter::ModuleEmitter(const Behavior &B, llvm::Module &M,
                              const CodeGenOptions &Opts, BehaviorLayout &Layout)
-    : B(B), M(M), Ctx(M.getContext()), Opts(Opts), Layout(Layout) {}
+    : B(B), M(M), Ctx(M.getContext()), Opts(Opts), Layout(Layout) {
+  llvm::MDBuilder MDB(Ctx);
+  llvm::MDNode *Root = MDB.createTBAARoot("bsc memory");
+  auto Tag = [&](llvm::StringRef Name) {
+    llvm::MDNode *Ty = MDB.createTBAAScalarTypeNode(Name, Root);
+    return MDB.createTBAAStructTagNode(Ty, Ty, 0);
+  };
+  StateAccessTag = Tag("behavior state");
+  NativeAccessTag = Tag("registered C++ field");
+}
 
 llvm::Type *ModuleEmitter::getValueType(const Type *T) {
   switch (T->getKind()) {
@@ -447,45 +449,44 @@ void ModuleEmitter::emitEntries() {
   llvm::Type *I32 = llvm::Type::getInt32Ty(Ctx);
   llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
   Layout.Entries.clear();
-  for (const ModuleAST *Mod : B.Modules) {
-    for (const CallableDecl *D : Mod->Decls) {
-      if (!isExportable(*D))
-        continue;
-      llvm::Function *Impl = getFunction(D);
-      // The C face: bool travels as int32 0/1 both ways.
-      auto CType = [&](llvm::Type *T) { return T->isIntegerTy(1) ? I32 : T; };
-      llvm::SmallVector<llvm::Type *, 4> Params = {Ptr};
-      for (const ParamDecl *P : D->Params)
-        Params.push_back(CType(getValueType(P->Ty)));
-      llvm::Type *Result = CType(Impl->getReturnType());
-      std::string Symbol = getEntrySymbol(Opts.BehaviorName, *D);
-      auto *F = llvm::Function::Create(
-          llvm::FunctionType::get(Result, Params, false),
-          llvm::GlobalValue::ExternalLinkage, Symbol, M);
-      addCommonAttributes(F);
-      F->getArg(0)->setName("state");
+  std::vector<const CallableDecl *> Exports =
+      Opts.Exports ? *Opts.Exports : findBehaviorRoots(B);
+  for (const CallableDecl *D : Exports) {
+    assert(isCallableFromC(*D) && "the driver checks --export");
+    llvm::Function *Impl = getFunction(D);
+    // The C face: bool travels as int32 0/1 both ways.
+    auto CType = [&](llvm::Type *T) { return T->isIntegerTy(1) ? I32 : T; };
+    llvm::SmallVector<llvm::Type *, 4> Params = {Ptr};
+    for (const ParamDecl *P : D->Params)
+      Params.push_back(CType(getValueType(P->Ty)));
+    llvm::Type *Result = CType(Impl->getReturnType());
+    std::string Symbol = getEntrySymbol(Opts.BehaviorName, *D);
+    auto *F = llvm::Function::Create(
+        llvm::FunctionType::get(Result, Params, false),
+        llvm::GlobalValue::ExternalLinkage, Symbol, M);
+    addCommonAttributes(F);
+    F->getArg(0)->setName("state");
 
-      llvm::IRBuilder<> IRB(llvm::BasicBlock::Create(Ctx, "entry", F));
-      llvm::SmallVector<llvm::Value *, 4> Args = {F->getArg(0)};
-      for (const ParamDecl *P : D->Params) {
-        llvm::Value *A = F->getArg(P->Index + 1);
-        A->setName(P->getName().Name);
-        if (P->Ty->isBool())
-          A = IRB.CreateICmpNE(A, llvm::ConstantInt::get(I32, 0),
-                               P->getName().Name + ".bool");
-        Args.push_back(A);
-      }
-      if (Result->isVoidTy()) {
-        IRB.CreateCall(Impl, Args);
-        IRB.CreateRetVoid();
-      } else {
-        llvm::Value *R = IRB.CreateCall(Impl, Args, "result");
-        if (R->getType()->isIntegerTy(1))
-          R = IRB.CreateZExt(R, I32, "result.int");
-        IRB.CreateRet(R);
-      }
-      Layout.Entries.push_back({D, Symbol});
+    llvm::IRBuilder<> IRB(llvm::BasicBlock::Create(Ctx, "entry", F));
+    llvm::SmallVector<llvm::Value *, 4> Args = {F->getArg(0)};
+    for (const ParamDecl *P : D->Params) {
+      llvm::Value *A = F->getArg(P->Index + 1);
+      A->setName(P->getName().Name);
+      if (P->Ty->isBool())
+        A = IRB.CreateICmpNE(A, llvm::ConstantInt::get(I32, 0),
+                             P->getName().Name + ".bool");
+      Args.push_back(A);
     }
+    if (Result->isVoidTy()) {
+      IRB.CreateCall(Impl, Args);
+      IRB.CreateRetVoid();
+    } else {
+      llvm::Value *R = IRB.CreateCall(Impl, Args, "result");
+      if (R->getType()->isIntegerTy(1))
+        R = IRB.CreateZExt(R, I32, "result.int");
+      IRB.CreateRet(R);
+    }
+    Layout.Entries.push_back({D, Symbol});
   }
 }
 

@@ -141,6 +141,20 @@ public:
   void runReplLine(const FuncDecl &Line, llvm::StringRef Symbol,
                    const llvm::DenseMap<const Decl *, uint64_t> &Slots);
 
+  // Alias information ------------------------------------------------------
+
+  /// TBAA access tags of the two kinds of memory generated code touches.
+  /// The state (cycle, input/output pointers, frame headers, scalar
+  /// parameters and locals, REPL slots) and the scalar fields of registered
+  /// C++ objects (`input`, `output` and class values) never overlap, so a
+  /// store to `output.motion` does not force the next read of the output
+  /// pointer or of a frame field to reload. Class values are copied and
+  /// passed to C++ without a tag (they may alias anything).
+  enum class Access { State, Native };
+  llvm::MDNode *getAccessTag(Access A) const {
+    return A == Access::State ? StateAccessTag : NativeAccessTag;
+  }
+
   // Debugging probes (CodeGenOptions::Probes) -------------------------------
 
   /// Records a site; returns its number (from 1).
@@ -182,6 +196,8 @@ private:
   llvm::StringMap<llvm::Constant *> Strings;
   llvm::GlobalVariable *Info = nullptr;
   llvm::Function *BehaviorDestroy = nullptr; ///< Null: nothing to destroy.
+  llvm::MDNode *StateAccessTag = nullptr;
+  llvm::MDNode *NativeAccessTag = nullptr;
   /// emitReplLine: the REPL's variables at their addresses.
   const llvm::DenseMap<const Decl *, uint64_t> *ReplSlots = nullptr;
 };
@@ -280,6 +296,11 @@ private:
   /// the `input` and `output` globals are reached.
   llvm::Value *emitGlobalIOPointer(NameKind K);
   /// Loads/stores a value of type `T` from/to memory (bool: i8 <-> i1).
+  /// A load or store of memory of kind `A` (ModuleEmitter::Access).
+  llvm::LoadInst *createLoad(ModuleEmitter::Access A, llvm::Type *Ty,
+                             llvm::Value *Addr, const llvm::Twine &Name = "");
+  llvm::StoreInst *createStore(ModuleEmitter::Access A, llvm::Value *V,
+                               llvm::Value *Addr);
   llvm::Value *emitLoad(const Type *T, llvm::Value *Addr,
                         const llvm::Twine &Name = "");
   void emitStore(const Type *T, llvm::Value *V, llvm::Value *Addr);

@@ -223,8 +223,9 @@ bool bsc::runFrontend(Compilation &C, const FrontendOptions &Opts) {
   return Loaded && Checked;
 }
 
-/// Finds --entry: `Module::name`, or `name` in the first input's module.
-static const CallableDecl *findEntry(Compilation &C, llvm::StringRef Spec) {
+/// Finds `Module::name`, or `name` in the first input's module, among the
+/// top-level funcs and tasks; null if there is none.
+static const CallableDecl *findTopLevel(Compilation &C, llvm::StringRef Spec) {
   auto [ModName, Name] = Spec.rsplit("::");
   if (Name.empty() && !Spec.contains("::")) {
     Name = Spec;
@@ -237,8 +238,37 @@ static const CallableDecl *findEntry(Compilation &C, llvm::StringRef Spec) {
       if (D->getName().Name == Name)
         return D;
   }
-  C.Diags.report(llvm::SMLoc(), diag::err_no_entry) << Spec;
   return nullptr;
+}
+
+/// Finds --entry.
+static const CallableDecl *findEntry(Compilation &C, llvm::StringRef Spec) {
+  const CallableDecl *D = findTopLevel(C, Spec);
+  if (!D)
+    C.Diags.report(llvm::SMLoc(), diag::err_no_entry) << Spec;
+  return D;
+}
+
+std::optional<std::vector<const CallableDecl *>>
+bsc::findExports(Compilation &C, llvm::ArrayRef<std::string> Specs) {
+  std::vector<const CallableDecl *> Exports;
+  bool OK = true;
+  for (const std::string &Spec : Specs) {
+    const CallableDecl *D = findTopLevel(C, Spec);
+    if (!D) {
+      C.Diags.report(llvm::SMLoc(), diag::err_no_export) << Spec;
+      OK = false;
+    } else if (!isCallableFromC(*D)) {
+      C.Diags.report(D->getName().Loc, diag::err_export_not_callable_from_c)
+          << D->getQualifiedName();
+      OK = false;
+    } else if (!llvm::is_contained(Exports, D)) {
+      Exports.push_back(D);
+    }
+  }
+  if (!OK)
+    return std::nullopt;
+  return Exports;
 }
 
 // A class without default constructor may only start as zero bytes if it

@@ -53,6 +53,10 @@ bsc::loadBehavior(Compilation &C, const CallableDecl &Entry,
   CGOpts.BehaviorName = C.Modules.front()->Name;
   CGOpts.Probes = true;
   CGOpts.ExternalFunctions = Opts.ExternalFunctions;
+  // The JIT calls the entry only.
+  CGOpts.Exports.emplace();
+  if (isCallableFromC(Entry))
+    CGOpts.Exports->push_back(&Entry);
   auto Ctx = std::make_unique<llvm::LLVMContext>();
   std::unique_ptr<llvm::Module> M = emitLLVM(
       C.Checked, *Ctx, JIT.getTriple(), JIT.getDataLayout(), CGOpts, L->Layout);

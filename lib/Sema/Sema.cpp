@@ -536,3 +536,23 @@ std::optional<ReplChecker::Line> ReplChecker::check(BlockStmt *Body,
     }
   return L;
 }
+
+bool bsc::isCallableFromC(const CallableDecl &D) {
+  for (const ParamDecl *P : D.Params)
+    if (!P->Ty || !(P->Ty->isInt() || P->Ty->isFloat() || P->Ty->isBool()))
+      return false;
+  const auto *F = llvm::dyn_cast<FuncDecl>(&D);
+  return !(F && F->ResultTy && F->ResultTy->isClass());
+}
+
+std::vector<const CallableDecl *> bsc::findBehaviorRoots(const Behavior &B) {
+  llvm::DenseSet<const CallableDecl *> Called;
+  for (const CallSite &Call : B.Calls)
+    Called.insert(Call.Callee);
+  std::vector<const CallableDecl *> Roots;
+  for (const ModuleAST *M : B.Modules)
+    for (const CallableDecl *D : M->Decls)
+      if (!Called.count(D) && isCallableFromC(*D))
+        Roots.push_back(D);
+  return Roots;
+}

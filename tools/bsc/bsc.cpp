@@ -77,6 +77,13 @@ cl::opt<std::string>
                        "'main' of the first file's module)"),
               cl::value_desc("Module::name"), cl::init("main"),
               cl::cat(BscCategory), BSC_ALL);
+cl::list<std::string> ExportNames(
+    "export",
+    cl::desc("Export these funcs and tasks as the object's entries (default: "
+             "the behavior's roots, which nothing in it calls); the rest "
+             "is internal"),
+    cl::value_desc("Module::name,..."), cl::CommaSeparated,
+    cl::cat(BscCategory));
 cl::opt<std::string> CyclesArg("cycles",
                                cl::desc("Execution cycles to run (default 1)"),
                                cl::value_desc("N"), cl::init("1"),
@@ -463,6 +470,11 @@ int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
   CGOpts.BehaviorName = getBehaviorName(C);
   if (CGOpts.BehaviorName.empty())
     return finish(C);
+  if (!ExportNames.empty()) {
+    CGOpts.Exports = findExports(C, ExportNames);
+    if (!CGOpts.Exports)
+      return finish(C);
+  }
   if (Kind == OutputKind::Program) {
     CGOpts.ProgramEntry = findProgramEntry(C, EntryName);
     if (!CGOpts.ProgramEntry)

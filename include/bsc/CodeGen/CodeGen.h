@@ -8,7 +8,7 @@
 // THE DESIGN (also docs/design/backend.md; code generation follows it):
 // - ABI: include/bscript/bscript.h (read it; C header robot code includes) and include/bsc/CodeGen/CodeGen.h (`emitLLVM`, `CodeGenOptions`, `BehaviorLayout`, `getEntrySymbol`). Keep these; extend only compatibly, and report changes.
 // - State: one LLVM struct type `%bs.state` = { bs_state_header fields: i32 cycle, i32 reserved, ptr input, ptr output } followed by one frame struct per task, laid out with the TARGET's DataLayout (i586: 4-byte pointers). Frame struct `%bs.frame.<Module>.<task>` = { i32 resume, i32 state, i32 last_cycle, params..., locals... } (field order: header, params in order, then CallableDecl::Locals in order; bool stored as i8, int i32, float float, string ptr, enum i32, TaskState i32). No heap, no LLVM coroutine intrinsics: identical frame sizes at -O0..-O3 and in the JIT.
-// - Every generated function takes `ptr %state` (the behavior state) as its FIRST parameter: funcs `(ptr state, params...) -> result`, nested funcs the same (they reach their task's frame through state), tasks `(ptr state, params...) -> void`. Internal functions have internal linkage; exported entries (top-level funcs and tasks of every module whose params are int/float/bool) are external functions named getEntrySymbol(BehaviorName, Decl) = `bs_<Behavior>__<Module>__<name>`, default visibility; bool params/results of entries travel as i32 (0/1). Also export a constant `bs_<Behavior>_info` of type bs_behavior_info {abi_version=4, state_size, state_align, num_tasks, ptr to constant array of {ptr name "Module::task", i32 frame_offset}, num_modules, ptr to constant array of bs_binding_module {ptr name, ptr @bs_module_<Name>, i64 descriptor hash} for every binding module of Behavior::BindingModules (null when none), ptr destroy (the behavior's destroy function, null when nothing needs destruction), ptr debug_tables (with --instrument the debugger's tables as JSON in section .bs_debug_tables, else null)}.
+// - Every generated function takes `ptr %state` (the behavior state) as its FIRST parameter: funcs `(ptr state, params...) -> result`, nested funcs the same (they reach their task's frame through state), tasks `(ptr state, params...) -> void`. Internal functions have internal linkage; exported entries (CodeGenOptions::Exports, by default the behavior's roots: top-level funcs and tasks whose params are int/float/bool that no func or task calls) are external functions named getEntrySymbol(BehaviorName, Decl) = `bs_<Behavior>__<Module>__<name>`, default visibility; bool params/results of entries travel as i32 (0/1). Also export a constant `bs_<Behavior>_info` of type bs_behavior_info {abi_version=4, state_size, state_align, num_tasks, ptr to constant array of {ptr name "Module::task", i32 frame_offset}, num_modules, ptr to constant array of bs_binding_module {ptr name, ptr @bs_module_<Name>, i64 descriptor hash} for every binding module of Behavior::BindingModules (null when none), ptr destroy (the behavior's destroy function, null when nothing needs destruction), ptr debug_tables (with --instrument the debugger's tables as JSON in section .bs_debug_tables, else null)}.
 // - Task call: the caller evaluates the arguments and calls the task function. The task function: frame = gep state; if (frame.state <= 0 || (state.cycle - frame.last_cycle) > 1 /*unsigned*/) { frame.resume = 0; zero every local of the frame (explicit stores per field; no memset) }; frame.last_cycle = state.cycle; store the params into the frame; switch (frame.resume) to the start (0) or to the code after the k-th yield (YieldStmt::ResumePoint, k >= 1). `yield [v]`: frame.resume = k; frame.state = v (1 if no value; int value of an int or TaskState expr); ret void. Falling off the end or `return`: frame.resume = 0; frame.state = 0; ret. A yield inside a loop resumes inside the loop (the loop's blocks are ordinary CFG; the switch jumps into the block after the yield: locals live in the frame, so no SSA value crosses a yield). `taskState(T)` loads T's frame.state (0 if never called because the state starts zeroed). bs_state_init zeroes the state; bs_begin_cycle does cycle += 1 (first cycle is 1) and stores input/output.
 // - Runtime safety: x / 0 == 0 and x % 0 == x (so a == (a/b)*b + a%b still holds); INT_MIN / -1 == INT_MIN, INT_MIN % -1 == 0; lower with a divisor of 1 substituted and selects, never a trap or UB. + - * wrap (no nsw/nuw flags). int(float) uses llvm.fptosi.sat.i32.f32 (NaN -> 0, saturating). No `unreachable` terminators on reachable paths, no llvm.trap. Locals are always initialised (zero / false / 0.0 / "" when there is no initialiser).
 // - No libc in the generated object: no memset/memcpy calls (mark functions "no-builtins" so loop idioms never become memset; never use CreateMemSet/CreateMemCpy); no libm. Its undefined symbols are only the runtime shim's and the bindings' thunks (the standard `io` module's thunks are in the runtime archive) — plus `_GLOBAL_OFFSET_TABLE_` which i386 PIC objects reference and the linker provides. No mutable global in the generated object (constants only: strings, the info struct).
@@ -31,6 +31,7 @@
 #include "llvm/IR/Module.h"
 #include "llvm/TargetParser/Triple.h"
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace bsc {
@@ -67,6 +68,11 @@ struct CodeGenOptions {
   /// float's precision and range, as on every other target
   /// (docs/language.md, "Floats").
   bool NarrowX87Floats = false;
+  /// The top-level funcs and tasks exported as entries (`bs_<Name>__M__f`),
+  /// each callable from C (isCallableFromC). Everything else is internal,
+  /// so the optimiser may inline it into its callers. Unset: the behavior's
+  /// roots (findBehaviorRoots).
+  std::optional<std::vector<const CallableDecl *>> Exports;
 };
 
 /// The section holding the debug tables of an instrumented object.
@@ -107,7 +113,7 @@ struct BehaviorLayout {
     const CallableDecl *Decl;
     std::string Symbol;
   };
-  /// The exported entries (top-level funcs and tasks with scalar parameters).
+  /// The exported entries (CodeGenOptions::Exports), in that order.
   std::vector<Entry> Entries;
   std::string InfoSymbol; ///< `bs_<Name>_info`.
   /// With CodeGenOptions::Probes: the sites, numbered from 1 (0 in a probe

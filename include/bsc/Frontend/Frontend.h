@@ -93,6 +93,13 @@ bool runFrontend(Compilation &C, const FrontendOptions &Opts);
 /// constructible without arguments. Reports and returns null otherwise.
 const CallableDecl *findProgramEntry(Compilation &C, llvm::StringRef Spec);
 
+/// The funcs and tasks `bsc --export` names (`Module::name`, or `name` in
+/// the first input's module; a name given twice counts once): each must be
+/// top-level and callable from C (isCallableFromC). Reports and returns
+/// std::nullopt otherwise.
+std::optional<std::vector<const CallableDecl *>>
+findExports(Compilation &C, llvm::ArrayRef<std::string> Specs);
+
 /// --verify: compares the reported diagnostics with the `# expected-error
 /// {{text}}` (also -warning, -note; `@+N`/`@-N` for another line) comments of
 /// the source buffers. Each diagnostic must match an expectation on its line

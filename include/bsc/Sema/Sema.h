@@ -62,6 +62,18 @@ bool checkBehavior(llvm::ArrayRef<ModuleAST *> Modules, ASTContext &Ctx,
                    DiagnosticEngine &Diags, Behavior &Out,
                    const NativeRegistry *Natives = nullptr);
 
+/// Whether C can call a func or task as an entry of the compiled object:
+/// every parameter is int, float or bool, and the result is not a class
+/// value (include/bscript/bscript.h).
+bool isCallableFromC(const CallableDecl &D);
+
+/// The roots of the behavior: every top-level func and task callable from
+/// C that no func or task of the behavior calls, in module and source
+/// order. They are what an object exports unless told otherwise
+/// (`bsc --export`): the rest is internal, so that the optimiser may inline
+/// it into its callers.
+std::vector<const CallableDecl *> findBehaviorRoots(const Behavior &B);
+
 namespace sema {
 class Sema;
 } // namespace sema
