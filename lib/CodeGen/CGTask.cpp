@@ -3,14 +3,25 @@
 // A task is a singleton generator. Its function runs one step per call:
 //
 //   entry:     if (frame.state <= 0 || cycle - frame.last_cycle > 1) goto reset
-//   reset:     [destroy(frame) if live]; frame.resume = 0; every local = its
-//              zero value, class values constructed; [frame.live = 1]
-//   dispatch:  frame.last_cycle = cycle; frame.params = args
-//              switch (frame.resume) { 0: start; k: resume.k }
+//   reset:     [destroy(frame) if live]; class values constructed;
+//              [frame.live = 1]; goto start
+//   dispatch:  frame.last_cycle = cycle; [frame.params = args]
+//              switch (frame.resume) { k: resume.k; default: start }
 //   start:     the body...
 //   yield k:   frame.resume = k; frame.state = v; ret void
 //   resume.k:  ...the code after the k-th yield
-//   end:       [destroy(frame)]; frame.resume = 0; frame.state = done; ret
+//   end:       [destroy(frame)]; frame.state = done; ret
+//
+// Only what a later call reads is stored. `resume` is read only when the
+// state is running, and every way out of a call either stores it (a yield)
+// or leaves the state done or failed (the end, `yield` of a value <= 0),
+// so neither the reset nor the end stores it. A scalar local gets its
+// value where it is declared, before any use, so the reset does not zero
+// it. A task's body reads its scalar parameters from the arguments, so the
+// frame keeps a copy only for a nested func that reads it. The JIT's
+// debugger (CodeGenOptions::Probes) shows frames between cycles, so there
+// every field is kept exact: resume 0 when not running, zeroed locals and
+// the parameters of the last call.
 //
 // Frames with class values whose destructor is not trivial end with an
 // `i8 live` field and have a function `bs.<M>.<task>.destroy(state)` that
@@ -84,17 +95,26 @@ void FunctionEmitter::emitTaskPrologue() {
   llvm::Value *Reset = Builder.CreateOr(Finished, Missed, "must.reset");
 
   llvm::BasicBlock *ResetBB = llvm::BasicBlock::Create(Ctx, "reset", Fn);
+  llvm::BasicBlock *RunningBB = llvm::BasicBlock::Create(Ctx, "running", Fn);
   llvm::BasicBlock *DispatchBB = llvm::BasicBlock::Create(Ctx, "dispatch", Fn);
-  Builder.CreateCondBr(Reset, ResetBB, DispatchBB);
+  Builder.CreateCondBr(Reset, ResetBB, RunningBB);
 
-  // Fresh locals: one store per field (never memset: no libc). Class
-  // values are constructed, parameters first (they are assigned at every
-  // call); values a running task left behind (a missed cycle) are
-  // destroyed first, through the frame's destroy function.
+  // A running task continues after its last yield.
+  Builder.SetInsertPoint(RunningBB);
+  llvm::Value *Resumed = createLoad(Access::State, I32, ResumeAddr, "resume");
+  Builder.CreateBr(DispatchBB);
+
+  // Fresh class values, constructed (parameters first: they are assigned
+  // at every call), after destroying what a running task left behind (a
+  // missed cycle) through the frame's destroy function. Scalars need no
+  // store (above), except in exact frames: one store per field, never
+  // memset (no libc).
   Builder.SetInsertPoint(ResetBB);
+  bool ExactFrames = CGM.getOptions().Probes;
   if (FI.Destroy)
     Builder.CreateCall(FI.Destroy, {StatePtr});
-  createStore(Access::State, Builder.getInt32(0), ResumeAddr);
+  if (ExactFrames)
+    createStore(Access::State, Builder.getInt32(0), ResumeAddr);
   for (const ParamDecl *P : Task->Params)
     if (P->Ty->isClass())
       emitClassInit(P->Ty->getClass(),
@@ -103,22 +123,26 @@ void FunctionEmitter::emitTaskPrologue() {
     llvm::Value *Addr = getFrameFieldPtr(Task, FI.Fields.lookup(V));
     if (V->Ty->isClass())
       emitClassInit(V->Ty->getClass(), Addr);
-    else
+    else if (ExactFrames)
       createStore(Access::State, CGM.getZeroValue(V->Ty), Addr);
   }
   if (FI.LiveField)
     createStore(Access::State, Builder.getInt8(1),
                 getFrameFieldPtr(Task, FI.LiveField));
+  llvm::BasicBlock *ResetEnd = Builder.GetInsertBlock();
   Builder.CreateBr(DispatchBB);
 
   // Parameters are re-evaluated at every call (rule 2): the body reads the
   // arguments; nested funcs read the copies in the frame.
   Builder.SetInsertPoint(DispatchBB);
+  llvm::PHINode *Resume = Builder.CreatePHI(I32, 2, "resume.point");
+  Resume->addIncoming(Builder.getInt32(0), ResetEnd);
+  Resume->addIncoming(Resumed, RunningBB);
   createStore(Access::State, Cycle, LastAddr);
   for (const ParamDecl *P : Task->Params)
-    emitStore(P->Ty, Fn->getArg(P->Index + 1),
-              getFrameFieldPtr(Task, FI.Fields.lookup(P)));
-  llvm::Value *Resume = createLoad(Access::State, I32, ResumeAddr, "resume");
+    if (P->Ty->isClass() || P->ReadByNestedFunc || ExactFrames)
+      emitStore(P->Ty, Fn->getArg(P->Index + 1),
+                getFrameFieldPtr(Task, FI.Fields.lookup(P)));
   llvm::BasicBlock *StartBB = llvm::BasicBlock::Create(Ctx, "start", Fn);
   // An out-of-range resume point cannot happen (only yields store it); the
   // default restarts the body rather than doing anything undefined.
@@ -130,8 +154,9 @@ void FunctionEmitter::emitTaskFinish() {
   // A finished task's values are dead: the next call resets the frame.
   if (llvm::Function *Destroy = CGM.getFrame(Task).Destroy)
     Builder.CreateCall(Destroy, {StatePtr});
-  createStore(Access::State, Builder.getInt32(0),
-              getFrameFieldPtr(Task, FrameResume));
+  if (CGM.getOptions().Probes)
+    createStore(Access::State, Builder.getInt32(0),
+                getFrameFieldPtr(Task, FrameResume));
   createStore(Access::State, Builder.getInt32(TaskDone),
               getFrameFieldPtr(Task, FrameState));
   Builder.CreateRetVoid();
@@ -162,8 +187,8 @@ void FunctionEmitter::emitYield(const YieldStmt &S) {
   createStore(Access::State, State, getFrameFieldPtr(Task, FrameState));
   Builder.CreateRetVoid();
 
-  llvm::BasicBlock *ResumeBB = llvm::BasicBlock::Create(
+  llvm::BasicBlock *RunningBB = llvm::BasicBlock::Create(
       CGM.getContext(), "resume." + llvm::Twine(S.ResumePoint), Fn);
-  ResumeSwitch->addCase(Builder.getInt32(S.ResumePoint), ResumeBB);
-  Builder.SetInsertPoint(ResumeBB);
+  ResumeSwitch->addCase(Builder.getInt32(S.ResumePoint), RunningBB);
+  Builder.SetInsertPoint(RunningBB);
 }

@@ -234,7 +234,10 @@ std::string debug::describeActivation(const DebugTables &T,
   else
     S = "state " + std::to_string(A.state);
   const DebugTables::Task &Task = T.Tasks[A.task];
-  if (A.resume > 0 && A.resume <= Task.YieldLines.size())
+  // A task that ended (done) waits at no yield: optimised code does not
+  // clear its resume point (lib/CodeGen/CGTask.cpp).
+  if (A.state != BS_TASK_DONE && A.resume > 0 &&
+      A.resume <= Task.YieldLines.size())
     S += ", " + Task.File + ":" + std::to_string(Task.YieldLines[A.resume - 1]);
   return S;
 }

@@ -170,6 +170,8 @@ const Type *Sema::applyLookup(NameExpr *E, const LookupResult &L, Access A) {
   case LookupKind::Param:
     E->Kind = NameKind::Param;
     E->Param = L.Param;
+    if (L.Param->Owner != CurCallable)
+      L.Param->ReadByNestedFunc = true;
     if (!checkParamAccess(E, L.Param, A))
       return Types.getError();
     return L.Param->Ty ? L.Param->Ty : Types.getError();

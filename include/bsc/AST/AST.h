@@ -131,6 +131,9 @@ public:
   CallableDecl *Owner = nullptr; ///< Set by the parser.
   unsigned Index = 0;            ///< Position in the parameter list.
   const Type *Ty = nullptr;      ///< Sema.
+  /// Sema: a func nested in the owning task reads it, so the task keeps a
+  /// copy in its frame (the task's own body reads the argument).
+  bool ReadByNestedFunc = false;
   static bool classof(const Node *N) {
     return N->getKind() == NodeKind::ParamDecl;
   }
