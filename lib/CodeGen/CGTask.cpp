@@ -12,10 +12,17 @@
 //   resume.k:  ...the code after the k-th yield
 //   end:       [destroy(frame)]; frame.state = done; ret
 //
-// Only what a later call reads is stored. `resume` is read only when the
-// state is running, and every way out of a call either stores it (a yield)
-// or leaves the state done or failed (the end, `yield` of a value <= 0),
-// so neither the reset nor the end stores it. A scalar local gets its
+// Which stores. Only what a later call reads is stored. `resume` is read
+// only when the state is running, and every way out of a call either
+// stores it (a yield) or leaves the state done or failed (the end, `yield`
+// of a value <= 0), so neither the reset nor the end stores it. The reset
+// stores state = running (a task that is executing reports running,
+// docs/language.md). Most tasks yield nothing but "running" (a plain
+// `yield`) besides ending with a constant: their yields leave the state
+// alone.
+// A task with a single yield that keeps it running (most loops) gets that
+// resume point at the reset too, and the yield itself stores nothing: it
+// is a `ret`. A scalar local gets its
 // value where it is declared, before any use, so the reset does not zero
 // it. A task's body reads its scalar parameters from the arguments, so the
 // frame keeps a copy only for a nested func that reads it. The JIT's
@@ -46,6 +53,7 @@
 //===----------------------------------------------------------------------===//
 #include "CodeGenImpl.h"
 #include "llvm/IR/Constants.h"
+#include <optional>
 
 using namespace bsc;
 using namespace bsc::codegen;
@@ -74,6 +82,40 @@ llvm::Value *FunctionEmitter::emitTaskState(const TaskDecl *T) {
                     getFrameFieldPtr(T, FrameState), "taskstate");
 }
 
+/// The task state a yield's value always has, if it is a constant: an int
+/// literal, `-` one, or a named state (`TaskState::failure`).
+static std::optional<int64_t> getConstantState(const Expr *E) {
+  if (!E)
+    return TaskRunning;
+  if (const auto *L = llvm::dyn_cast<IntLiteralExpr>(E))
+    return L->Value;
+  if (const auto *N = llvm::dyn_cast<NameExpr>(E))
+    if (N->Kind == NameKind::EnumValue)
+      return N->EnumValue;
+  if (const auto *U = llvm::dyn_cast<UnaryExpr>(E))
+    if (U->Op == UnaryOp::Neg)
+      if (const auto *L = llvm::dyn_cast<IntLiteralExpr>(U->Operand))
+        return -static_cast<int64_t>(L->Value);
+  return std::nullopt;
+}
+
+YieldPlan codegen::planYields(const TaskDecl &T) {
+  YieldPlan P;
+  unsigned Running = 0;
+  for (const YieldStmt *Y : T.Yields) {
+    std::optional<int64_t> V = getConstantState(Y->Value);
+    if (V && *V <= TaskDone)
+      continue; // Ends the task.
+    if (!V || *V != TaskRunning)
+      P.OnlyRunning = false;
+    ++Running;
+    P.SingleResume = Y->ResumePoint;
+  }
+  if (Running != 1)
+    P.SingleResume = 0;
+  return P;
+}
+
 void FunctionEmitter::emitTaskPrologue() {
   llvm::LLVMContext &Ctx = CGM.getContext();
   const FrameInfo &FI = CGM.getFrame(Task);
@@ -100,8 +142,16 @@ void FunctionEmitter::emitTaskPrologue() {
   Builder.CreateCondBr(Reset, ResetBB, RunningBB);
 
   // A running task continues after its last yield.
+  Plan = planYields(*Task);
   Builder.SetInsertPoint(RunningBB);
-  llvm::Value *Resumed = createLoad(Access::State, I32, ResumeAddr, "resume");
+  // Only running (1) can be stored where the state stays > 0: telling the
+  // optimiser so lets a caller's check of this call's state fold.
+  if (Plan.OnlyRunning)
+    Builder.CreateAssumption(
+        Builder.CreateICmpEQ(State, Builder.getInt32(TaskRunning)));
+  llvm::Value *Resumed = Builder.getInt32(Plan.SingleResume);
+  if (!Plan.SingleResume)
+    Resumed = createLoad(Access::State, I32, ResumeAddr, "resume");
   Builder.CreateBr(DispatchBB);
 
   // Fresh class values, constructed (parameters first: they are assigned
@@ -113,8 +163,13 @@ void FunctionEmitter::emitTaskPrologue() {
   bool ExactFrames = CGM.getOptions().Probes;
   if (FI.Destroy)
     Builder.CreateCall(FI.Destroy, {StatePtr});
-  if (ExactFrames)
+  if (Plan.SingleResume)
+    createStore(Access::State, Builder.getInt32(Plan.SingleResume),
+                ResumeAddr);
+  else if (ExactFrames)
     createStore(Access::State, Builder.getInt32(0), ResumeAddr);
+  // Running from here on (docs/language.md: an executing task is running).
+  createStore(Access::State, Builder.getInt32(TaskRunning), StateAddr);
   for (const ParamDecl *P : Task->Params)
     if (P->Ty->isClass())
       emitClassInit(P->Ty->getClass(),
@@ -182,9 +237,14 @@ void FunctionEmitter::emitYield(const YieldStmt &S) {
   llvm::Value *State =
       S.Value ? emitToTaskState(S.Value) : Builder.getInt32(TaskRunning);
   popTemps(0); // The value's temporaries are allocas of this call.
-  createStore(Access::State, Builder.getInt32(S.ResumePoint),
-              getFrameFieldPtr(Task, FrameResume));
-  createStore(Access::State, State, getFrameFieldPtr(Task, FrameState));
+  // "Which stores" above: the reset did what a running yield leaves out.
+  std::optional<int64_t> Constant = getConstantState(S.Value);
+  bool Ends = Constant && *Constant <= TaskDone;
+  if (Ends || S.ResumePoint != Plan.SingleResume)
+    createStore(Access::State, Builder.getInt32(S.ResumePoint),
+                getFrameFieldPtr(Task, FrameResume));
+  if (Ends || !Plan.OnlyRunning)
+    createStore(Access::State, State, getFrameFieldPtr(Task, FrameState));
   Builder.CreateRetVoid();
 
   llvm::BasicBlock *RunningBB = llvm::BasicBlock::Create(

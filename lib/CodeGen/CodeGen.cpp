@@ -298,6 +298,7 @@ void ModuleEmitter::layoutState() {
       Add(P, P->Ty);
     for (const VarDecl *V : T->Locals)
       Add(V, V->Ty);
+    Entry.OnlyRunningStates = planYields(*T).OnlyRunning;
     Layout.Tasks.push_back(std::move(Entry));
   }
 }

@@ -70,6 +70,17 @@ struct FrameInfo {
   llvm::Function *Destroy = nullptr;
 };
 
+/// What the task's yields store (CGTask.cpp, "Which stores").
+struct YieldPlan {
+  /// Every yield leaves the state running (1) or ends the task (a
+  /// constant <= 0): the reset stores running, running yields do not.
+  bool OnlyRunning = true;
+  /// The resume point of the one yield that leaves the task running,
+  /// if it has exactly one: the reset stores it, that yield does not.
+  unsigned SingleResume = 0;
+};
+YieldPlan planYields(const TaskDecl &T);
+
 /// What the whole behavior shares while it is being lowered.
 class ModuleEmitter {
 public:
@@ -367,6 +378,7 @@ private:
   llvm::SmallVector<LoopTargets, 4> Loops;
   /// Task bodies: the dispatch on frame.resume; a case is added per yield.
   llvm::SwitchInst *ResumeSwitch = nullptr;
+  YieldPlan Plan; ///< Of the task being emitted.
   /// Where allocas and frame-field addresses go: the top of the entry block.
   llvm::Instruction *EntryPoint = nullptr;
   /// The address of each frame field used, computed once (task, field).

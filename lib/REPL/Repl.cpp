@@ -211,7 +211,8 @@ static bool sameFrame(const BehaviorLayout::Task &A,
   // The resume point numbers the yields: a task with more or fewer yields
   // would resume somewhere else.
   if (A.FrameSize != B.FrameSize || A.Fields.size() != B.Fields.size() ||
-      A.Decl->Yields.size() != B.Decl->Yields.size())
+      A.Decl->Yields.size() != B.Decl->Yields.size() ||
+      A.OnlyRunningStates != B.OnlyRunningStates)
     return false;
   for (size_t I = 0; I < A.Fields.size(); ++I) {
     const BehaviorLayout::FrameField &FA = A.Fields[I], &FB = B.Fields[I];

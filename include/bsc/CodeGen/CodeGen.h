@@ -107,6 +107,11 @@ struct BehaviorLayout {
     uint64_t FrameSize; ///< Of its frame struct, without padding after it.
     /// Parameters in order, then locals in declaration order.
     std::vector<FrameField> Fields;
+    /// The task's yields leave it running (1) or end it with a constant
+    /// state <= 0, so its code takes a state > 0 to be 1: a frame may only
+    /// be carried into such a task (the REPL's :reload) from one that is
+    /// too.
+    bool OnlyRunningStates = false;
   };
   std::vector<Task> Tasks;
   struct Entry {
