@@ -151,6 +151,16 @@ uint32_t bs_trace_snapshot(const void *state, const bs_behavior_info *info,
 /** Starts the next execution cycle with this cycle's input and output. */
 void bs_begin_cycle(void *state, const void *input, void *output);
 
+/** bs_begin_cycle inline, for the robot's loop: it costs no call (the
+ *  header of --emit-header uses it). */
+static inline void bs_begin_cycle_inline(void *state, const void *input,
+                                         void *output) {
+  bs_state_header *header = (bs_state_header *)state;
+  header->cycle += 1;
+  header->input = input;
+  header->output = output;
+}
+
 /** The state that task `name` ("Module::task") left at its most recent call
  *  (BS_TASK_DONE if never called); `found` (may be NULL) tells whether the
  *  behavior has such a task. */

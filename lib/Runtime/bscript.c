@@ -123,10 +123,7 @@ void bs_state_destroy(void *state, const bs_behavior_info *info) {
 }
 
 void bs_begin_cycle(void *state, const void *input, void *output) {
-  bs_state_header *header = (bs_state_header *)state;
-  header->cycle += 1;
-  header->input = input;
-  header->output = output;
+  bs_begin_cycle_inline(state, input, output);
 }
 
 uint32_t bs_trace_snapshot(const void *state, const bs_behavior_info *info,

@@ -108,7 +108,7 @@ void bsc::writeBehaviorHeader(const Behavior &B, const BehaviorLayout &L,
      << "/** Starts the next execution cycle. */\n"
      << "static inline void " << P << "_begin_cycle(" << P
      << "_state *state, const void *input, void *output) {\n"
-     << "  bs_begin_cycle(state, input, output);\n}\n\n";
+     << "  bs_begin_cycle_inline(state, input, output);\n}\n\n";
   for (const BehaviorLayout::Entry &E : L.Entries) {
     const CallableDecl &D = *E.Decl;
     const Type *Result = nullptr;
