@@ -178,6 +178,15 @@ template <class ELFT> Error SectionChecker<ELFT>::run() {
   // descriptors.
   if (Secs.empty())
     return Error::success();
+  // Section 0 is the null section; its size, link and info fields may
+  // extend the ELF header, but its type must stay SHT_NULL: ELFObjectFile
+  // takes any section of type SHT_SYMTAB for the symbol table, this one too.
+  if (Secs[0].sh_type != ELF::SHT_NULL)
+    return createStringError(
+        inconvertibleErrorCode(),
+        "section 0 has type " +
+            getELFSectionTypeName(EF.getHeader().e_machine, Secs[0].sh_type) +
+            " (expected SHT_NULL)");
   for (const Shdr &S : Secs.drop_front()) {
     // Section 0 is the null section (its fields may extend the header);
     // so is a section of type SHT_NULL: nothing reads it.
