@@ -36,7 +36,7 @@ extern "C" {
 #endif
 
 /** Bumped whenever the layout below changes; bs_behavior_info carries it. */
-#define BS_ABI_VERSION 4
+#define BS_ABI_VERSION 5
 
 /** Task states (language.md): > 0 running, 0 done, < 0 failure. */
 #define BS_TASK_DONE 0
@@ -46,7 +46,9 @@ extern "C" {
 /** The start of every behavior state. */
 typedef struct bs_state_header {
   uint32_t cycle;     /**< Execution cycle; bs_begin_cycle increments it. */
-  uint32_t reserved;  /**< Zero. */
+  uint32_t stamp;     /**< cycle + 2, kept by bs_state_init and
+                          bs_begin_cycle: what a task's frame records of
+                          its last call (bs_frame_header.last_call). */
   const void *input;  /**< The `input` global of this cycle. */
   void *output;       /**< The `output` global of this cycle. */
 } bs_state_header;
@@ -55,7 +57,11 @@ typedef struct bs_state_header {
 typedef struct bs_frame_header {
   int32_t resume;      /**< 0: start from the top; k: after the k-th yield. */
   int32_t state;       /**< The task state its most recent call left. */
-  uint32_t last_cycle; /**< The cycle of its most recent call. */
+  /** The state's stamp at its most recent call (0: never called), with
+   *  bit 31 flipped if that call ended the task (done or failure): a call
+   *  in this cycle or the previous one left a stamp at most 1 less than
+   *  the state's, in a way that code can test with one subtraction. */
+  uint32_t last_call;
 } bs_frame_header;
 
 typedef struct bs_task_info {
@@ -157,6 +163,7 @@ static inline void bs_begin_cycle_inline(void *state, const void *input,
                                          void *output) {
   bs_state_header *header = (bs_state_header *)state;
   header->cycle += 1;
+  header->stamp = header->cycle + 2;
   header->input = input;
   header->output = output;
 }

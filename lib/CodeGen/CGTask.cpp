@@ -2,15 +2,27 @@
 //
 // A task is a singleton generator. Its function runs one step per call:
 //
-//   entry:     if (frame.state <= 0 || cycle - frame.last_cycle > 1) goto reset
-//   reset:     [destroy(frame) if live]; class values constructed;
-//              [frame.live = 1]; goto start
-//   dispatch:  frame.last_cycle = cycle; [frame.params = args]
+//   entry:     if ([frame.state <= 0 ||] stamp - frame.last_call > 1)
+//                goto reset
+//   reset:     [destroy(frame) if live]; frame.state = running;
+//              class values constructed; [frame.live = 1]; goto start
+//   dispatch:  frame.last_call = stamp; [frame.params = args]
 //              switch (frame.resume) { k: resume.k; default: start }
 //   start:     the body...
-//   yield k:   frame.resume = k; frame.state = v; ret void
+//   yield k:   [frame.resume = k]; [frame.state = v]; ret void
 //   resume.k:  ...the code after the k-th yield
-//   end:       [destroy(frame)]; frame.state = done; ret
+//   end:       [destroy(frame)]; frame.state = done;
+//              [frame.last_call = stamp ^ ended]; ret
+//
+// The call stamp. Each call records the state's stamp (the cycle + 2,
+// kept by the runtime) in frame.last_call, so that a zeroed frame (0)
+// reads as never called, also before the first cycle; a call that ended
+// the task (done or failure) flips bit 31 of it. Either way the gap to the
+// next call's stamp is more than one (unsigned) and the task starts again;
+// after a call in this cycle or the previous one it is 0 or 1. A task that yields only running or
+// constants (YieldPlan::OnlyRunning; most do) marks every ending so, and
+// its entry tests the stamp alone. Other tasks may end by `yield v` with a
+// v <= 0 known only at run time: they test the state too.
 //
 // Which stores. Only what a later call reads is stored. `resume` is read
 // only when the state is running, and every way out of a call either
@@ -121,20 +133,26 @@ void FunctionEmitter::emitTaskPrologue() {
   const FrameInfo &FI = CGM.getFrame(Task);
   llvm::Type *I32 = Builder.getInt32Ty();
 
-  llvm::Value *CyclePtr = Builder.CreateConstInBoundsGEP2_32(
-      CGM.getStateType(), StatePtr, 0, StateCycle, "cycle.addr");
-  llvm::Value *Cycle = createLoad(Access::State, I32, CyclePtr, "cycle");
   llvm::Value *StateAddr = getFrameFieldPtr(Task, FrameState);
-  llvm::Value *LastAddr = getFrameFieldPtr(Task, FrameLastCycle);
+  llvm::Value *LastAddr = getFrameFieldPtr(Task, FrameLastCall);
   llvm::Value *ResumeAddr = getFrameFieldPtr(Task, FrameResume);
-  llvm::Value *State = createLoad(Access::State, I32, StateAddr, "prev.state");
-  llvm::Value *Last = createLoad(Access::State, I32, LastAddr, "last.cycle");
-  llvm::Value *Finished =
-      Builder.CreateICmpSLE(State, Builder.getInt32(TaskDone), "finished");
-  llvm::Value *Gap = Builder.CreateSub(Cycle, Last, "gap");
-  llvm::Value *Missed =
-      Builder.CreateICmpUGT(Gap, Builder.getInt32(1), "missed");
-  llvm::Value *Reset = Builder.CreateOr(Finished, Missed, "must.reset");
+  Plan = planYields(*Task);
+  Stamp = createLoad(Access::State, I32,
+                     Builder.CreateConstInBoundsGEP2_32(
+                         CGM.getStateType(), StatePtr, 0, StateStamp,
+                         "stamp.addr"),
+                     "stamp");
+  llvm::Value *Last = createLoad(Access::State, I32, LastAddr, "last.call");
+  llvm::Value *Gap = Builder.CreateSub(Stamp, Last, "gap");
+  llvm::Value *Reset =
+      Builder.CreateICmpUGT(Gap, Builder.getInt32(1), "must.reset");
+  if (!Plan.OnlyRunning) {
+    llvm::Value *State =
+        createLoad(Access::State, I32, StateAddr, "prev.state");
+    llvm::Value *Finished =
+        Builder.CreateICmpSLE(State, Builder.getInt32(TaskDone), "finished");
+    Reset = Builder.CreateOr(Finished, Reset, "must.reset");
+  }
 
   llvm::BasicBlock *ResetBB = llvm::BasicBlock::Create(Ctx, "reset", Fn);
   llvm::BasicBlock *RunningBB = llvm::BasicBlock::Create(Ctx, "running", Fn);
@@ -142,13 +160,13 @@ void FunctionEmitter::emitTaskPrologue() {
   Builder.CreateCondBr(Reset, ResetBB, RunningBB);
 
   // A running task continues after its last yield.
-  Plan = planYields(*Task);
   Builder.SetInsertPoint(RunningBB);
   // Only running (1) can be stored where the state stays > 0: telling the
   // optimiser so lets a caller's check of this call's state fold.
   if (Plan.OnlyRunning)
-    Builder.CreateAssumption(
-        Builder.CreateICmpEQ(State, Builder.getInt32(TaskRunning)));
+    Builder.CreateAssumption(Builder.CreateICmpEQ(
+        createLoad(Access::State, I32, StateAddr, "prev.state"),
+        Builder.getInt32(TaskRunning)));
   llvm::Value *Resumed = Builder.getInt32(Plan.SingleResume);
   if (!Plan.SingleResume)
     Resumed = createLoad(Access::State, I32, ResumeAddr, "resume");
@@ -193,7 +211,7 @@ void FunctionEmitter::emitTaskPrologue() {
   llvm::PHINode *Resume = Builder.CreatePHI(I32, 2, "resume.point");
   Resume->addIncoming(Builder.getInt32(0), ResetEnd);
   Resume->addIncoming(Resumed, RunningBB);
-  createStore(Access::State, Cycle, LastAddr);
+  createStore(Access::State, Stamp, LastAddr);
   for (const ParamDecl *P : Task->Params)
     if (P->Ty->isClass() || P->ReadByNestedFunc || ExactFrames)
       emitStore(P->Ty, Fn->getArg(P->Index + 1),
@@ -214,7 +232,16 @@ void FunctionEmitter::emitTaskFinish() {
                 getFrameFieldPtr(Task, FrameResume));
   createStore(Access::State, Builder.getInt32(TaskDone),
               getFrameFieldPtr(Task, FrameState));
+  markEnded();
   Builder.CreateRetVoid();
+}
+
+void FunctionEmitter::markEnded() {
+  // "The call stamp" above: the next call starts from the top.
+  if (Plan.OnlyRunning)
+    createStore(Access::State,
+                Builder.CreateXor(Stamp, Builder.getInt32(LastCallEnded)),
+                getFrameFieldPtr(Task, FrameLastCall));
 }
 
 void FunctionEmitter::emitTaskEpilogue() {
@@ -245,10 +272,15 @@ void FunctionEmitter::emitYield(const YieldStmt &S) {
                 getFrameFieldPtr(Task, FrameResume));
   if (Ends || !Plan.OnlyRunning)
     createStore(Access::State, State, getFrameFieldPtr(Task, FrameState));
+  if (Ends)
+    markEnded();
   Builder.CreateRetVoid();
 
-  llvm::BasicBlock *RunningBB = llvm::BasicBlock::Create(
+  // The code after the yield; a yield that ends the task is never resumed
+  // (the next call starts from the top), so nothing jumps there.
+  llvm::BasicBlock *ResumeBB = llvm::BasicBlock::Create(
       CGM.getContext(), "resume." + llvm::Twine(S.ResumePoint), Fn);
-  ResumeSwitch->addCase(Builder.getInt32(S.ResumePoint), RunningBB);
-  Builder.SetInsertPoint(RunningBB);
+  if (!Ends)
+    ResumeSwitch->addCase(Builder.getInt32(S.ResumePoint), ResumeBB);
+  Builder.SetInsertPoint(ResumeBB);
 }

@@ -26,7 +26,7 @@ using namespace bsc;
 using namespace bsc::codegen;
 
 /// The ABI version written into bs_behavior_info (BS_ABI_VERSION).
-static constexpr uint32_t ABIVersion = 4;
+static constexpr uint32_t ABIVersion = 5;
 
 std::string bsc::getEntrySymbol(llvm::StringRef BehaviorName,
                                 const CallableDecl &D) {
@@ -238,15 +238,15 @@ void ModuleEmitter::addCommonAttributes(llvm::Function *F) {
 void ModuleEmitter::layoutState() {
   llvm::Type *I32 = llvm::Type::getInt32Ty(Ctx);
   llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
-  // bs_state_header: cycle, reserved, input, output.
+  // bs_state_header: cycle, stamp, input, output.
   llvm::SmallVector<llvm::Type *, 8> StateFields = {I32, I32, Ptr, Ptr};
   for (const TaskDecl *T : B.Tasks) {
     FrameInfo &FI = Frames[T];
-    // bs_frame_header: resume, state, last_cycle; then params, then locals.
+    // bs_frame_header: resume, state, last_call; then params, then locals.
     llvm::SmallVector<llvm::Type *, 8> Fields = {I32, I32, I32};
     std::string Prefix = T->getName().Name.str() + ".";
     FI.FieldNames = {Prefix + "resume", Prefix + "state",
-                     Prefix + "last_cycle"};
+                     Prefix + "last_call"};
     auto Add = [&](const Decl *D, const Type *Ty) {
       FI.Fields[D] = Fields.size();
       Fields.push_back(getMemoryType(Ty));

@@ -36,7 +36,7 @@ namespace codegen {
 /// of task i is field FirstFrameField + i.
 enum StateField : unsigned {
   StateCycle = 0,
-  StateReserved = 1,
+  StateStamp = 1,
   StateInput = 2,
   StateOutput = 3,
   FirstFrameField = 4,
@@ -47,13 +47,16 @@ enum StateField : unsigned {
 enum FrameField : unsigned {
   FrameResume = 0,
   FrameState = 1,
-  FrameLastCycle = 2,
+  FrameLastCall = 2,
   FirstParamField = 3,
 };
 
 /// Values of frame.state (bscript.h BS_TASK_*).
 constexpr int32_t TaskDone = 0;
 constexpr int32_t TaskRunning = 1;
+/// frame.last_call of a call that ended the task: bit 31 flipped
+/// (bscript.h, bs_frame_header).
+constexpr uint32_t LastCallEnded = 0x80000000u;
 
 /// Where a task's frame sits in the state and how its fields are numbered.
 struct FrameInfo {
@@ -229,8 +232,10 @@ private:
   // CGTask.cpp: everything a generator needs.
   void emitTaskPrologue();
   void emitTaskEpilogue();
-  /// frame.resume = 0; frame.state = done; ret void.
+  /// frame.state = done; ret void.
   void emitTaskFinish();
+  /// Marks the task's call stamp as ended (CGTask.cpp, "The call stamp").
+  void markEnded();
   void emitYield(const YieldStmt &S);
   /// A pointer to field `Field` of the frame of `T`.
   llvm::Value *getFrameFieldPtr(const TaskDecl *T, unsigned Field);
@@ -379,6 +384,7 @@ private:
   /// Task bodies: the dispatch on frame.resume; a case is added per yield.
   llvm::SwitchInst *ResumeSwitch = nullptr;
   YieldPlan Plan; ///< Of the task being emitted.
+  llvm::Value *Stamp = nullptr; ///< The state's stamp (bs_state_header).
   /// Where allocas and frame-field addresses go: the top of the entry block.
   llvm::Instruction *EntryPoint = nullptr;
   /// The address of each frame field used, computed once (task, field).

@@ -352,8 +352,8 @@ TEST_F(CodeGenTest, LayoutIsTheSameAtEveryOptLevel) {
 
 TEST_F(CodeGenTest, FibFrameLayout) {
   ASSERT_TRUE(check(getPrograms().at("fib")));
-  // header {cycle, reserved, input, output}, then fib's frame {resume,
-  // state, last_cycle, a, b, t}: six i32.
+  // header {cycle, stamp, input, output}, then fib's frame {resume,
+  // state, last_call, a, b, t}: six i32.
   BehaviorLayout L32, L64;
   std::unique_ptr<llvm::Module> M32 = emit(Targets[0], L32);
   std::unique_ptr<llvm::Module> M64 = emit(Targets[1], L64);
@@ -373,8 +373,8 @@ TEST_F(CodeGenTest, FibFrameLayout) {
 
 TEST_F(CodeGenTest, StateHeaderMatchesBscriptH) {
   ASSERT_TRUE(check(getPrograms().at("tasks")));
-  // bs_state_header {u32 cycle, u32 reserved, const void *input, void
-  // *output} and bs_frame_header {i32 resume, i32 state, u32 last_cycle}
+  // bs_state_header {u32 cycle, u32 stamp, const void *input, void
+  // *output} and bs_frame_header {i32 resume, i32 state, u32 last_call}
   // as a C compiler lays them out for each target.
   const uint64_t InputOffset[] = {8, 8}, OutputOffset[] = {12, 16};
   for (unsigned I = 0; I < 2; ++I) {
@@ -461,15 +461,37 @@ TEST_F(CodeGenTest, EntriesAndInfo) {
     EXPECT_TRUE(F->hasExternalLinkage());
     EXPECT_FALSE(F->isDeclaration());
   }
-  std::sort(Symbols.begin(), Symbols.end());
-  EXPECT_EQ(Symbols, (std::vector<std::string>{"bs_B__helper__step",
-                                               "bs_B__helper__twice",
-                                               "bs_B__multi__main"}));
+  // By default the roots only: main calls the helpers.
+  EXPECT_EQ(Symbols, (std::vector<std::string>{"bs_B__multi__main"}));
   // Everything else is internal.
   for (const llvm::Function &F : *M)
     if (!F.isDeclaration() && !F.getName().starts_with("bs_B__")) {
       EXPECT_TRUE(F.hasInternalLinkage()) << F.getName().str();
     }
+}
+
+TEST_F(CodeGenTest, ExportsAreWhatTheOptionsName) {
+  ASSERT_TRUE(check(getPrograms().at("multi")));
+  CodeGenOptions Opts;
+  Opts.Exports = std::vector<const CallableDecl *>{
+      findDecl("helper", "twice"), findDecl("helper", "step"),
+      findDecl("multi", "main")};
+  BehaviorLayout L;
+  std::unique_ptr<llvm::Module> M = emit(Targets[0], L, Opts);
+  std::vector<std::string> Symbols;
+  for (const BehaviorLayout::Entry &E : L.Entries)
+    Symbols.push_back(E.Symbol);
+  // In the order given.
+  EXPECT_EQ(Symbols, (std::vector<std::string>{"bs_B__helper__twice",
+                                               "bs_B__helper__step",
+                                               "bs_B__multi__main"}));
+  Opts.Exports->clear();
+  BehaviorLayout None;
+  M = emit(Targets[0], None, Opts);
+  EXPECT_TRUE(None.Entries.empty());
+  for (const llvm::Function &F : *M)
+    if (!F.isDeclaration())
+      EXPECT_TRUE(F.hasInternalLinkage()) << F.getName().str();
 }
 
 TEST_F(CodeGenTest, BoolEntriesTravelAsInt32) {
