@@ -6,7 +6,7 @@
 # 1. The shared benchmark (../shared/bench, ported in bench/shared): the
 #    "soccer" and "wide" behaviors compiled by bsc against the hand-written
 #    protothreads of proto.cpp, both linked with the same harness.h, for i586
-#    (-march=geode) and x86_64. Checks the checksums at -O0 and -O2, then
+#    (-march=geode) and x86_64. Checks the checksums at -O0 to -O3, then
 #    prints instructions per behavior cycle (callgrind, --toggle-collect on
 #    the harness's bsc_cycle_*), state bytes, heap allocations per cycle and
 #    the ratios bsc / protothreads.
@@ -30,27 +30,14 @@ command -v valgrind >/dev/null || { echo "bench: valgrind is needed (apt-get ins
 # Compiler flags of the shared README's reference build, per target.
 CXX=clang++-19
 declare -A CXXFLAGS=([i586]="--target=i586-linux-gnu -march=geode" [x86_64]="")
-declare -A RUNTIME=([i586]=libbscript_rt_i586.a [x86_64]=libbscript_rt.a)
 
 build_reference() { # target
   $CXX ${CXXFLAGS[$1]} -std=c++20 -O2 -o "$OUT/proto-$1" "$SHARED/proto.cpp"
 }
 
 build_bsc() { # target behavior opt -> $OUT/bsc-target-behavior-opt
-  local t=$1 b=$2 o=$3 dir=$OUT/$1-$2-$3 glue=()
-  mkdir -p "$dir"
-  [[ $b == wide ]] && glue=(-DBENCH_WIDE)
-  [[ -f $OUT/bind-$t.o ]] ||
-    $CXX ${CXXFLAGS[$t]} -std=c++20 -O2 -I ../include -I "$SHARED" \
-      -c shared/BenchBindings.cpp -o "$OUT/bind-$t.o"
-  local args=(-target "$t" --bind "$OUT/bind-$t.o" --behavior-name bench
-              -I shared "shared/$b.bs")
-  "$BSC" "$o" -c "${args[@]}" -o "$dir/behavior.o"
-  "$BSC" --emit-header "${args[@]}" -o "$dir/behavior.h"
-  $CXX ${CXXFLAGS[$t]} -std=c++20 -O2 "${glue[@]}" -I ../include -I "$SHARED" \
-    -I "$dir" -c shared/bench_bsc.cpp -o "$dir/glue.o"
-  $CXX ${CXXFLAGS[$t]} "$dir/glue.o" "$dir/behavior.o" "$OUT/bind-$t.o" \
-    "$BUILD/lib/${RUNTIME[$t]}" -o "$OUT/bsc-$t-$b$o"
+  shared/build.sh "$BUILD" "$SHARED" "$1" "$2" "$3" "$OUT/$1-$2$3"
+  cp "$OUT/$1-$2$3/$2" "$OUT/bsc-$1-$2$3"
 }
 
 field() { # name line -> value of name=value in the harness's line
@@ -73,7 +60,7 @@ for t in i586 x86_64; do
   build_reference "$t"
   for b in soccer wide; do
     ref=$("$OUT/proto-$t" "$b" verify)
-    for o in -O0 -O2; do
+    for o in -O0 -O1 -O2 -O3; do
       build_bsc "$t" "$b" "$o"
       got=$("$OUT/bsc-$t-$b$o" "$b" verify)
       if [[ $(field checksum "$got") != $(field checksum "$ref") ]]; then
@@ -89,7 +76,7 @@ for t in i586 x86_64; do
       "$(field allocs_per_cycle "$got")"
   done
 done
-((status == 0)) && echo "checksums: bsc at -O0 and -O2 equals the protothreads on both targets"
+((status == 0)) && echo "checksums: bsc at -O0 to -O3 equals the protothreads on both targets"
 
 echo "== Steps.bs against hand-written C (host)"
 N1=10000 N2=60000

@@ -5,8 +5,10 @@
 #   %bsc          the compiler under test
 #   %python       the Python that runs lit
 #   %conformance  ../shared/conformance (programs written by others)
+#   %shared_bench ../shared/bench (the performance reference and its harness)
 #   %bsc_src      the source tree (for scripts in utils/)
 #   %bsc_libdir   the runtime shim libraries (libbscript_rt.a, _i586.a)
+#   %bsc_build    the build folder (bin/bsc, lib/)
 #   %bsc_include  the public headers (bscript/bscript.h for C embeddings)
 #   %run-i586     runs a 32-bit x86 program (natively, else qemu-i386)
 import os
@@ -22,16 +24,20 @@ config.test_exec_root = os.path.join(config.bsc_obj_root, "test")
 config.substitutions.append(("%bsc_src", config.bsc_src_root))
 # Before %bsc, which is a prefix of these.
 config.substitutions.append(("%bsc_libdir", os.path.join(config.bsc_obj_root, "lib")))
+config.substitutions.append(("%bsc_build", config.bsc_obj_root))
 config.substitutions.append(("%bsc_include", os.path.join(config.bsc_src_root, "include")))
 config.substitutions.append(("%bsc", os.path.join(config.bsc_tools_dir, "bsc")))
 config.substitutions.append(("%python", config.python_executable))
 config.substitutions.append(("%conformance", os.path.join(config.shared_dir, "conformance")))
+config.substitutions.append(("%shared_bench", os.path.join(config.shared_dir, "bench")))
 
 # FileCheck, not, split-file, count come from LLVM 19.
 config.environment["PATH"] = os.pathsep.join(
     [config.llvm_tools_dir, config.bsc_tools_dir, config.environment.get("PATH", "")])
 if os.path.isdir(os.path.join(config.shared_dir, "conformance")):
     config.available_features.add("conformance")
+if os.path.isfile(os.path.join(config.shared_dir, "bench", "harness.h")):
+    config.available_features.add("shared-bench")
 
 # 32-bit programs run through utils/run-i586: natively where the kernel can,
 # else in qemu-i386 (see the script).

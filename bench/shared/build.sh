@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Builds the shared benchmark's harness (../../../shared/bench/harness.h)
+# around one behavior compiled by bsc: bench/run.sh and
+# test/Run/shared-bench.test use it.
+#   build.sh BSC_BUILD_DIR SHARED_BENCH_DIR i586|x86_64 soccer|wide -O<n> OUT
+# writes OUT/<behavior> (and its objects beside it).
+set -euo pipefail
+build=$1 shared=$2 target=$3 behavior=$4 opt=$5 out=$6
+here=$(cd "$(dirname "$0")" && pwd)
+include=$(cd "$here/../../include" && pwd)
+case $target in
+  i586) cxxflags=(--target=i586-linux-gnu -march=geode) rt=libbscript_rt_i586.a ;;
+  x86_64) cxxflags=() rt=libbscript_rt.a ;;
+  *) echo "build.sh: unknown target '$target'" >&2; exit 2 ;;
+esac
+glue=()
+[[ $behavior == wide ]] && glue=(-DBENCH_WIDE)
+cxx=(clang++-19 "${cxxflags[@]}" -std=c++20 -O2 -I "$include" -I "$shared")
+mkdir -p "$out"
+"${cxx[@]}" -c "$here/BenchBindings.cpp" -o "$out/bind.o"
+args=(-target "$target" --bind "$out/bind.o" --behavior-name bench -I "$here"
+      "$here/$behavior.bs")
+"$build/bin/bsc" "$opt" -c "${args[@]}" -o "$out/behavior.o"
+"$build/bin/bsc" --emit-header "${args[@]}" -o "$out/behavior.h"
+"${cxx[@]}" "${glue[@]}" -I "$out" -c "$here/bench_bsc.cpp" -o "$out/glue.o"
+clang++-19 "${cxxflags[@]}" "$out/glue.o" "$out/behavior.o" "$out/bind.o" \
+  "$build/lib/$rt" -o "$out/$behavior"
