@@ -46,21 +46,22 @@ extern "C" {
 /** The start of every behavior state. */
 typedef struct bs_state_header {
   uint32_t cycle;     /**< Execution cycle; bs_begin_cycle increments it. */
-  uint32_t stamp;     /**< cycle + 2, kept by bs_state_init and
-                          bs_begin_cycle: what a task's frame records of
-                          its last call (bs_frame_header.last_call). */
+  uint32_t reserved;  /**< Zero. */
   const void *input;  /**< The `input` global of this cycle. */
   void *output;       /**< The `output` global of this cycle. */
 } bs_state_header;
+
+/** The bit of bs_frame_header.last_call that marks an ending call. */
+#define BS_LAST_CALL_ENDED 0x80000000u
 
 /** The start of every task's frame inside the state. */
 typedef struct bs_frame_header {
   int32_t resume;      /**< 0: start from the top; k: after the k-th yield. */
   int32_t state;       /**< The task state its most recent call left. */
-  /** The state's stamp at its most recent call (0: never called), with
-   *  bit 31 flipped if that call ended the task (done or failure): a call
-   *  in this cycle or the previous one left a stamp at most 1 less than
-   *  the state's, in a way that code can test with one subtraction. */
+  /** The cycle of its most recent call, with bit 31 flipped if that call
+   *  ended the task (done or failure); bs_state_init sets 0x80000000
+   *  ("ended in cycle 0"). A task was called in this cycle or the previous
+   *  one if cycle - last_call is 0 or 1 (unsigned): one subtraction. */
   uint32_t last_call;
 } bs_frame_header;
 
@@ -163,7 +164,6 @@ static inline void bs_begin_cycle_inline(void *state, const void *input,
                                          void *output) {
   bs_state_header *header = (bs_state_header *)state;
   header->cycle += 1;
-  header->stamp = header->cycle + 2;
   header->input = input;
   header->output = output;
 }

@@ -2,26 +2,28 @@
 //
 // A task is a singleton generator. Its function runs one step per call:
 //
-//   entry:     if ([frame.state <= 0 ||] stamp - frame.last_call > 1)
+//   entry:     if ([frame.state <= 0 ||] cycle - frame.last_call > 1)
 //                goto reset
 //   reset:     [destroy(frame) if live]; frame.state = running;
 //              class values constructed; [frame.live = 1]; goto start
-//   dispatch:  frame.last_call = stamp; [frame.params = args]
+//   dispatch:  frame.last_call = cycle; [frame.params = args]
 //              switch (frame.resume) { k: resume.k; default: start }
 //   start:     the body...
 //   yield k:   [frame.resume = k]; [frame.state = v]; ret void
 //   resume.k:  ...the code after the k-th yield
 //   end:       [destroy(frame)]; frame.state = done;
-//              [frame.last_call = stamp ^ ended]; ret
+//              [frame.last_call = cycle ^ ended]; ret
 //
-// The call stamp. Each call records the state's stamp (the cycle + 2,
-// kept by the runtime) in frame.last_call, so that a zeroed frame (0)
-// reads as never called, also before the first cycle; a call that ended
-// the task (done or failure) flips bit 31 of it. Either way the gap to the
-// next call's stamp is more than one (unsigned) and the task starts again;
-// after a call in this cycle or the previous one it is 0 or 1. A task that yields only running or
+// The last call. Each call records the cycle in frame.last_call, with
+// bit 31 flipped if the call ended the task (done or failure); a new
+// state's frames read "ended in cycle 0" (bs_state_init). So the unsigned
+// gap from last_call to the cycle is 0 or 1 exactly when the task is
+// running and was called in this cycle or the previous one, and more
+// otherwise: the task starts again. (An ended task not called again for
+// 2^31 cycles, 2.3 years at 30 Hz, sees a gap of 0 or 1 again; so does a
+// running one after 2^32 cycles.) A task that yields only running or
 // constants (YieldPlan::OnlyRunning; most do) marks every ending so, and
-// its entry tests the stamp alone. Other tasks may end by `yield v` with a
+// its entry tests the gap alone. Other tasks may end by `yield v` with a
 // v <= 0 known only at run time: they test the state too.
 //
 // Which stores. Only what a later call reads is stored. `resume` is read
@@ -137,13 +139,13 @@ void FunctionEmitter::emitTaskPrologue() {
   llvm::Value *LastAddr = getFrameFieldPtr(Task, FrameLastCall);
   llvm::Value *ResumeAddr = getFrameFieldPtr(Task, FrameResume);
   Plan = planYields(*Task);
-  Stamp = createLoad(Access::State, I32,
+  Cycle = createLoad(Access::State, I32,
                      Builder.CreateConstInBoundsGEP2_32(
-                         CGM.getStateType(), StatePtr, 0, StateStamp,
-                         "stamp.addr"),
-                     "stamp");
+                         CGM.getStateType(), StatePtr, 0, StateCycle,
+                         "cycle.addr"),
+                     "cycle");
   llvm::Value *Last = createLoad(Access::State, I32, LastAddr, "last.call");
-  llvm::Value *Gap = Builder.CreateSub(Stamp, Last, "gap");
+  llvm::Value *Gap = Builder.CreateSub(Cycle, Last, "gap");
   llvm::Value *Reset =
       Builder.CreateICmpUGT(Gap, Builder.getInt32(1), "must.reset");
   if (!Plan.OnlyRunning) {
@@ -211,7 +213,7 @@ void FunctionEmitter::emitTaskPrologue() {
   llvm::PHINode *Resume = Builder.CreatePHI(I32, 2, "resume.point");
   Resume->addIncoming(Builder.getInt32(0), ResetEnd);
   Resume->addIncoming(Resumed, RunningBB);
-  createStore(Access::State, Stamp, LastAddr);
+  createStore(Access::State, Cycle, LastAddr);
   for (const ParamDecl *P : Task->Params)
     if (P->Ty->isClass() || P->ReadByNestedFunc || ExactFrames)
       emitStore(P->Ty, Fn->getArg(P->Index + 1),
@@ -237,10 +239,10 @@ void FunctionEmitter::emitTaskFinish() {
 }
 
 void FunctionEmitter::markEnded() {
-  // "The call stamp" above: the next call starts from the top.
+  // "The last call" above: the next call starts from the top.
   if (Plan.OnlyRunning)
     createStore(Access::State,
-                Builder.CreateXor(Stamp, Builder.getInt32(LastCallEnded)),
+                Builder.CreateXor(Cycle, Builder.getInt32(LastCallEnded)),
                 getFrameFieldPtr(Task, FrameLastCall));
 }
 

@@ -238,7 +238,7 @@ void ModuleEmitter::addCommonAttributes(llvm::Function *F) {
 void ModuleEmitter::layoutState() {
   llvm::Type *I32 = llvm::Type::getInt32Ty(Ctx);
   llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
-  // bs_state_header: cycle, stamp, input, output.
+  // bs_state_header: cycle, reserved, input, output.
   llvm::SmallVector<llvm::Type *, 8> StateFields = {I32, I32, Ptr, Ptr};
   for (const TaskDecl *T : B.Tasks) {
     FrameInfo &FI = Frames[T];

@@ -36,7 +36,7 @@ namespace codegen {
 /// of task i is field FirstFrameField + i.
 enum StateField : unsigned {
   StateCycle = 0,
-  StateStamp = 1,
+  StateReserved = 1,
   StateInput = 2,
   StateOutput = 3,
   FirstFrameField = 4,
@@ -54,8 +54,8 @@ enum FrameField : unsigned {
 /// Values of frame.state (bscript.h BS_TASK_*).
 constexpr int32_t TaskDone = 0;
 constexpr int32_t TaskRunning = 1;
-/// frame.last_call of a call that ended the task: bit 31 flipped
-/// (bscript.h, bs_frame_header).
+/// The bit of frame.last_call that marks a call that ended the task
+/// (bscript.h BS_LAST_CALL_ENDED).
 constexpr uint32_t LastCallEnded = 0x80000000u;
 
 /// Where a task's frame sits in the state and how its fields are numbered.
@@ -234,7 +234,7 @@ private:
   void emitTaskEpilogue();
   /// frame.state = done; ret void.
   void emitTaskFinish();
-  /// Marks the task's call stamp as ended (CGTask.cpp, "The call stamp").
+  /// Marks the task's last call as ended (CGTask.cpp, "The last call").
   void markEnded();
   void emitYield(const YieldStmt &S);
   /// A pointer to field `Field` of the frame of `T`.
@@ -384,7 +384,7 @@ private:
   /// Task bodies: the dispatch on frame.resume; a case is added per yield.
   llvm::SwitchInst *ResumeSwitch = nullptr;
   YieldPlan Plan; ///< Of the task being emitted.
-  llvm::Value *Stamp = nullptr; ///< The state's stamp (bs_state_header).
+  llvm::Value *Cycle = nullptr; ///< The state's cycle, loaded at entry.
   /// Where allocas and frame-field addresses go: the top of the entry block.
   llvm::Instruction *EntryPoint = nullptr;
   /// The address of each frame field used, computed once (task, field).

@@ -278,9 +278,7 @@ bool Repl::load(std::unique_ptr<Compilation> NewC) {
         Reset.push_back(Name);
     }
     auto *OldHeader = static_cast<bs_state_header *>(S->getState());
-    auto *NewHeader = static_cast<bs_state_header *>(NewS->getState());
-    NewHeader->cycle = OldHeader->cycle;
-    NewHeader->stamp = OldHeader->stamp; // What the kept frames recorded.
+    static_cast<bs_state_header *>(NewS->getState())->cycle = OldHeader->cycle;
     if (L->InputClass && NewL->InputClass)
       llvm::consumeError(NewValues->writeClass(
           *NewL->InputClass, NewS->getInput(),

@@ -107,13 +107,15 @@ int bs_state_init(void *state, const bs_behavior_info *info) {
     return BS_INIT_BAD_INFO;
   if (bs_check_bindings(info))
     return BS_INIT_STALE_BINDINGS;
-  /* Zero state: cycle 0, every frame's state done, resume point 0 and
-   * last call 0 (never called), so every task starts from the top at its
-   * first call. */
+  /* Zero state: cycle 0, every frame's state done and resume point 0, and
+   * its last call one that ended the task in cycle 0, so every task starts
+   * from the top at its first call. */
   unsigned char *bytes = (unsigned char *)state;
   for (uint32_t i = 0; i < info->state_size; ++i)
     bytes[i] = 0;
-  ((bs_state_header *)state)->stamp = 2;
+  for (uint32_t i = 0; i < info->num_tasks; ++i)
+    ((bs_frame_header *)(bytes + info->tasks[i].frame_offset))->last_call =
+        BS_LAST_CALL_ENDED;
   return BS_INIT_OK;
 }
 
@@ -133,16 +135,15 @@ uint32_t bs_trace_snapshot(const void *state, const bs_behavior_info *info,
   if (!state || !info || info->abi_version != BS_ABI_VERSION)
     return 0;
   const unsigned char *bytes = (const unsigned char *)state;
-  const bs_state_header *header = (const bs_state_header *)state;
-  uint32_t cycle = header->cycle, count = 0;
+  uint32_t cycle = ((const bs_state_header *)state)->cycle, count = 0;
   if (cycle == 0)
     return 0;
   for (uint32_t i = 0; i < info->num_tasks; ++i) {
     const bs_frame_header *frame =
         (const bs_frame_header *)(bytes + info->tasks[i].frame_offset);
-    /* Every call records the stamp (bit 31 flipped if the call ended the
-     * task): the tasks called in this cycle. */
-    if (((frame->last_call ^ header->stamp) & 0x7fffffffu) != 0)
+    /* Every call records the cycle (bit 31 flipped if the call ended the
+     * task): the tasks called in this one. */
+    if (((frame->last_call ^ cycle) & ~BS_LAST_CALL_ENDED) != 0)
       continue;
     if (count < capacity) {
       out[count].task = (uint16_t)i;

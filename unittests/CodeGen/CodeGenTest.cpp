@@ -352,7 +352,7 @@ TEST_F(CodeGenTest, LayoutIsTheSameAtEveryOptLevel) {
 
 TEST_F(CodeGenTest, FibFrameLayout) {
   ASSERT_TRUE(check(getPrograms().at("fib")));
-  // header {cycle, stamp, input, output}, then fib's frame {resume,
+  // header {cycle, reserved, input, output}, then fib's frame {resume,
   // state, last_call, a, b, t}: six i32.
   BehaviorLayout L32, L64;
   std::unique_ptr<llvm::Module> M32 = emit(Targets[0], L32);
@@ -373,7 +373,7 @@ TEST_F(CodeGenTest, FibFrameLayout) {
 
 TEST_F(CodeGenTest, StateHeaderMatchesBscriptH) {
   ASSERT_TRUE(check(getPrograms().at("tasks")));
-  // bs_state_header {u32 cycle, u32 stamp, const void *input, void
+  // bs_state_header {u32 cycle, u32 reserved, const void *input, void
   // *output} and bs_frame_header {i32 resume, i32 state, u32 last_call}
   // as a C compiler lays them out for each target.
   const uint64_t InputOffset[] = {8, 8}, OutputOffset[] = {12, 16};

@@ -1,7 +1,7 @@
 //===- Trace.h - which tasks ran in a cycle, and where they stopped -*- C++ -*-===//
 //
 // A cycle's activation: the tasks called in it (frame.last_call holds the
-// state's stamp), each with the state it left and the yield it is
+// state's cycle, bit 31 aside), each with the state it left and the yield it is
 // suspended at. The runtime takes it from a state with bs_trace_snapshot
 // (bscript.h), on the robot as in the JIT, so the same records serve
 // `bsc run --trace`, the REPL's `:tasks` and a robot log decoded offline.
