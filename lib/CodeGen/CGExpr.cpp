@@ -61,9 +61,11 @@ void FunctionEmitter::emitStore(const Type *T, llvm::Value *V,
 
 llvm::Value *FunctionEmitter::getDeclAddress(const Decl *Dcl) {
   if (const auto *V = llvm::dyn_cast<VarDecl>(Dcl)) {
-    // A task's locals are in its frame, also when a nested func uses them.
+    // A task's locals are in its frame, also when a nested func uses them,
+    // unless their values never outlive a call (keepsInFrame): allocas.
     if (const auto *T = llvm::dyn_cast_or_null<TaskDecl>(V->Owner))
-      return getFrameFieldPtr(T, CGM.getFrame(T).Fields.lookup(V));
+      if (CGM.keepsInFrame(V))
+        return getFrameFieldPtr(T, CGM.getFrame(T).Fields.lookup(V));
     if (llvm::Value *Fixed = CGM.getReplSlot(V))
       return Fixed;
     assert(Slots.count(V) && "local of another func");

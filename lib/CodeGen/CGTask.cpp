@@ -134,6 +134,16 @@ void FunctionEmitter::emitTaskPrologue() {
   llvm::LLVMContext &Ctx = CGM.getContext();
   const FrameInfo &FI = CGM.getFrame(Task);
   llvm::Type *I32 = Builder.getInt32Ty();
+  // Locals whose values never outlive a call are allocas, as a func's.
+  const llvm::DataLayout &DL = CGM.getModule().getDataLayout();
+  for (const VarDecl *V : Task->Locals)
+    if (!CGM.keepsInFrame(V)) {
+      llvm::Type *MemTy = CGM.getMemoryType(V->Ty);
+      auto *Slot =
+          new llvm::AllocaInst(MemTy, 0, V->getName().Name, EntryPoint);
+      Slot->setAlignment(DL.getABITypeAlign(MemTy));
+      Slots[V] = Slot;
+    }
 
   llvm::Value *StateAddr = getFrameFieldPtr(Task, FrameState);
   llvm::Value *LastAddr = getFrameFieldPtr(Task, FrameLastCall);
@@ -195,11 +205,12 @@ void FunctionEmitter::emitTaskPrologue() {
       emitClassInit(P->Ty->getClass(),
                     getFrameFieldPtr(Task, FI.Fields.lookup(P)));
   for (const VarDecl *V : Task->Locals) {
-    llvm::Value *Addr = getFrameFieldPtr(Task, FI.Fields.lookup(V));
     if (V->Ty->isClass())
-      emitClassInit(V->Ty->getClass(), Addr);
+      emitClassInit(V->Ty->getClass(),
+                    getFrameFieldPtr(Task, FI.Fields.lookup(V)));
     else if (ExactFrames)
-      createStore(Access::State, CGM.getZeroValue(V->Ty), Addr);
+      createStore(Access::State, CGM.getZeroValue(V->Ty),
+                  getFrameFieldPtr(Task, FI.Fields.lookup(V)));
   }
   if (FI.LiveField)
     createStore(Access::State, Builder.getInt8(1),
@@ -215,7 +226,7 @@ void FunctionEmitter::emitTaskPrologue() {
   Resume->addIncoming(Resumed, RunningBB);
   createStore(Access::State, Cycle, LastAddr);
   for (const ParamDecl *P : Task->Params)
-    if (P->Ty->isClass() || P->ReadByNestedFunc || ExactFrames)
+    if (CGM.keepsInFrame(P))
       emitStore(P->Ty, Fn->getArg(P->Index + 1),
                 getFrameFieldPtr(Task, FI.Fields.lookup(P)));
   llvm::BasicBlock *StartBB = llvm::BasicBlock::Create(Ctx, "start", Fn);

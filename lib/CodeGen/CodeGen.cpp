@@ -235,6 +235,15 @@ void ModuleEmitter::addCommonAttributes(llvm::Function *F) {
   F->addFnAttr("no-builtins");
 }
 
+bool ModuleEmitter::keepsInFrame(const Decl *D) const {
+  if (Opts.Probes)
+    return true;
+  if (const auto *P = llvm::dyn_cast<ParamDecl>(D))
+    return P->Ty->isClass() || P->ReadByNestedFunc;
+  const auto *V = llvm::cast<VarDecl>(D);
+  return V->Ty->isClass() || V->LivesAcrossYield || V->UsedByNestedFunc;
+}
+
 void ModuleEmitter::layoutState() {
   llvm::Type *I32 = llvm::Type::getInt32Ty(Ctx);
   llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
@@ -253,9 +262,34 @@ void ModuleEmitter::layoutState() {
       FI.FieldNames.push_back(Prefix + D->getName().Name.str());
     };
     for (const ParamDecl *P : T->Params)
-      Add(P, P->Ty);
-    for (const VarDecl *V : T->Locals)
+      if (keepsInFrame(P))
+        Add(P, P->Ty);
+    // Scalar locals whose scopes do not overlap (`for(int i...)` after
+    // `for(int j...)`) share a field; the debugger's exact frames do not.
+    struct SharedField {
+      unsigned Field;
+      llvm::Type *Ty;
+      unsigned FreeFrom; ///< ScopeEnd of its newest local.
+    };
+    llvm::SmallVector<SharedField, 8> Shared;
+    for (const VarDecl *V : T->Locals) {
+      if (!keepsInFrame(V))
+        continue;
+      llvm::Type *Ty = getMemoryType(V->Ty);
+      unsigned End = V->ScopeEnd ? V->ScopeEnd : ~0u;
+      if (!Opts.Probes && !V->Ty->isClass()) {
+        auto It = llvm::find_if(Shared, [&](const SharedField &S) {
+          return S.Ty == Ty && S.FreeFrom <= V->ScopeBegin;
+        });
+        if (It != Shared.end()) {
+          FI.Fields[V] = It->Field;
+          It->FreeFrom = End;
+          continue;
+        }
+        Shared.push_back({unsigned(Fields.size()), Ty, End});
+      }
       Add(V, V->Ty);
+    }
     // Whether the class values are constructed: the frame must stay
     // zero-initialisable (bs_state_init only zeroes), and a state can be
     // destroyed at any time, also before a task ever ran.
@@ -295,9 +329,11 @@ void ModuleEmitter::layoutState() {
           {D, Ty, FrameOffset + FL->getElementOffset(FI.Fields.lookup(D))});
     };
     for (const ParamDecl *P : T->Params)
-      Add(P, P->Ty);
+      if (FI.Fields.count(P))
+        Add(P, P->Ty);
     for (const VarDecl *V : T->Locals)
-      Add(V, V->Ty);
+      if (FI.Fields.count(V))
+        Add(V, V->Ty);
     Entry.OnlyRunningStates = planYields(*T).OnlyRunning;
     Layout.Tasks.push_back(std::move(Entry));
   }

@@ -106,6 +106,13 @@ public:
 
   llvm::StructType *getStateType() const { return StateTy; }
   const FrameInfo &getFrame(const TaskDecl *T) const;
+  /// Whether a task's parameter or local has a field in its frame: what a
+  /// later call or a nested func reads (a local in scope at a yield,
+  /// anything a nested func uses, class values, which live from the reset
+  /// to the end), and with CodeGenOptions::Probes everything, which the
+  /// debugger shows. The rest are the task function's allocas (locals) or
+  /// arguments (parameters).
+  bool keepsInFrame(const Decl *D) const;
 
   // Functions and constants -----------------------------------------------
 

@@ -141,6 +141,16 @@ void Sema::declare(Decl *D) {
   }
   // Declared even after an error, so later uses find the newest one.
   Scopes.back().push_back({Name.Name, D});
+  if (auto *V = llvm::dyn_cast<VarDecl>(D))
+    V->ScopeBegin = ++ScopeClock;
+}
+
+void Sema::popScope() {
+  ++ScopeClock;
+  for (auto &[Name, D] : Scopes.back())
+    if (auto *V = llvm::dyn_cast<VarDecl>(D))
+      V->ScopeEnd = ScopeClock;
+  Scopes.pop_back();
 }
 
 void Sema::checkVarDecl(VarDecl *V) {

@@ -166,6 +166,8 @@ const Type *Sema::applyLookup(NameExpr *E, const LookupResult &L, Access A) {
   case LookupKind::Local:
     E->Kind = NameKind::Local;
     E->Local = L.Var;
+    if (L.Var->Owner != CurCallable)
+      L.Var->UsedByNestedFunc = true;
     return L.Var->Ty ? L.Var->Ty : Types.getError();
   case LookupKind::Param:
     E->Kind = NameKind::Param;

@@ -130,7 +130,8 @@ public:
   void checkCallableBody(CallableDecl *C);
   void checkNestedFunc(FuncDecl *F);
   void pushScope() { Scopes.emplace_back(); }
-  void popScope() { Scopes.pop_back(); }
+  /// Closes the innermost scope: its locals' ScopeEnd.
+  void popScope();
   /// Adds a local or parameter to the innermost scope; a name that is
   /// already visible as a local or parameter is err_shadowing.
   void declare(Decl *D);
@@ -234,6 +235,8 @@ public:
 
   using Scope = llvm::SmallVector<std::pair<llvm::StringRef, Decl *>, 4>;
   std::vector<Scope> Scopes;
+  /// Numbers declarations and scope ends (VarDecl::ScopeBegin/End).
+  unsigned ScopeClock = 0;
 
   /// Call sites of each func and task, in source order.
   llvm::DenseMap<const CallableDecl *, std::vector<CallEdge>> Calls;

@@ -34,6 +34,11 @@ void Sema::checkYield(YieldStmt *S) {
     return;
   Task->Yields.push_back(S);
   S->ResumePoint = Task->Yields.size();
+  // Every local in scope here may have to keep its value to the next call.
+  for (const Scope &Sc : Scopes)
+    for (auto &[Name, D] : Sc)
+      if (auto *V = llvm::dyn_cast<VarDecl>(D))
+        V->LivesAcrossYield = true;
 }
 
 const Type *Sema::checkTaskState(TaskStateExpr *E) {

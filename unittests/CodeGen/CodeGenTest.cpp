@@ -353,22 +353,61 @@ TEST_F(CodeGenTest, LayoutIsTheSameAtEveryOptLevel) {
 TEST_F(CodeGenTest, FibFrameLayout) {
   ASSERT_TRUE(check(getPrograms().at("fib")));
   // header {cycle, reserved, input, output}, then fib's frame {resume,
-  // state, last_call, a, b, t}: six i32.
+  // state, last_call, a, b}: five i32. `t` is declared after the for's
+  // yield and dies before it: an alloca.
   BehaviorLayout L32, L64;
   std::unique_ptr<llvm::Module> M32 = emit(Targets[0], L32);
   std::unique_ptr<llvm::Module> M64 = emit(Targets[1], L64);
-  EXPECT_EQ(L32.StateSize, 16u + 24u);
+  EXPECT_EQ(L32.StateSize, 16u + 20u);
   EXPECT_EQ(L32.StateAlign, 4u);
   ASSERT_EQ(L32.Tasks.size(), 1u);
   EXPECT_EQ(L32.Tasks[0].FrameOffset, 16u);
-  EXPECT_EQ(L64.StateSize, 24u + 24u);
+  ASSERT_EQ(L32.Tasks[0].Fields.size(), 2u);
+  EXPECT_EQ(L32.Tasks[0].Fields[0].D->getName().Name, "a");
+  EXPECT_EQ(L32.Tasks[0].Fields[1].D->getName().Name, "b");
+  EXPECT_EQ(L64.StateSize, 24u + 24u); // 20, rounded to the 8 of pointers
   EXPECT_EQ(L64.StateAlign, 8u);
   EXPECT_EQ(L64.Tasks[0].FrameOffset, 24u);
 
   llvm::StructType *Frame =
       llvm::StructType::getTypeByName(Ctx, "bs.frame.fib.fib");
   ASSERT_TRUE(Frame);
-  EXPECT_EQ(Frame->getNumElements(), 6u);
+  EXPECT_EQ(Frame->getNumElements(), 5u);
+}
+
+TEST_F(CodeGenTest, ExactFramesKeepEveryVariable) {
+  // The JIT's debugger shows every parameter and local between cycles.
+  ASSERT_TRUE(check(getPrograms().at("fib")));
+  CodeGenOptions Opts;
+  Opts.Probes = true;
+  BehaviorLayout L;
+  std::unique_ptr<llvm::Module> M = emit(Targets[0], L, Opts);
+  EXPECT_EQ(L.StateSize, 16u + 24u);
+  ASSERT_EQ(L.Tasks[0].Fields.size(), 3u);
+  EXPECT_EQ(L.Tasks[0].Fields[2].D->getName().Name, "t");
+}
+
+TEST_F(CodeGenTest, SiblingScopesShareAField) {
+  ASSERT_TRUE(check({{"m", R"(task t(int p)
+    for(int i = 0; i < p; yield)
+        i += 1
+    for(int j = 0; j < 2; yield)
+        j += 1
+    float f = 0.5
+    yield
+)"}}));
+  BehaviorLayout L;
+  std::unique_ptr<llvm::Module> M = emit(Targets[0], L);
+  // p is read from the argument; i and j share a field; f (another type,
+  // its scope the rest of the body) has its own.
+  const BehaviorLayout::Task &T = L.Tasks[0];
+  ASSERT_EQ(T.Fields.size(), 3u);
+  EXPECT_EQ(T.Fields[0].D->getName().Name, "i");
+  EXPECT_EQ(T.Fields[1].D->getName().Name, "j");
+  EXPECT_EQ(T.Fields[0].Offset, T.Fields[1].Offset);
+  EXPECT_EQ(T.Fields[2].D->getName().Name, "f");
+  EXPECT_NE(T.Fields[2].Offset, T.Fields[0].Offset);
+  EXPECT_EQ(T.FrameSize, 12u + 4u + 4u);
 }
 
 TEST_F(CodeGenTest, StateHeaderMatchesBscriptH) {
@@ -413,11 +452,14 @@ TEST_F(CodeGenTest, FrameFieldTypes) {
     TaskState st = TaskState::running
     yield
 )"}}));
+  // The debugger's exact frames keep the parameters too.
+  CodeGenOptions Opts;
+  Opts.Probes = true;
   BehaviorLayout L;
-  std::unique_ptr<llvm::Module> M = emit(Targets[0], L);
+  std::unique_ptr<llvm::Module> M = emit(Targets[0], L, Opts);
   llvm::StructType *Frame = llvm::StructType::getTypeByName(Ctx, "bs.frame.m.t");
   ASSERT_TRUE(Frame);
-  // resume, state, last_cycle, i, f, b (i8), local (i8), s (ptr), st (i32).
+  // resume, state, last_call, i, f, b (i8), local (i8), s (ptr), st (i32).
   ASSERT_EQ(Frame->getNumElements(), 9u);
   EXPECT_TRUE(Frame->getElementType(3)->isIntegerTy(32));
   EXPECT_TRUE(Frame->getElementType(4)->isFloatTy());

@@ -152,6 +152,16 @@ public:
   /// task: its storage is in the task's frame). Set by Sema.
   CallableDecl *Owner = nullptr;
   const Type *Ty = nullptr; ///< Sema.
+  /// Sema, for a task's locals: whether a `yield` of the task lies in its
+  /// scope after its declaration (so its value may have to outlive a
+  /// call), and whether a nested func uses it; either keeps it in the
+  /// task's frame.
+  bool LivesAcrossYield = false;
+  bool UsedByNestedFunc = false;
+  /// Sema: its scope as an interval of the owner's declarations and scope
+  /// ends, in source order. Two locals whose intervals do not overlap are
+  /// never alive at once, so they may share storage.
+  unsigned ScopeBegin = 0, ScopeEnd = 0;
   static bool classof(const Node *N) {
     return N->getKind() == NodeKind::VarDecl;
   }
