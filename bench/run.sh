@@ -78,6 +78,14 @@ for t in i586 x86_64; do
 done
 ((status == 0)) && echo "checksums: bsc at -O0 to -O3 equals the protothreads on both targets"
 
+echo "== logging the robot's trace (bs_trace_snapshot after each cycle, i586 -O2)"
+for b in soccer wide; do
+  shared/build.sh "$BUILD" "$SHARED" i586 "$b" -O2 "$OUT/snap-$b" -DBENCH_SNAPSHOT
+  plain=$(per_cycle "$OUT/bsc-i586-$b-O2" "$b")
+  snap=$(per_cycle "$OUT/snap-$b/$b" "$b")
+  echo "$b: $plain -> $snap instructions per cycle (+$(awk -v a="$plain" -v b="$snap" 'BEGIN { printf "%.0f", (b - a) / a * 100 }')%; issue 10's budget: 10%)"
+done
+
 echo "== Steps.bs against hand-written C (host)"
 N1=10000 N2=60000
 instructions() { # program args... -> total instructions executed

@@ -4,7 +4,9 @@
 // bsc_cycle_wide once per cycle; here each is one cycle of the compiled
 // behavior: bs_begin_cycle and the entry, as robot code does. The program
 // holds one behavior (BENCH_WIDE selects which), so the other cycle
-// function only reports the mix-up.
+// function only reports the mix-up. With BENCH_SNAPSHOT each cycle also
+// takes the robot's trace record (bs_trace_snapshot, docs/repl.md), to
+// count what logging a trace costs.
 //
 //===----------------------------------------------------------------------===//
 #define BSC_MAIN
@@ -20,6 +22,15 @@
 
 static bs_bench_state State;
 
+#ifdef BENCH_SNAPSHOT
+static bs_activation Activations[BS_BENCH_NUM_TASKS];
+static void snapshot() {
+  bs_trace_snapshot(&State, &bs_bench_info, Activations, BS_BENCH_NUM_TASKS);
+}
+#else
+static void snapshot() {}
+#endif
+
 static void wrongBehavior() {
   std::fprintf(stderr, "bench: this program holds the %s behavior\n",
                bsc_impl);
@@ -32,6 +43,7 @@ extern "C" __attribute__((noinline)) void bsc_cycle_soccer() {
 #else
   bs_bench_begin_cycle(&State, &g_in, &g_out);
   BENCH_ENTRY(&State);
+  snapshot();
 #endif
 }
 
@@ -39,6 +51,7 @@ extern "C" __attribute__((noinline)) void bsc_cycle_wide() {
 #ifdef BENCH_WIDE
   bs_bench_begin_cycle(&State, &g_in, &g_out);
   BENCH_ENTRY(&State);
+  snapshot();
 #else
   wrongBehavior();
 #endif

@@ -3,9 +3,11 @@
 # around one behavior compiled by bsc: bench/run.sh and
 # test/Run/shared-bench.test use it.
 #   build.sh BSC_BUILD_DIR SHARED_BENCH_DIR i586|x86_64 soccer|wide -O<n> OUT
+#            [-DBENCH_SNAPSHOT]
 # writes OUT/<behavior> (and its objects beside it).
 set -euo pipefail
 build=$1 shared=$2 target=$3 behavior=$4 opt=$5 out=$6
+shift 6 # the rest: flags for the glue
 here=$(cd "$(dirname "$0")" && pwd)
 include=$(cd "$here/../../include" && pwd)
 case $target in
@@ -13,8 +15,8 @@ case $target in
   x86_64) cxxflags=() rt=libbscript_rt.a ;;
   *) echo "build.sh: unknown target '$target'" >&2; exit 2 ;;
 esac
-glue=()
-[[ $behavior == wide ]] && glue=(-DBENCH_WIDE)
+glue=("$@")
+[[ $behavior == wide ]] && glue+=(-DBENCH_WIDE)
 cxx=(clang++-19 "${cxxflags[@]}" -std=c++20 -O2 -I "$include" -I "$shared")
 mkdir -p "$out"
 "${cxx[@]}" -c "$here/BenchBindings.cpp" -o "$out/bind.o"
