@@ -5,7 +5,9 @@
 //   entry:     if ([frame.state <= 0 ||] cycle - frame.last_call > 1)
 //                goto reset
 //   reset:     [destroy(frame) if live]; frame.state = running;
-//              class values constructed; [frame.live = 1]; goto start
+//              [frame.resume = k]; class values constructed;
+//              [frame.live = 1]; goto start
+//   running:   [resume = frame.resume]
 //   dispatch:  frame.last_call = cycle; [frame.params = args]
 //              switch (frame.resume) { k: resume.k; default: start }
 //   start:     the body...
@@ -33,17 +35,17 @@
 // stores state = running (a task that is executing reports running,
 // docs/language.md). Most tasks yield nothing but "running" (a plain
 // `yield`) besides ending with a constant: their yields leave the state
-// alone.
-// A task with a single yield that keeps it running (most loops) gets that
-// resume point at the reset too, and the yield itself stores nothing: it
-// is a `ret`. A scalar local gets its
-// value where it is declared, before any use, so the reset does not zero
-// it. A task's body reads its scalar parameters from the arguments, so the
-// frame keeps a copy only for a nested func that reads it. The JIT's
-// debugger (CodeGenOptions::Probes) shows frames between cycles, so there
-// every field is kept exact: resume 0 when not running, zeroed locals and
-// the parameters of the last call.
-//
+// alone, and a running call tells the optimiser the state is 1. A task
+// with a single yield that keeps it running (most loops) gets that resume
+// point at the reset too, and the yield itself stores nothing: it is a
+// `ret`. A scalar local gets its value where it is declared, before any
+// use, so the reset does not zero it. The frame holds only what a later
+// call or a nested func reads (ModuleEmitter::keepsInFrame): the body
+// reads its parameters from the arguments, and a local that is in scope
+// at no yield is an alloca. The JIT's debugger (CodeGenOptions::Probes)
+// shows frames between cycles, so there every field is kept exact: all
+// parameters and locals, resume 0 when not running, zeroed locals.
+
 // Frames with class values whose destructor is not trivial end with an
 // `i8 live` field and have a function `bs.<M>.<task>.destroy(state)` that
 // destroys the values if live (newest first) and clears it. The values are
@@ -52,10 +54,10 @@
 //
 // This is done by hand rather than with LLVM's coroutine intrinsics because
 // the frame must be a struct whose size is fixed before any optimisation
-// runs (it is part of the object's interface and must match at -O0, -O2 and
-// in the JIT), and because a coroutine frame would be heap-allocated. The
-// body needs no special care: every parameter and local lives in the frame
-// (or is re-read from the arguments, which are fresh on every call), so no
+// runs (it is part of the object's interface and must match at -O0 to -O3),
+// and because a coroutine frame would be heap-allocated. The body needs no
+// special care: every local that may outlive a call lives in the frame, and
+// parameters are re-read from the arguments (fresh on every call), so no
 // SSA value is live across a yield and the switch may enter any loop.
 //
 // The reset rule is language.md's rule 4: start again from the top when the
