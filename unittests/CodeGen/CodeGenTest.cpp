@@ -531,9 +531,11 @@ TEST_F(CodeGenTest, ExportsAreWhatTheOptionsName) {
   BehaviorLayout None;
   M = emit(Targets[0], None, Opts);
   EXPECT_TRUE(None.Entries.empty());
-  for (const llvm::Function &F : *M)
-    if (!F.isDeclaration())
+  for (const llvm::Function &F : *M) {
+    if (!F.isDeclaration()) {
       EXPECT_TRUE(F.hasInternalLinkage()) << F.getName().str();
+    }
+  }
 }
 
 TEST_F(CodeGenTest, BoolEntriesTravelAsInt32) {
