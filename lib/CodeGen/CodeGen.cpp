@@ -49,7 +49,6 @@ static std::string getInternalName(const CallableDecl &D) {
   return S + D.getName().Name.str();
 }
 
-
 //===----------------------------------------------------------------------===//
 // ModuleEmitter
 //===----------------------------------------------------------------------===//
@@ -264,8 +263,8 @@ void ModuleEmitter::layoutState() {
     for (const ParamDecl *P : T->Params)
       if (keepsInFrame(P))
         Add(P, P->Ty);
-    // Scalar locals whose scopes do not overlap (`for(int i...)` after
-    // `for(int j...)`) share a field; the debugger's exact frames do not.
+    // Scalar locals whose scopes do not overlap (`for(int j...)` after
+    // `for(int i...)`) share a field; the debugger's exact frames do not.
     struct SharedField {
       unsigned Field;
       llvm::Type *Ty;
