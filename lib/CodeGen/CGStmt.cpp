@@ -63,9 +63,15 @@ void FunctionEmitter::emitBlock(const BlockStmt *S) {
   // A block is a scope: the func locals it constructed die at its end (a
   // task's live on in the frame; Live stays empty in tasks).
   size_t Depth = Live.size();
+  // The body's own block is the subprogram's scope.
+  bool Nested = S != D.Body;
+  if (Nested)
+    pushDebugScope(S->getLoc());
   for (const Stmt *Child : S->Stmts)
     emitStmt(Child);
   emitLiveCleanups(Depth, /*Forget=*/true);
+  if (Nested)
+    popDebugScope();
 }
 
 void FunctionEmitter::emitStmt(const Stmt *S) {
@@ -74,10 +80,13 @@ void FunctionEmitter::emitStmt(const Stmt *S) {
   // themselves, before they branch).
   size_t Depth = Temps.size();
   llvm::SMLoc Outer = CurStmtLoc;
+  llvm::DebugLoc OuterDebugLoc = Builder.getCurrentDebugLocation();
   CurStmtLoc = S->getLoc();
+  setDebugLocation(S->getLoc());
   emitStmtImpl(S);
   popTemps(Depth);
   CurStmtLoc = Outer;
+  Builder.SetCurrentDebugLocation(OuterDebugLoc);
 }
 
 void FunctionEmitter::emitProbe(const char *Symbol, unsigned Site) {
@@ -124,6 +133,7 @@ void FunctionEmitter::emitStmtImpl(const Stmt *S) {
 
 void FunctionEmitter::emitDecl(const DeclStmt &S) {
   const VarDecl *V = S.Var;
+  declareForDebugger(*V, V->Ty);
   if (V->Ty->isClass()) {
     const NativeClass *C = V->Ty->getClass();
     llvm::Value *Addr = getDeclAddress(V);
@@ -248,6 +258,7 @@ void FunctionEmitter::emitFor(const ForStmt &S) {
   // The head is a scope around the loop: a local declared by `init` lives
   // until the loop ends.
   size_t HeadDepth = Live.size();
+  pushDebugScope(S.getLoc());
   if (S.Init)
     emitStmt(S.Init);
   llvm::BasicBlock *CondBB = llvm::BasicBlock::Create(Ctx, "for.cond", Fn);
@@ -284,6 +295,7 @@ void FunctionEmitter::emitFor(const ForStmt &S) {
   EndBB->insertInto(Fn);
   Builder.SetInsertPoint(EndBB);
   emitLiveCleanups(HeadDepth, /*Forget=*/true);
+  popDebugScope();
 }
 
 // `break` and `continue` leave the blocks of the loop body early: their

@@ -232,6 +232,18 @@ llvm::Constant *ModuleEmitter::getString(llvm::StringRef S) {
 void ModuleEmitter::addCommonAttributes(llvm::Function *F) {
   F->addFnAttr(llvm::Attribute::NoUnwind);
   F->addFnAttr("no-builtins");
+  // Unwind tables (.eh_frame), as C++ compilers emit them on x86: a
+  // debugger or crash handler stopped in registered C++ walks back through
+  // the tasks that called it. They take space in the object, not time.
+  F->setUWTableKind(llvm::UWTableKind::Async);
+}
+
+uint64_t ModuleEmitter::getFrameFieldOffset(const TaskDecl *T,
+                                            unsigned Field) const {
+  const llvm::DataLayout &DL = M.getDataLayout();
+  const FrameInfo &FI = getFrame(T);
+  return DL.getStructLayout(StateTy)->getElementOffset(FI.StateFieldNo) +
+         DL.getStructLayout(FI.Ty)->getElementOffset(Field);
 }
 
 bool ModuleEmitter::keepsInFrame(const Decl *D) const {
@@ -733,6 +745,7 @@ static void narrowX87Floats(llvm::Function &F) {
   llvm::AllocaInst *Slot = B.CreateAlloca(B.getFloatTy(), nullptr, "x87.round");
   for (llvm::Instruction *I : Computed) {
     B.SetInsertPoint(I->getNextNode());
+    B.SetCurrentDebugLocation(I->getDebugLoc());
     llvm::StoreInst *Store = B.CreateStore(I, Slot, /*isVolatile=*/true);
     llvm::Value *Rounded =
         B.CreateLoad(B.getFloatTy(), Slot, /*isVolatile=*/true,
@@ -744,6 +757,10 @@ static void narrowX87Floats(llvm::Function &F) {
 
 void ModuleEmitter::run() {
   layoutState();
+  if (Opts.DebugInfo) {
+    assert(Opts.Sources && "debug information needs the sources' lines");
+    DebugInfo = std::make_unique<DebugInfoEmitter>(*this, *Opts.Sources);
+  }
   declareFunctions();
   for (const CallableDecl *D : getSourceOrder()) {
     FunctionEmitter(*this, *D).run();
@@ -759,6 +776,19 @@ void ModuleEmitter::run() {
   if (Opts.Probes) {
     getProbe(LoopProbeSymbol);
     getProbe(NativeProbeSymbol);
+  }
+  if (DebugInfo) {
+    // The glue: an entry (and `main`) is attributed to its func's or
+    // task's line, the rest to line 0.
+    llvm::DenseMap<const llvm::Function *, llvm::SMLoc> GlueLocs;
+    for (const BehaviorLayout::Entry &E : Layout.Entries)
+      GlueLocs[M.getFunction(E.Symbol)] = E.Decl->getLoc();
+    if (Opts.ProgramEntry)
+      GlueLocs[M.getFunction("main")] = Opts.ProgramEntry->getLoc();
+    for (llvm::Function &F : M)
+      if (!F.isDeclaration() && !F.getSubprogram())
+        DebugInfo->createGlueFunction(F, GlueLocs.lookup(&F));
+    DebugInfo->finalize();
   }
 }
 
@@ -785,10 +815,18 @@ void FunctionEmitter::run() {
   // the entry block dominates every use, including the resume blocks.
   EntryPoint =
       Builder.CreateAlloca(Builder.getInt8Ty(), nullptr, "entry.point");
-  if (Task)
+  if (CGM.getDebugInfo())
+    emitDebugPrologue();
+  // A task's prologue is attributed to the task's line. A func's copies its
+  // arguments to their slots first, unattributed, as Clang's do: a
+  // debugger's breakpoint on the func goes after them.
+  if (Task) {
+    setDebugLocation(D.getLoc());
     emitTaskPrologue();
-  else
+  } else {
     emitFuncPrologue();
+    setDebugLocation(D.getLoc());
+  }
   if (D.Body)
     emitBlock(D.Body);
   if (Task)
@@ -829,6 +867,8 @@ void FunctionEmitter::emitFuncPrologue() {
     }
     emitStore(P->Ty, Arg, Slot);
   }
+  for (const ParamDecl *P : D.Params)
+    declareForDebugger(*P, P->Ty, P->Index + 2);
   for (const VarDecl *V : D.Locals)
     if (!CGM.getReplSlot(V))
       Slots[V] = CreateSlot(V->Ty, V->getName().Name);

@@ -27,6 +27,7 @@
 #include "llvm/ADT/DenseMap.h"
 #include "llvm/ADT/SmallVector.h"
 #include "llvm/ADT/StringMap.h"
+#include "llvm/IR/DIBuilder.h"
 #include "llvm/IR/IRBuilder.h"
 
 namespace bsc {
@@ -83,6 +84,88 @@ struct YieldPlan {
   unsigned SingleResume = 0;
 };
 YieldPlan planYields(const TaskDecl &T);
+
+class ModuleEmitter;
+
+/// The DWARF of `-g` (CodeGenOptions::DebugInfo), as Clang's CGDebugInfo:
+/// one compile unit per behavior, a namespace per module (so gdb's
+/// `break Motion::walk` works: the CU's language is C++), a subprogram per
+/// func and task and for the generated glue, b-script types as DWARF base,
+/// enumeration and structure types. Where a variable lives decides how it
+/// is described: an alloca by itself; a frame field as the `state`
+/// argument plus the field's offset (DW_OP_plus_uconst), which holds
+/// wherever the function runs, also after a resume.
+class DebugInfoEmitter {
+public:
+  DebugInfoEmitter(ModuleEmitter &CGM, const llvm::SourceMgr &SM);
+
+  /// The subprogram of the function of a func or task.
+  llvm::DISubprogram *createFunction(const CallableDecl &D,
+                                     llvm::Function &Fn);
+  /// An artificial subprogram for generated glue (entries, `main`, destroy
+  /// functions) whose code is attributed to line `Loc` (invalid: line 0).
+  /// Every instruction gets that location, so that the calls into the
+  /// b-script functions inlined there have one (the verifier insists).
+  void createGlueFunction(llvm::Function &Fn, llvm::SMLoc Loc);
+  /// Line and column of `Loc` in `Scope`.
+  llvm::DILocation *getLocation(llvm::SMLoc Loc, llvm::DIScope *Scope);
+  /// A lexical block (a block statement, a `for` head) at `Loc`.
+  llvm::DILexicalBlock *createBlock(llvm::DIScope *Parent, llvm::SMLoc Loc);
+  /// Describes parameter or local `D` of type `Ty` in `Scope`, which lives
+  /// in the alloca `Slot`. `ArgNo`: 0 for locals, else the DWARF argument
+  /// number. The dbg.declare goes before `Before`.
+  void declareVariable(const Decl &D, const Type *Ty, llvm::DIScope *Scope,
+                       llvm::AllocaInst *Slot, unsigned ArgNo,
+                       llvm::Instruction *Before);
+  /// The same for a task's parameter or local kept in its frame, `Offset`
+  /// bytes into the state. Unoptimised code reads the state pointer from
+  /// its stack slot `StateSlot` (alive all along); optimised code has it
+  /// in `State`, the argument, whose value LLVM tracks through registers.
+  void declareFrameVariable(const Decl &D, const Type *Ty,
+                            llvm::DIScope *Scope, llvm::Value *State,
+                            llvm::AllocaInst *StateSlot, uint64_t Offset,
+                            unsigned ArgNo, llvm::Instruction *Before);
+  /// Describes the `state` argument, spilled to `Slot`: argument 1, of
+  /// type `struct bs_state *` (the header and every frame), so that
+  /// `print *state` shows the whole behavior.
+  void declareState(llvm::DISubprogram *SP, llvm::Value *Slot,
+                    llvm::Instruction *Before);
+  /// Completes the types and subprograms.
+  void finalize();
+
+private:
+  llvm::DIFile *getFile(llvm::SMLoc Loc);
+  unsigned getLine(llvm::SMLoc Loc);
+  llvm::DINamespace *getNamespace(llvm::StringRef Name,
+                                  llvm::DIScope *Parent = nullptr);
+  llvm::DIType *getType(const Type *T);
+  /// A registered C++ field's type as C++ declares it (short, double, ...).
+  llvm::DIType *getNativeType(const NativeType &NT);
+  llvm::DIType *getBasicType(llvm::StringRef Name, uint64_t Bits,
+                             unsigned Encoding);
+  llvm::DIType *getEnumType(const NativeEnum *E);
+  llvm::DIType *getTaskStateType();
+  llvm::DIType *getClassType(const NativeClass *C);
+  llvm::DIType *getStringType();
+  llvm::DIType *getStatePointerType();
+  llvm::DISubroutineType *getSubroutineType(const CallableDecl &D);
+  llvm::DILocalVariable *createVariable(const Decl &D, const Type *Ty,
+                                        llvm::DIScope *Scope, unsigned ArgNo);
+
+  ModuleEmitter &CGM;
+  const llvm::SourceMgr &SM;
+  llvm::DIBuilder DIB;
+  llvm::DICompileUnit *CU = nullptr;
+  llvm::DenseMap<unsigned, llvm::DIFile *> Files; ///< By buffer ID.
+  llvm::StringMap<llvm::DINamespace *> Namespaces;
+  llvm::StringMap<llvm::DIType *> BasicTypes;
+  llvm::DenseMap<const NativeEnum *, llvm::DIType *> Enums;
+  llvm::DenseMap<const NativeClass *, llvm::DIType *> Classes;
+  llvm::DIType *TaskStateTy = nullptr;
+  llvm::DIType *StringTy = nullptr;
+  llvm::DIType *StatePtrTy = nullptr;
+  bool Optimized; ///< CodeGenOptions::OptLevel > 0.
+};
 
 /// What the whole behavior shares while it is being lowered.
 class ModuleEmitter {
@@ -153,6 +236,8 @@ public:
 
   const Behavior &getBehavior() const { return B; }
   const CodeGenOptions &getOptions() const { return Opts; }
+  /// Filled in as far as emission has come: the state and frames first.
+  const BehaviorLayout &getLayout() const { return Layout; }
   llvm::Module &getModule() { return M; }
 
   /// The fixed address of a REPL variable (emitReplLine), as a constant
@@ -175,6 +260,12 @@ public:
   llvm::MDNode *getAccessTag(Access A) const {
     return A == Access::State ? StateAccessTag : NativeAccessTag;
   }
+
+  /// With CodeGenOptions::DebugInfo, the DWARF being built; else null.
+  DebugInfoEmitter *getDebugInfo() { return DebugInfo.get(); }
+  /// The offset of field `Field` of the frame of `T` from the start of
+  /// the state.
+  uint64_t getFrameFieldOffset(const TaskDecl *T, unsigned Field) const;
 
   // Debugging probes (CodeGenOptions::Probes) -------------------------------
 
@@ -221,6 +312,7 @@ private:
   llvm::MDNode *NativeAccessTag = nullptr;
   /// emitReplLine: the REPL's variables at their addresses.
   const llvm::DenseMap<const Decl *, uint64_t> *ReplSlots = nullptr;
+  std::unique_ptr<DebugInfoEmitter> DebugInfo;
 };
 
 /// Lowers the body of one func or task into its (already declared) function.
@@ -359,6 +451,24 @@ private:
   llvm::Value *emitFieldAddress(const MemberExpr &E);
   /// The index of the first declared parameter among Fn's arguments.
   unsigned getFirstParamArg() const;
+
+  // Debug information (CodeGenOptions::DebugInfo, CGDebugInfo.cpp); each
+  // of these does nothing without it.
+  /// The scopes open here: the subprogram, then lexical blocks.
+  llvm::SmallVector<llvm::DIScope *, 8> DebugScopes;
+  /// The stack slot holding the state pointer.
+  llvm::AllocaInst *StateSlot = nullptr;
+  /// The subprogram, and stack slots for what the debugger reads all
+  /// along: the state pointer, a task's scalar parameters (the arguments
+  /// the body reads). No location: gdb's breakpoint goes after them.
+  void emitDebugPrologue();
+  /// Attributes the instructions emitted next to `Loc`.
+  void setDebugLocation(llvm::SMLoc Loc);
+  void pushDebugScope(llvm::SMLoc Loc);
+  void popDebugScope();
+  /// Declares a parameter (`ArgNo` > 0) or local to the debugger where it
+  /// lives: its frame field, or its alloca.
+  void declareForDebugger(const Decl &D, const Type *Ty, unsigned ArgNo = 0);
 
   /// With probes: stores site `Site` (0: none) into probe global `Symbol`.
   void emitProbe(const char *Symbol, unsigned Site);

@@ -14,6 +14,9 @@
 #include "bsc/CodeGen/Target.h"
 #include "bscript/bscript.h"
 #include "llvm/ExecutionEngine/Orc/Core.h"
+#include "llvm/ExecutionEngine/Orc/DebugObjectManagerPlugin.h"
+#include "llvm/ExecutionEngine/Orc/EPCDebugObjectRegistrar.h"
+#include "llvm/ExecutionEngine/Orc/TargetProcess/JITLoaderGDB.h"
 #include "llvm/ExecutionEngine/Orc/ExecutionUtils.h"
 #include "llvm/ExecutionEngine/Orc/ObjectLinkingLayer.h"
 #include "llvm/BinaryFormat/Magic.h"
@@ -49,8 +52,27 @@ void StaleBindingError::log(llvm::raw_ostream &OS) const {
 
 BehaviorJIT::~BehaviorJIT() = default;
 
+/// gdb's JIT interface: each linked object (its debug sections included)
+/// is announced through __jit_debug_register_code, which gdb breaks on. The
+/// registration function lives in this process (LLVM's OrcTargetProcess,
+/// linked into bsc), so it is passed by address rather than looked up.
+static llvm::Error registerWithDebugger(llvm::orc::LLJIT &J) {
+  auto *Linker =
+      llvm::dyn_cast<llvm::orc::ObjectLinkingLayer>(&J.getObjLinkingLayer());
+  if (!Linker)
+    return llvm::createStringError(
+        "the JIT's linker cannot register code with a debugger");
+  auto Registrar = std::make_unique<llvm::orc::EPCDebugObjectRegistrar>(
+      J.getExecutionSession(),
+      llvm::orc::ExecutorAddr::fromPtr(&llvm_orc_registerJITLoaderGDBWrapper));
+  Linker->addPlugin(std::make_unique<llvm::orc::DebugObjectManagerPlugin>(
+      J.getExecutionSession(), std::move(Registrar),
+      /*RequireDebugSections=*/false, /*AutoRegisterCode=*/true));
+  return llvm::Error::success();
+}
+
 llvm::Expected<std::unique_ptr<BehaviorJIT>>
-BehaviorJIT::create(unsigned OptLevel) {
+BehaviorJIT::create(unsigned OptLevel, bool Debuggable) {
   initializeTargets();
   auto JTMB = llvm::orc::JITTargetMachineBuilder::detectHost();
   if (!JTMB)
@@ -71,6 +93,9 @@ BehaviorJIT::create(unsigned OptLevel) {
   if (!J)
     return J.takeError();
   Result->J = std::move(*J);
+  if (Debuggable)
+    if (llvm::Error E = registerWithDebugger(*Result->J))
+      return E;
 
   // The runtime shim, by address (see the file comment).
   llvm::orc::MangleAndInterner Mangle(Result->J->getExecutionSession(),

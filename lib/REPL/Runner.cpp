@@ -43,7 +43,7 @@ llvm::Expected<std::unique_ptr<LoadedBehavior>>
 bsc::loadBehavior(Compilation &C, const CallableDecl &Entry,
                   const LoadOptions &Opts) {
   auto L = std::make_unique<LoadedBehavior>();
-  auto JITOrErr = BehaviorJIT::create(Opts.OptLevel);
+  auto JITOrErr = BehaviorJIT::create(Opts.OptLevel, Opts.DebugInfo);
   if (!JITOrErr)
     return JITOrErr.takeError();
   L->JIT = std::move(*JITOrErr);
@@ -53,6 +53,9 @@ bsc::loadBehavior(Compilation &C, const CallableDecl &Entry,
   CGOpts.BehaviorName = C.Modules.front()->Name;
   CGOpts.Probes = true;
   CGOpts.ExternalFunctions = Opts.ExternalFunctions;
+  CGOpts.DebugInfo = Opts.DebugInfo;
+  CGOpts.Sources = &C.SM;
+  CGOpts.OptLevel = Opts.OptLevel;
   // The JIT calls the entry only.
   CGOpts.Exports.emplace();
   if (isCallableFromC(Entry))

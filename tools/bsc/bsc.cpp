@@ -195,9 +195,10 @@ cl::opt<bool> DumpBindings("dump-bindings",
                                     "--bind objects register, and exit"),
                            cl::cat(BscCategory));
 cl::opt<bool> DebugInfo("g",
-                        cl::desc("Accepted for compatibility; bsc does not "
-                                 "emit debug information yet"),
-                        cl::cat(BscCategory));
+                        cl::desc("Emit DWARF debug information (for `run` "
+                                 "and `repl`: register the JIT's code with "
+                                 "gdb)"),
+                        cl::cat(BscCategory), BSC_ALL);
 
 /// Limit of --cycles: a run of more than a day of 30 Hz cycles is a typo.
 constexpr unsigned MaxCycles = 100000000;
@@ -467,6 +468,9 @@ int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
   CodeGenOptions CGOpts;
   CGOpts.Instrument = InstrumentFlag;
   CGOpts.NarrowX87Floats = usesX87Floats(*TM);
+  CGOpts.DebugInfo = DebugInfo;
+  CGOpts.Sources = &C.SM;
+  CGOpts.OptLevel = BOpts.Target.OptLevel;
   CGOpts.BehaviorName = getBehaviorName(C);
   if (CGOpts.BehaviorName.empty())
     return finish(C);
@@ -588,6 +592,7 @@ int runJIT(Compilation &C, const FrontendOptions &FOpts) {
   LOpts.OptLevel = BOpts.Target.OptLevel;
   LOpts.StandardModules = FOpts.StandardModules;
   LOpts.BindObjects = FOpts.BindObjects;
+  LOpts.DebugInfo = DebugInfo;
   auto Loaded = loadBehavior(C, *Entry, LOpts);
   if (!Loaded)
     return finishWithInternalError(C, Loaded.takeError());
@@ -618,6 +623,7 @@ int runReplCommand(Compilation &C, const FrontendOptions &FOpts) {
   Opts.Load.OptLevel = BOpts.Target.OptLevel;
   Opts.Load.StandardModules = FOpts.StandardModules;
   Opts.Load.BindObjects = FOpts.BindObjects;
+  Opts.Load.DebugInfo = DebugInfo;
   Opts.EntryName = EntryName;
   Opts.BatchFile = BatchFile;
   return runRepl(Opts, llvm::outs());

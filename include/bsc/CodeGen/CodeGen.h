@@ -29,6 +29,7 @@
 #include "llvm/IR/DataLayout.h"
 #include "llvm/IR/LLVMContext.h"
 #include "llvm/IR/Module.h"
+#include "llvm/Support/SourceMgr.h"
 #include "llvm/TargetParser/Triple.h"
 #include <memory>
 #include <optional>
@@ -68,6 +69,20 @@ struct CodeGenOptions {
   /// float's precision and range, as on every other target
   /// (docs/language.md, "Floats").
   bool NarrowX87Floats = false;
+  /// `-g`: DWARF for the behavior (lib/CodeGen/CGDebugInfo.cpp): a line
+  /// table, a subprogram per func and task, their parameters and locals
+  /// (frame fields included) with b-script types, registered classes with
+  /// their C++ layouts. `Sources` maps the AST's locations to lines; it
+  /// must be set with DebugInfo. At -O1 and above the code generated does
+  /// not change; at -O0 the state pointer and task parameters that are
+  /// only arguments are also stored on the stack, where the debugger reads
+  /// them all along.
+  bool DebugInfo = false;
+  const llvm::SourceMgr *Sources = nullptr;
+  /// The -O level the module will be optimised at. Only the debug
+  /// information depends on it: how a frame variable's place is described
+  /// (CGDebugInfo.cpp) and whether the unit says it is optimised.
+  unsigned OptLevel = 0;
   /// The top-level funcs and tasks exported as entries (`bs_<Name>__M__f`),
   /// each callable from C (isCallableFromC). Everything else is internal,
   /// so the optimiser may inline it into its callers. Unset: the behavior's

@@ -63,8 +63,11 @@ public:
   /// user's mistakes (the program was checked), so they are llvm::Errors
   /// that the driver prints as internal errors.
   /// `OptLevel` 0 also selects LLVM's fastest code generation.
+  /// `Debuggable`: every object linked is registered with gdb's JIT
+  /// interface (__jit_debug_register_code), so gdb attached to bsc sees
+  /// the behavior's DWARF.
   static llvm::Expected<std::unique_ptr<BehaviorJIT>>
-  create(unsigned OptLevel);
+  create(unsigned OptLevel, bool Debuggable = false);
   ~BehaviorJIT();
 
   const llvm::Triple &getTriple() const { return Triple; }

@@ -35,6 +35,8 @@ struct LoadOptions {
   std::vector<std::string> StandardModules, BindObjects;
   /// Funcs and tasks callable by the REPL's lines (CodeGenOptions).
   bool ExternalFunctions = false;
+  /// `-g`: DWARF for the behavior, registered with gdb's JIT interface.
+  bool DebugInfo = false;
 };
 
 /// Reports every thunk or descriptor that `M` imports from the binding

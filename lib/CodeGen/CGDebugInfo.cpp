@@ -1,0 +1,539 @@
+//===- CGDebugInfo.cpp - DWARF for `-g` -----------------------------------===//
+//
+// What gdb needs to debug a behavior as the source reads (docs/debugging.md):
+// - a line for every statement (FunctionEmitter sets the builder's location
+//   per statement; the prologue of a task has the task's line);
+// - a subprogram per func and task in a namespace per module, so
+//   `break Motion::walk` works (the compile unit says C++, whose scoping
+//   gdb then applies), and artificial ones for the glue bsc generates;
+// - parameters and locals with their b-script types: int, float, bool,
+//   `string` (a `const char *`), TaskState and registered enums as
+//   enumerations, registered classes as structures with the C++ fields;
+// - `state`, argument 1 of every function, as `struct bs_state *` whose
+//   members are the state header and every task's frame, module by module
+//   (`print state->Motion.walk`).
+//
+// A task's variable kept in its frame is described as the `state`
+// argument plus the field's offset. That description holds at every point
+// of the function: the code after a `yield` is entered from the resume
+// switch, not from the block that declared the variable. Every dbg.declare
+// therefore goes to the top of the entry block, whatever the scope.
+//
+//===----------------------------------------------------------------------===//
+#include "CodeGenImpl.h"
+#include "llvm/BinaryFormat/Dwarf.h"
+#include "llvm/IR/InstIterator.h"
+#include "llvm/Support/FileSystem.h"
+#include "llvm/Support/Path.h"
+
+using namespace bsc;
+using namespace bsc::codegen;
+
+/// DWARF 4: the gdb and binutils of older robot toolchains read it.
+constexpr unsigned DwarfVersion = 4;
+
+DebugInfoEmitter::DebugInfoEmitter(ModuleEmitter &CGM,
+                                   const llvm::SourceMgr &SM)
+    : CGM(CGM), SM(SM), DIB(CGM.getModule()),
+      Optimized(CGM.getOptions().OptLevel > 0) {
+  llvm::Module &M = CGM.getModule();
+  M.addModuleFlag(llvm::Module::Warning, "Dwarf Version", DwarfVersion);
+  M.addModuleFlag(llvm::Module::Warning, "Debug Info Version",
+                  llvm::DEBUG_METADATA_VERSION);
+  const Behavior &B = CGM.getBehavior();
+  llvm::DIFile *MainFile =
+      B.Modules.empty()
+          ? DIB.createFile(M.getSourceFileName(), ".")
+          : getFile(llvm::SMLoc::getFromPointer(
+                SM.getMemoryBuffer(B.Modules.front()->BufferID)
+                    ->getBufferStart()));
+  CU = DIB.createCompileUnit(llvm::dwarf::DW_LANG_C_plus_plus, MainFile,
+                             "bsc", Optimized, "", /*RuntimeVersion=*/0);
+}
+
+//===----------------------------------------------------------------------===//
+// Places
+//===----------------------------------------------------------------------===//
+
+llvm::DIFile *DebugInfoEmitter::getFile(llvm::SMLoc Loc) {
+  unsigned ID = Loc.isValid() ? SM.FindBufferContainingLoc(Loc) : 0;
+  if (!ID)
+    return CU ? CU->getFile() : DIB.createFile("<unknown>", ".");
+  llvm::DIFile *&F = Files[ID];
+  if (F)
+    return F;
+  // As Clang does: the name as given, relative to the directory bsc ran in.
+  llvm::StringRef Path = SM.getMemoryBuffer(ID)->getBufferIdentifier();
+  llvm::SmallString<256> Dir;
+  if (llvm::sys::path::is_absolute(Path))
+    Dir = llvm::sys::path::parent_path(Path);
+  else if (llvm::sys::fs::current_path(Dir))
+    Dir = ".";
+  llvm::StringRef Name = llvm::sys::path::is_absolute(Path)
+                             ? llvm::sys::path::filename(Path)
+                             : Path;
+  F = DIB.createFile(Name, Dir);
+  return F;
+}
+
+unsigned DebugInfoEmitter::getLine(llvm::SMLoc Loc) {
+  if (!Loc.isValid() || !SM.FindBufferContainingLoc(Loc))
+    return 0;
+  return SM.getLineAndColumn(Loc).first;
+}
+
+llvm::DILocation *DebugInfoEmitter::getLocation(llvm::SMLoc Loc,
+                                                llvm::DIScope *Scope) {
+  unsigned Line = 0, Col = 0;
+  if (Loc.isValid() && SM.FindBufferContainingLoc(Loc))
+    std::tie(Line, Col) = SM.getLineAndColumn(Loc);
+  return llvm::DILocation::get(CGM.getContext(), Line, Col, Scope);
+}
+
+llvm::DINamespace *DebugInfoEmitter::getNamespace(llvm::StringRef Name,
+                                                  llvm::DIScope *Parent) {
+  std::string Key = (Parent ? Parent->getName().str() + "::" : "") + Name.str();
+  llvm::DINamespace *&NS = Namespaces[Key];
+  if (!NS)
+    NS = DIB.createNameSpace(Parent, Name, /*ExportSymbols=*/false);
+  return NS;
+}
+
+llvm::DILexicalBlock *DebugInfoEmitter::createBlock(llvm::DIScope *Parent,
+                                                    llvm::SMLoc Loc) {
+  unsigned Line = 0, Col = 0;
+  if (Loc.isValid() && SM.FindBufferContainingLoc(Loc))
+    std::tie(Line, Col) = SM.getLineAndColumn(Loc);
+  return DIB.createLexicalBlock(Parent, getFile(Loc), Line, Col);
+}
+
+//===----------------------------------------------------------------------===//
+// Types
+//===----------------------------------------------------------------------===//
+
+llvm::DIType *DebugInfoEmitter::getBasicType(llvm::StringRef Name,
+                                             uint64_t Bits, unsigned Encoding) {
+  llvm::DIType *&T = BasicTypes[Name];
+  if (!T)
+    T = DIB.createBasicType(Name, Bits, Encoding);
+  return T;
+}
+
+llvm::DIType *DebugInfoEmitter::getStringType() {
+  if (!StringTy) {
+    const llvm::DataLayout &DL = CGM.getModule().getDataLayout();
+    llvm::DIType *Char =
+        getBasicType("char", 8, llvm::dwarf::DW_ATE_signed_char);
+    llvm::DIType *ConstChar =
+        DIB.createQualifiedType(llvm::dwarf::DW_TAG_const_type, Char);
+    StringTy = DIB.createTypedef(
+        DIB.createPointerType(ConstChar, DL.getPointerSizeInBits()), "string",
+        nullptr, 0, CU);
+  }
+  return StringTy;
+}
+
+llvm::DIType *DebugInfoEmitter::getTaskStateType() {
+  if (!TaskStateTy) {
+    llvm::DIType *Int = getBasicType("int", 32, llvm::dwarf::DW_ATE_signed);
+    // The named states; a custom state (`yield 3`) prints as its number.
+    llvm::Metadata *Values[] = {DIB.createEnumerator("done", 0),
+                                DIB.createEnumerator("running", 1),
+                                DIB.createEnumerator("failure", -1)};
+    TaskStateTy = DIB.createEnumerationType(
+        CU, "TaskState", nullptr, 0, 32, 32, DIB.getOrCreateArray(Values), Int,
+        /*RunTimeLang=*/0, "", /*IsScoped=*/true);
+  }
+  return TaskStateTy;
+}
+
+llvm::DIType *DebugInfoEmitter::getEnumType(const NativeEnum *E) {
+  llvm::DIType *&T = Enums[E];
+  if (T)
+    return T;
+  llvm::SmallVector<llvm::Metadata *, 8> Values;
+  for (const NativeEnum::Value &V : E->Values)
+    Values.push_back(DIB.createEnumerator(V.Name, V.Number));
+  llvm::DIScope *Scope = E->Module ? getNamespace(E->Module->Name) : nullptr;
+  T = DIB.createEnumerationType(
+      Scope, E->Name, nullptr, 0, 32, 32, DIB.getOrCreateArray(Values),
+      getBasicType("int", 32, llvm::dwarf::DW_ATE_signed), 0, "",
+      /*IsScoped=*/true);
+  return T;
+}
+
+llvm::DIType *DebugInfoEmitter::getNativeType(const NativeType &NT) {
+  unsigned Bits = NT.StorageSize * 8;
+  switch (NT.TheCode) {
+  case NativeType::Void:
+    return nullptr;
+  case NativeType::Bool:
+    return getBasicType("bool", Bits ? Bits : 8, llvm::dwarf::DW_ATE_boolean);
+  case NativeType::Int: {
+    static const char *const Signed[] = {"signed char", "short", "int",
+                                         "long long"};
+    static const char *const Unsigned[] = {"unsigned char", "unsigned short",
+                                           "unsigned int", "unsigned long long"};
+    unsigned Size = Bits ? Bits : 32;
+    unsigned Index = Size == 8 ? 0 : Size == 16 ? 1 : Size == 64 ? 3 : 2;
+    return NT.Unsigned
+               ? getBasicType(Unsigned[Index], Size,
+                              Size == 8 ? llvm::dwarf::DW_ATE_unsigned_char
+                                        : llvm::dwarf::DW_ATE_unsigned)
+               : getBasicType(Signed[Index], Size,
+                              Size == 8 ? llvm::dwarf::DW_ATE_signed_char
+                                        : llvm::dwarf::DW_ATE_signed);
+  }
+  case NativeType::Float:
+    return Bits == 64 ? getBasicType("double", 64, llvm::dwarf::DW_ATE_float)
+                      : getBasicType("float", 32, llvm::dwarf::DW_ATE_float);
+  case NativeType::String:
+    return getStringType();
+  case NativeType::Enum:
+    return NT.TheEnum ? getEnumType(NT.TheEnum)
+                      : getBasicType("int", 32, llvm::dwarf::DW_ATE_signed);
+  case NativeType::Class:
+    return NT.TheClass ? getClassType(NT.TheClass)
+                       : DIB.createUnspecifiedType(NT.Name);
+  }
+  return nullptr;
+}
+
+llvm::DIType *DebugInfoEmitter::getClassType(const NativeClass *C) {
+  llvm::DIType *&T = Classes[C];
+  if (T)
+    return T;
+  llvm::DIScope *Scope = C->Module ? getNamespace(C->Module->Name) : nullptr;
+  auto *Struct = DIB.createStructType(
+      Scope, C->Name, nullptr, 0, C->Size * 8, C->Align * 8,
+      llvm::DINode::FlagZero, nullptr, llvm::DINodeArray());
+  T = Struct;
+  // The fields bsc reads by offset, as C++ lays them out; properties and
+  // private data stay out of sight, as in the script.
+  llvm::SmallVector<llvm::Metadata *, 8> Members;
+  for (const NativeFunction &F : C->Members) {
+    if (F.Kind != NativeFunction::Field || !F.FieldOffset)
+      continue;
+    llvm::DIType *FieldTy = getNativeType(F.Result);
+    if (!FieldTy)
+      continue;
+    uint64_t Bits = F.Result.StorageSize ? F.Result.StorageSize * 8
+                                         : FieldTy->getSizeInBits();
+    Members.push_back(DIB.createMemberType(Struct, F.Name, nullptr, 0, Bits, 0,
+                                           *F.FieldOffset * 8,
+                                           llvm::DINode::FlagZero, FieldTy));
+  }
+  DIB.replaceArrays(Struct, DIB.getOrCreateArray(Members));
+  return T;
+}
+
+llvm::DIType *DebugInfoEmitter::getType(const Type *T) {
+  switch (T->getKind()) {
+  case TypeKind::Error:
+  case TypeKind::Void:
+    return nullptr;
+  case TypeKind::Int:
+    return getBasicType("int", 32, llvm::dwarf::DW_ATE_signed);
+  case TypeKind::Float:
+    return getBasicType("float", 32, llvm::dwarf::DW_ATE_float);
+  case TypeKind::Bool:
+    // In memory a byte, 0 or 1 (CodeGenImpl.h).
+    return getBasicType("bool", 8, llvm::dwarf::DW_ATE_boolean);
+  case TypeKind::String:
+    return getStringType();
+  case TypeKind::TaskState:
+    return getTaskStateType();
+  case TypeKind::Enum:
+    return getEnumType(T->getEnum());
+  case TypeKind::Class:
+    return getClassType(T->getClass());
+  }
+  return nullptr;
+}
+
+llvm::DIType *DebugInfoEmitter::getStatePointerType() {
+  if (StatePtrTy)
+    return StatePtrTy;
+  const BehaviorLayout &Layout = CGM.getLayout();
+  const llvm::DataLayout &DL = CGM.getModule().getDataLayout();
+  unsigned PtrBits = DL.getPointerSizeInBits();
+  llvm::DIType *U32 =
+      getBasicType("unsigned int", 32, llvm::dwarf::DW_ATE_unsigned);
+  llvm::DIType *VoidPtr = DIB.createPointerType(nullptr, PtrBits);
+  auto Member = [&](llvm::DIScope *Scope, llvm::StringRef Name, uint64_t Bits,
+                    uint64_t Offset, llvm::DIType *Ty) {
+    return DIB.createMemberType(Scope, Name, nullptr, 0, Bits, 0, Offset * 8,
+                                llvm::DINode::FlagZero, Ty);
+  };
+  auto *State = DIB.createStructType(CU, "bs_state", nullptr, 0,
+                                     Layout.StateSize * 8,
+                                     Layout.StateAlign * 8,
+                                     llvm::DINode::FlagZero, nullptr,
+                                     llvm::DINodeArray());
+  // The header (bscript.h's bs_state_header): input and output point to
+  // the world's classes when the behavior has a world.
+  const NativeModule *World = CGM.getBehavior().World;
+  auto WorldPtr = [&](const NativeClass *C) {
+    return C ? DIB.createPointerType(getClassType(C), PtrBits) : VoidPtr;
+  };
+  const llvm::StructLayout *SL =
+      DL.getStructLayout(CGM.getStateType());
+  llvm::SmallVector<llvm::Metadata *, 16> Members = {
+      Member(State, "cycle", 32, SL->getElementOffset(StateCycle), U32),
+      Member(State, "reserved", 32, SL->getElementOffset(StateReserved), U32),
+      Member(State, "input", PtrBits, SL->getElementOffset(StateInput),
+             WorldPtr(World ? World->Input : nullptr)),
+      Member(State, "output", PtrBits, SL->getElementOffset(StateOutput),
+             WorldPtr(World ? World->Output : nullptr))};
+
+  // The frames, a structure per module holding its tasks' frames (tasks
+  // are laid out module by module), each with the frame header and the
+  // fields kept (locals of disjoint scopes may share one).
+  llvm::DIType *TaskState = getTaskStateType();
+  for (size_t I = 0; I < Layout.Tasks.size();) {
+    const ModuleAST *Mod = Layout.Tasks[I].Decl->Module;
+    size_t End = I;
+    while (End < Layout.Tasks.size() && Layout.Tasks[End].Decl->Module == Mod)
+      ++End;
+    uint64_t ModStart = Layout.Tasks[I].FrameOffset;
+    uint64_t ModEnd =
+        Layout.Tasks[End - 1].FrameOffset + Layout.Tasks[End - 1].FrameSize;
+    std::string ModName = Mod ? Mod->Name : "module";
+    auto *ModStruct = DIB.createStructType(
+        State, ModName + "_frames", nullptr, 0, (ModEnd - ModStart) * 8, 0,
+        llvm::DINode::FlagZero, nullptr, llvm::DINodeArray());
+    llvm::SmallVector<llvm::Metadata *, 8> Frames;
+    for (size_t K = I; K < End; ++K) {
+      const BehaviorLayout::Task &Task = Layout.Tasks[K];
+      std::string TaskName = Task.Decl->getName().Name.str();
+      auto *Frame = DIB.createStructType(
+          ModStruct, TaskName + "_frame", nullptr, 0, Task.FrameSize * 8, 0,
+          llvm::DINode::FlagZero, nullptr, llvm::DINodeArray());
+      llvm::SmallVector<llvm::Metadata *, 8> Fields = {
+          Member(Frame, "resume", 32, 0, U32),
+          Member(Frame, "state", 32, 4, TaskState),
+          Member(Frame, "last_call", 32, 8, U32)};
+      for (const BehaviorLayout::FrameField &F : Task.Fields) {
+        llvm::DIType *Ty = getType(F.Ty);
+        if (!Ty)
+          continue;
+        Fields.push_back(Member(Frame, F.D->getName().Name,
+                                Ty->getSizeInBits()
+                                    ? Ty->getSizeInBits()
+                                    : DL.getTypeAllocSizeInBits(
+                                          CGM.getMemoryType(F.Ty)),
+                                F.Offset - Task.FrameOffset, Ty));
+      }
+      DIB.replaceArrays(Frame, DIB.getOrCreateArray(Fields));
+      Frames.push_back(Member(ModStruct, TaskName, Task.FrameSize * 8,
+                              Task.FrameOffset - ModStart, Frame));
+    }
+    DIB.replaceArrays(ModStruct, DIB.getOrCreateArray(Frames));
+    Members.push_back(Member(State, ModName, (ModEnd - ModStart) * 8, ModStart,
+                             ModStruct));
+    I = End;
+  }
+  DIB.replaceArrays(State, DIB.getOrCreateArray(Members));
+  StatePtrTy = DIB.createPointerType(State, PtrBits);
+  return StatePtrTy;
+}
+
+llvm::DISubroutineType *
+DebugInfoEmitter::getSubroutineType(const CallableDecl &D) {
+  llvm::SmallVector<llvm::Metadata *, 8> Types;
+  const auto *F = llvm::dyn_cast<FuncDecl>(&D);
+  Types.push_back(F ? getType(F->ResultTy) : nullptr);
+  Types.push_back(DIB.createArtificialType(getStatePointerType()));
+  for (const ParamDecl *P : D.Params)
+    Types.push_back(getType(P->Ty));
+  return DIB.createSubroutineType(DIB.getOrCreateTypeArray(Types));
+}
+
+//===----------------------------------------------------------------------===//
+// Functions and variables
+//===----------------------------------------------------------------------===//
+
+llvm::DISubprogram *DebugInfoEmitter::createFunction(const CallableDecl &D,
+                                                     llvm::Function &Fn) {
+  llvm::DIScope *Scope =
+      D.Module ? getNamespace(D.Module->Name) : static_cast<llvm::DIScope *>(CU);
+  // A nested func is `Module::task::f`.
+  if (const auto *F = llvm::dyn_cast<FuncDecl>(&D))
+    if (F->EnclosingTask)
+      Scope = getNamespace(F->EnclosingTask->getName().Name, Scope);
+  unsigned Line = getLine(D.getLoc());
+  llvm::DISubprogram::DISPFlags SPFlags = llvm::DISubprogram::SPFlagDefinition;
+  if (Fn.hasLocalLinkage())
+    SPFlags |= llvm::DISubprogram::SPFlagLocalToUnit;
+  // No linkage name: gdb would take `bs.M.f`, which no C++ demangler
+  // reads, for the name, instead of `M::f` from the namespace.
+  llvm::DISubprogram *SP = DIB.createFunction(
+      Scope, D.getName().Name, /*LinkageName=*/"", getFile(D.getLoc()), Line,
+      getSubroutineType(D), Line, llvm::DINode::FlagPrototyped, SPFlags);
+  Fn.setSubprogram(SP);
+  return SP;
+}
+
+void DebugInfoEmitter::createGlueFunction(llvm::Function &Fn,
+                                          llvm::SMLoc Loc) {
+  unsigned Line = getLine(Loc);
+  llvm::DISubprogram *SP = DIB.createFunction(
+      getFile(Loc), Fn.getName(), Fn.getName(), getFile(Loc), Line,
+      DIB.createSubroutineType(DIB.getOrCreateTypeArray({})), Line,
+      llvm::DINode::FlagArtificial | llvm::DINode::FlagPrototyped,
+      llvm::DISubprogram::SPFlagDefinition |
+          (Fn.hasLocalLinkage() ? llvm::DISubprogram::SPFlagLocalToUnit
+                                : llvm::DISubprogram::SPFlagZero));
+  Fn.setSubprogram(SP);
+  llvm::DILocation *At = llvm::DILocation::get(CGM.getContext(), Line, 0, SP);
+  for (llvm::Instruction &I : llvm::instructions(Fn))
+    I.setDebugLoc(At);
+}
+
+llvm::DILocalVariable *DebugInfoEmitter::createVariable(const Decl &D,
+                                                       const Type *Ty,
+                                                       llvm::DIScope *Scope,
+                                                       unsigned ArgNo) {
+  llvm::DIType *DTy = getType(Ty);
+  llvm::DIFile *File = getFile(D.getLoc());
+  unsigned Line = getLine(D.getLoc());
+  llvm::StringRef Name = D.getName().Name;
+  if (ArgNo)
+    return DIB.createParameterVariable(Scope, Name, ArgNo, File, Line, DTy,
+                                       /*AlwaysPreserve=*/true);
+  return DIB.createAutoVariable(Scope, Name, File, Line, DTy,
+                                /*AlwaysPreserve=*/true);
+}
+
+void DebugInfoEmitter::declareVariable(const Decl &D, const Type *Ty,
+                                       llvm::DIScope *Scope,
+                                       llvm::AllocaInst *Slot, unsigned ArgNo,
+                                       llvm::Instruction *Before) {
+  DIB.insertDeclare(Slot, createVariable(D, Ty, Scope, ArgNo),
+                    DIB.createExpression(), getLocation(D.getLoc(), Scope),
+                    Before);
+}
+
+void DebugInfoEmitter::declareFrameVariable(
+    const Decl &D, const Type *Ty, llvm::DIScope *Scope, llvm::Value *State,
+    llvm::AllocaInst *StateSlot, uint64_t Offset, unsigned ArgNo,
+    llvm::Instruction *Before) {
+  llvm::DILocalVariable *Var = createVariable(D, Ty, Scope, ArgNo);
+  llvm::DILocation *Loc = getLocation(D.getLoc(), Scope);
+  if (!Optimized) {
+    // At (slot) + Offset: a stack slot is valid in the whole function.
+    DIB.insertDeclare(StateSlot, Var,
+                      DIB.createExpression(llvm::ArrayRef<uint64_t>{
+                          llvm::dwarf::DW_OP_deref,
+                          llvm::dwarf::DW_OP_plus_uconst, Offset}),
+                      Loc, Before);
+    return;
+  }
+  // In memory at state + Offset (the trailing deref makes it a memory
+  // location); mem2reg would drop the form above once the slot is gone.
+  DIB.insertDbgValueIntrinsic(
+      State, Var,
+      DIB.createExpression(llvm::ArrayRef<uint64_t>{
+          llvm::dwarf::DW_OP_plus_uconst, Offset, llvm::dwarf::DW_OP_deref}),
+      Loc, Before);
+}
+
+void DebugInfoEmitter::declareState(llvm::DISubprogram *SP, llvm::Value *Slot,
+                                    llvm::Instruction *Before) {
+  llvm::DILocalVariable *Var = DIB.createParameterVariable(
+      SP, "state", 1, SP->getFile(), SP->getLine(), getStatePointerType(),
+      /*AlwaysPreserve=*/true, llvm::DINode::FlagArtificial);
+  DIB.insertDeclare(Slot, Var, DIB.createExpression(),
+                    llvm::DILocation::get(CGM.getContext(), SP->getLine(), 0,
+                                          SP),
+                    Before);
+}
+
+void DebugInfoEmitter::finalize() {
+  // Calls that no statement located (none should remain) get the function's
+  // line 0: the verifier requires a location on every call of a function
+  // with debug information.
+  for (llvm::Function &F : CGM.getModule()) {
+    llvm::DISubprogram *SP = F.getSubprogram();
+    if (!SP)
+      continue;
+    for (llvm::Instruction &I : llvm::instructions(F))
+      if (llvm::isa<llvm::CallBase>(I) && !I.getDebugLoc())
+        I.setDebugLoc(llvm::DILocation::get(CGM.getContext(), 0, 0, SP));
+  }
+  DIB.finalize();
+}
+
+//===----------------------------------------------------------------------===//
+// FunctionEmitter's side
+//===----------------------------------------------------------------------===//
+
+void FunctionEmitter::emitDebugPrologue() {
+  DebugInfoEmitter *DI = CGM.getDebugInfo();
+  DebugScopes = {DI->createFunction(D, *Fn)};
+  // mem2reg removes these slots at -O1 and above.
+  StateSlot = new llvm::AllocaInst(StatePtr->getType(), 0, "state.addr",
+                                   EntryPoint);
+  Builder.CreateStore(StatePtr, StateSlot);
+  DI->declareState(Fn->getSubprogram(), StateSlot, EntryPoint);
+  if (!Task)
+    return; // A func's parameters are in slots anyway (emitFuncPrologue).
+  // A task's frame keeps a copy of a parameter for nested funcs, stored
+  // only after the reset check; the argument is what the body reads.
+  const llvm::DataLayout &DL = CGM.getModule().getDataLayout();
+  for (const ParamDecl *P : Task->Params) {
+    if (!P->Ty->isClass()) {
+      llvm::Type *MemTy = CGM.getMemoryType(P->Ty);
+      auto *Slot = new llvm::AllocaInst(MemTy, 0, P->getName().Name + ".addr",
+                                        EntryPoint);
+      Slot->setAlignment(DL.getABITypeAlign(MemTy));
+      emitStore(P->Ty, Fn->getArg(P->Index + 1), Slot);
+      Slots[P] = Slot;
+    }
+    declareForDebugger(*P, P->Ty, P->Index + 2);
+  }
+}
+
+void FunctionEmitter::setDebugLocation(llvm::SMLoc Loc) {
+  if (DebugInfoEmitter *DI = CGM.getDebugInfo())
+    Builder.SetCurrentDebugLocation(DI->getLocation(Loc, DebugScopes.back()));
+}
+
+void FunctionEmitter::pushDebugScope(llvm::SMLoc Loc) {
+  if (DebugInfoEmitter *DI = CGM.getDebugInfo())
+    DebugScopes.push_back(DI->createBlock(DebugScopes.back(), Loc));
+}
+
+void FunctionEmitter::popDebugScope() {
+  if (CGM.getDebugInfo())
+    DebugScopes.pop_back();
+}
+
+void FunctionEmitter::declareForDebugger(const Decl &Dcl, const Type *Ty,
+                                         unsigned ArgNo) {
+  DebugInfoEmitter *DI = CGM.getDebugInfo();
+  if (!DI)
+    return;
+  // A stack slot (a func's variables, a task's scalar parameters with -g,
+  // a task's locals that never outlive a call).
+  if (auto *Slot =
+          llvm::dyn_cast_or_null<llvm::AllocaInst>(Slots.lookup(&Dcl))) {
+    DI->declareVariable(Dcl, Ty, DebugScopes.back(), Slot, ArgNo, EntryPoint);
+    return;
+  }
+  // A task's parameter or local kept in its frame: `state` plus the
+  // field's offset (the file comment says why not the field's address).
+  const CallableDecl *Owner = nullptr;
+  if (const auto *V = llvm::dyn_cast<VarDecl>(&Dcl))
+    Owner = V->Owner;
+  else
+    Owner = llvm::cast<ParamDecl>(Dcl).Owner;
+  if (const auto *T = llvm::dyn_cast_or_null<TaskDecl>(Owner))
+    if (CGM.keepsInFrame(&Dcl)) {
+      DI->declareFrameVariable(
+          Dcl, Ty, DebugScopes.back(), StatePtr, StateSlot,
+          CGM.getFrameFieldOffset(T, CGM.getFrame(T).Fields.lookup(&Dcl)),
+          ArgNo, EntryPoint);
+      return;
+    }
+}
