@@ -11,7 +11,13 @@
 #   %bsc_build    the build folder (bin/bsc, lib/)
 #   %bsc_include  the public headers (bscript/bscript.h for C embeddings)
 #   %run-i586     runs a 32-bit x86 program (natively, else qemu-i386)
+# Features: conformance, shared-bench (../shared present), gdb (installed by
+# dev.sh), i586-native (this kernel runs 32-bit programs itself, so gdb can
+# debug them).
 import os
+import shutil
+import subprocess
+import tempfile
 import lit.formats
 
 config.name = "bsc"
@@ -44,3 +50,23 @@ if os.path.isfile(os.path.join(config.shared_dir, "bench", "harness.h")):
 config.substitutions.append(
     ("%run-i586", config.python_executable + " " +
      os.path.join(config.bsc_src_root, "utils", "run-i586")))
+
+if shutil.which("gdb"):
+    config.available_features.add("gdb")
+
+
+def runs_i586_natively():
+    """Whether a 32-bit program runs without qemu (gdb needs that)."""
+    with tempfile.TemporaryDirectory() as d:
+        prog = os.path.join(d, "probe")
+        try:
+            subprocess.run(["cc", "-m32", "-x", "c", "-", "-o", prog],
+                           input=b"int main(void) { return 0; }",
+                           check=True, capture_output=True)
+            return subprocess.run([prog], capture_output=True).returncode == 0
+        except (OSError, subprocess.CalledProcessError):
+            return False
+
+
+if runs_i586_natively():
+    config.available_features.add("i586-native")

@@ -3,10 +3,10 @@
 
 The conformance folder holds programs others wrote (the paper's figures, and
 more over time); the suite runs them unchanged. Every `X.bs` is compiled for
-the host and for i586 with the soccer world bindings that folder's README
-describes. A program with an `X.expected` beside it is also run, in the JIT
-and as an i586 program, and its output must equal that file. New programs
-are picked up without touching the test.
+the host and for i586 (for i586 also with -g -O2) with the soccer world
+bindings that folder's README describes. A program with an `X.expected`
+beside it is also run, in the JIT and as an i586 program, and its output
+must equal that file. New programs are picked up without touching the test.
 
 usage: run-conformance.py BSC RUN_I586 CONFORMANCE_DIR HOST_BIND_OBJ I586_BIND_OBJ WORK_DIR
 """
@@ -33,6 +33,9 @@ def main():
             ('host -c', [bsc, '-c', '--bind', host_obj, src, '-o', out + '.host.o']),
             ('i586 -c', [bsc, '-target', 'i586', '-c', '--bind', i586_obj, src,
                          '-o', out + '.i586.o']),
+            # Debug information for everything a program holds.
+            ('i586 -g -O2 -c', [bsc, '-target', 'i586', '-g', '-O2', '-c',
+                                '--bind', i586_obj, src, '-o', out + '.g.o']),
         ]
         expected_path = src[:-3] + '.expected'
         expected = open(expected_path, 'rb').read() if os.path.exists(expected_path) else None
