@@ -2,7 +2,7 @@
 """Compiles one behavior for every triple of a list, with -c, -S and
 --emit=llvm, and checks that bsc never crashes on a target.
 
-usage: check-targets.py BSC TRIPLES INPUT [--jobs N] [-O LEVEL]
+usage: check-targets.py BSC TRIPLES INPUT [--jobs N] [-O LEVEL] [-g]
 
 For each triple and mode, bsc must either succeed and write a non-empty
 output (an object file in a format LLVM writes, for ELF with the machine of
@@ -78,9 +78,10 @@ def expected_machine(triple):
     return ELF_MACHINES.get(best)
 
 
-def check(bsc, triple, mode, inp, opt, tmp):
+def check(bsc, triple, mode, inp, opt, debug, tmp):
     out = os.path.join(tmp, triple + mode.replace("=", "_"))
-    p = subprocess.run([bsc, "-target", triple, "-O" + opt, mode, inp,
+    flags = ["-g"] if debug else []
+    p = subprocess.run([bsc, "-target", triple, "-O" + opt, *flags, mode, inp,
                         "-o", out], capture_output=True, text=True)
     err = p.stderr
     problems = []
@@ -123,6 +124,8 @@ def main():
     ap.add_argument("input")
     ap.add_argument("--jobs", type=int, default=os.cpu_count() or 2)
     ap.add_argument("-O", dest="opt", default="0")
+    ap.add_argument("-g", dest="debug", action="store_true",
+                    help="with debug information")
     args = ap.parse_args()
     triples = []
     for line in open(args.triples):
@@ -134,7 +137,8 @@ def main():
     counts = {"ok": 0, "error": 0}
     with tempfile.TemporaryDirectory() as tmp, \
             concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
-        futures = [pool.submit(check, args.bsc, t, m, args.input, args.opt, tmp)
+        futures = [pool.submit(check, args.bsc, t, m, args.input, args.opt,
+                               args.debug, tmp)
                    for t, m in jobs]
         for f in futures:
             triple, mode, result, problems, err = f.result()

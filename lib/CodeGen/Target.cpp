@@ -66,6 +66,11 @@ bool bsc::hasProgramRuntime(const llvm::Triple &T) {
          T.isOSLinux() && T.isOSBinFormatELF();
 }
 
+bool bsc::supportsDebugInfo(const llvm::Triple &T) {
+  // GOFF for other architectures is refused altogether (UnsupportedTargets).
+  return !(T.isSystemZ() && T.isOSBinFormatGOFF());
+}
+
 bool bsc::usesX87Floats(const llvm::TargetMachine &TM) {
   return TM.getTargetTriple().getArch() == llvm::Triple::x86 &&
          !TM.getMCSubtargetInfo()->checkFeatures("+sse");

@@ -465,6 +465,12 @@ int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
         << TM->getTargetTriple().str();
     return finish(C);
   }
+  if (DebugInfo && Kind != OutputKind::LLVM && Kind != OutputKind::Header &&
+      !supportsDebugInfo(TM->getTargetTriple())) {
+    C.Diags.report(llvm::SMLoc(), diag::err_no_debug_info_for_target)
+        << TM->getTargetTriple().str();
+    return finish(C);
+  }
   CodeGenOptions CGOpts;
   CGOpts.Instrument = InstrumentFlag;
   CGOpts.NarrowX87Floats = usesX87Floats(*TM);

@@ -72,6 +72,10 @@ std::optional<unsigned> parseOptLevel(llvm::StringRef Value);
 /// and a wider exponent than a float (CodeGenOptions::NarrowX87Floats).
 bool usesX87Floats(const llvm::TargetMachine &TM);
 
+/// Whether LLVM can write DWARF into machine code for `T` (`-g`): not
+/// into GOFF objects (z/OS), where LLVM 19's writer crashes on it.
+bool supportsDebugInfo(const llvm::Triple &T);
+
 /// Whether bsc ships a runtime shim a program for `T` links with (host
 /// x86_64 and i586 Linux): only those get standalone programs; every other
 /// target gets objects, assembly and IR.
