@@ -1,6 +1,7 @@
 //===- CGDebugInfo.cpp - DWARF for `-g` -----------------------------------===//
 //
-// What gdb needs to debug a behavior as the source reads (docs/debugging.md):
+// What gdb needs to debug a behavior as the source reads (docs/repl.md,
+// "gdb: -g"):
 // - a line for every statement (FunctionEmitter sets the builder's location
 //   per statement; the prologue of a task has the task's line);
 // - a subprogram per func and task in a namespace per module, so

@@ -7,7 +7,8 @@
 // - FunctionEmitter lowers one func or task body. Statements are in
 //   CGStmt.cpp, expressions in CGExpr.cpp, and everything that exists only
 //   because a task is a generator (prologue, reset check, resume switch,
-//   yields, task states) in CGTask.cpp.
+//   yields, task states) in CGTask.cpp. DWARF for -g (DebugInfoEmitter) is
+//   in CGDebugInfo.cpp.
 //
 // Storage of values (docs/design/backend.md):
 // - A task's parameters and locals live in its frame inside the behavior
