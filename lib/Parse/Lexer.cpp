@@ -26,6 +26,9 @@ Lexer::Lexer(const llvm::SourceMgr &SM, unsigned BufferID,
   BufStart = Buf->getBufferStart();
   BufEnd = Buf->getBufferEnd();
   Cur = BufStart;
+  // A UTF-8 byte-order mark, which some Windows editors write, is not text.
+  if (llvm::StringRef(BufStart, BufEnd - BufStart).starts_with("\xEF\xBB\xBF"))
+    Cur += 3;
 }
 
 void Lexer::makeToken(Token &Result, tok::Kind K, const char *Start) {
@@ -73,7 +76,12 @@ bool Lexer::measureIndentation(unsigned &Column) {
         ++Column;
       } else if (*Cur == '\t') {
         HasTab = true;
-        Column = (Column / TabWidth + 1) * TabWidth;
+        // In a file indented with spaces, a stray tab most likely stands
+        // for one level: tab stops at that width keep the block structure
+        // (and the errors) to the one about mixing.
+        unsigned Stop = SawSpaceIndent && SpaceIndentUnit ? SpaceIndentUnit
+                                                          : TabWidth;
+        Column = (Column / Stop + 1) * Stop;
       } else if (*Cur != '\r') {
         break;
       }
@@ -96,6 +104,8 @@ bool Lexer::measureIndentation(unsigned &Column) {
     }
     SawTabIndent |= HasTab;
     SawSpaceIndent |= HasSpace;
+    if (HasSpace && !HasTab && !SpaceIndentUnit && Column)
+      SpaceIndentUnit = Column;
     return true;
   }
 }
@@ -315,7 +325,10 @@ void Lexer::lexInvalidRun(Token &Result) {
   };
   while (Cur != BufEnd && IsInvalid(Cur))
     ++Cur;
-  report(Start, diag::err_invalid_character) << showChar(*Start);
+  if (static_cast<unsigned char>(*Start) >= 0x80)
+    report(Start, diag::err_non_ascii_character) << showChar(*Start);
+  else
+    report(Start, diag::err_invalid_character) << showChar(*Start);
   makeToken(Result, tok::error, Start);
 }
 

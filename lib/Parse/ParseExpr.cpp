@@ -94,7 +94,8 @@ Expr *Parser::parseExprAfterName(QualifiedName Name) {
 Expr *Parser::parseBinaryRHS(unsigned MinPrec, Expr *LHS) {
   while (true) {
     BinaryOp Op;
-    if (InError || !getBinaryOp(Tok.Kind, Op) || getPrecedence(Op) < MinPrec)
+    if (InError || diagnoseOperatorHabit() || !getBinaryOp(Tok.Kind, Op) ||
+        getPrecedence(Op) < MinPrec)
       return LHS;
     unsigned Prec = getPrecedence(Op);
     consume();
@@ -110,6 +111,8 @@ Expr *Parser::parseBinaryRHS(unsigned MinPrec, Expr *LHS) {
 
 /// unary ::= ('-' | '!') unary | postfix
 Expr *Parser::parseUnary() {
+  if (diagnoseOperandHabit())
+    return makeError(Tok.Loc);
   if (Tok.isNot(tok::minus) && Tok.isNot(tok::exclaim))
     return parsePostfix(parsePrimary());
   llvm::SMLoc Start = Tok.Loc;

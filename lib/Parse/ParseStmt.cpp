@@ -80,6 +80,8 @@ Stmt *Parser::parseStatement() {
     diag(Start, diag::err_requires_after_decl);
     return recoverStatement(nullptr, Start);
   }
+  if (diagnoseStatementHabit())
+    return recoverStatement(nullptr, Start);
   if (!startsExpression(Tok.Kind)) {
     diag(Start, diag::err_expected_statement);
     return recoverStatement(nullptr, Start);
@@ -89,13 +91,21 @@ Stmt *Parser::parseStatement() {
 
 /// The value of `return` / `yield`, if the line has one.
 Expr *Parser::parseOptionalValue() {
-  if (Tok.is(tok::newline) || Tok.is(tok::r_paren) || Tok.is(tok::eof))
+  // `;` too: `return;` is a habit finishLine reports.
+  if (Tok.is(tok::newline) || Tok.is(tok::r_paren) || Tok.is(tok::eof) ||
+      Tok.is(tok::semi))
     return nullptr;
   return parseExpr();
 }
 
 /// Ends a one-line statement at its NEWLINE.
 Stmt *Parser::finishLine(Stmt *S, llvm::SMLoc Start) {
+  // `x = 1;`: the statement itself is whole, so it stays (no follow-on
+  // errors from a missing declaration or return).
+  if (!InError && diagnoseEndOfLineHabit()) {
+    skipLineAndBlock();
+    return S;
+  }
   if (!InError && Tok.isNot(tok::newline))
     diag(Tok.Loc, diag::err_expected) << "end of line";
   if (!InError) {

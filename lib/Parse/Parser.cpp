@@ -22,7 +22,18 @@ void Parser::consume() {
   if (Tok.is(tok::eof))
     return;
   PrevEnd = Tok.getEndLoc();
+  if (Peeked) {
+    Tok = *Peeked;
+    Peeked.reset();
+    return;
+  }
   Tok = Lex.lex();
+}
+
+const Token &Parser::peek() {
+  if (!Peeked)
+    Peeked = Lex.lex();
+  return *Peeked;
 }
 
 bool Parser::consumeIf(tok::Kind K) {

@@ -26,6 +26,7 @@
 #include "bsc/Parse/Lexer.h"
 #include "bsc/Parse/Parser.h"
 #include "llvm/ADT/DenseMap.h"
+#include <optional>
 
 namespace bsc {
 
@@ -41,6 +42,8 @@ private:
   //--- Parser.cpp: tokens, diagnostics, recovery, declarations ------------
   void consume();
   bool consumeIf(tok::Kind K);
+  /// The token after Tok (lexed once, then consumed as usual).
+  const Token &peek();
   /// Consumes a token of kind K or reports `expected What`.
   bool expect(tok::Kind K, llvm::StringRef What);
   /// Reports unless this statement already has an error or the current
@@ -71,6 +74,18 @@ private:
   Stmt *parseForStep();
   Stmt *parseNestedFunc();
   Expr *parseOptionalValue();
+
+  //--- ParseHabits.cpp: spellings of other languages ---------------------
+  // Each reports the habit at the current token and returns true, or
+  // returns false without consuming anything.
+  /// At the start of a statement: `while`, `elif`, `++x`.
+  bool diagnoseStatementHabit();
+  /// After an operand: `and`, `or`, `x++`, `x--`.
+  bool diagnoseOperatorHabit();
+  /// Where an operand starts: `not`.
+  bool diagnoseOperandHabit();
+  /// Where a statement should end: a trailing `;`.
+  bool diagnoseEndOfLineHabit();
 
   //--- ParseExpr.cpp -------------------------------------------------------
   Expr *parseExpr();
@@ -106,6 +121,7 @@ private:
 
   Lexer Lex;
   Token Tok;
+  std::optional<Token> Peeked;
   /// End of the last consumed token: the end of the node being finished.
   llvm::SMLoc PrevEnd;
   ASTContext &Ctx;

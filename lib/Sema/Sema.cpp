@@ -296,6 +296,10 @@ std::optional<std::string> Sema::findNearValueName(llvm::StringRef Name) {
     Consider(Entry.getKey());
   for (const auto &Entry : CurModule->Requires)
     Consider(Entry.getKey());
+  // `True`, `FALSE`: Python's and C's spellings of the literals.
+  for (llvm::StringRef Literal : {"true", "false"})
+    if (Name.equals_insensitive(Literal))
+      return Literal.str();
   if (World || Repl) {
     Consider("input");
     Consider("output");

@@ -186,7 +186,12 @@ const Type *Sema::applyLookup(NameExpr *E, const LookupResult &L, Access A) {
   case LookupKind::Output:
     return checkIO(E, /*IsInput=*/false, A);
   case LookupKind::Callable:
-    What = llvm::isa<TaskDecl>(L.Callable) ? "task" : "function";
+    if (llvm::isa<TaskDecl>(L.Callable)) {
+      diag(E->getLoc(), diag::err_task_not_a_value)
+          << E->Name.str() << E->getRange();
+      return Types.getError();
+    }
+    What = "function";
     break;
   case LookupKind::NativeFn:
     What = "function";
@@ -271,7 +276,37 @@ static const Type *promoteArithmetic(Sema &S, Expr *&L, Expr *&R) {
   return S.Types.getFloat();
 }
 
+/// The task an operand names (`a` in `a == b`), without reporting
+/// anything: null for everything else, a local or parameter of that name
+/// included.
+const TaskDecl *Sema::getNamedTask(const Expr *E) {
+  const auto *N = llvm::dyn_cast<NameExpr>(E);
+  if (!N || N->Name.isQualified() || N->Name.empty())
+    return nullptr;
+  llvm::StringRef Name = N->Name.Parts[0].Name;
+  if (findVisible(Name))
+    return nullptr;
+  if (CurTask)
+    for (FuncDecl *F : CurTask->NestedFuncs)
+      if (F->getName().Name == Name)
+        return nullptr;
+  auto It = CurModule->Decls.find(Name);
+  if (It == CurModule->Decls.end())
+    return nullptr;
+  return llvm::dyn_cast<TaskDecl>(It->second);
+}
+
 const Type *Sema::checkBinary(BinaryExpr *E) {
+  // `a == b` between tasks, as if tasks were objects: one error that says
+  // what to compare instead.
+  if (E->Op == BinaryOp::Eq || E->Op == BinaryOp::Ne)
+    if (const TaskDecl *LT = getNamedTask(E->LHS))
+      if (const TaskDecl *RT = getNamedTask(E->RHS)) {
+        diag(E->getLoc(), diag::err_compare_tasks)
+            << LT->getName().Name << (E->Op == BinaryOp::Eq ? "==" : "!=")
+            << RT->getName().Name << E->getRange();
+        return Types.getError();
+      }
   const Type *L = checkExpr(E->LHS);
   const Type *R = checkExpr(E->RHS);
   if (L->isError() || R->isError())

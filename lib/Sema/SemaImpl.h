@@ -136,6 +136,7 @@ public:
   /// already visible as a local or parameter is err_shadowing.
   void declare(Decl *D);
   Decl *findVisible(llvm::StringRef Name);
+  const TaskDecl *getNamedTask(const Expr *E);
   void checkVarDecl(VarDecl *V);
 
   //--- SemaStmt.cpp ---------------------------------------------------------

@@ -97,6 +97,8 @@ private:
   bool LineHasTokens = false;
   /// Which indentation characters the file used so far.
   bool SawTabIndent = false, SawSpaceIndent = false, ReportedMixed = false;
+  /// The columns of the first line indented with spaces only: one level.
+  unsigned SpaceIndentUnit = 0;
   bool ReachedEnd = false;
   /// An inconsistent dedent was reported; an `error` token follows it.
   bool PendingBadDedent = false;
