@@ -136,7 +136,12 @@ Decl *Sema::findVisible(llvm::StringRef Name) {
 void Sema::declare(Decl *D) {
   const Ident &Name = D->getName();
   if (Decl *Prev = findVisible(Name.Name)) {
-    diag(Name.Loc, diag::err_shadowing) << Name.Name << Name.getRange();
+    // The same scope: declared twice; an enclosing one: hidden (b-script
+    // allows neither, but they are different mistakes).
+    bool SameScope = llvm::any_of(
+        Scopes.back(), [&](const auto &Entry) { return Entry.second == Prev; });
+    diag(Name.Loc, SameScope ? diag::err_redefinition : diag::err_shadowing)
+        << Name.Name << Name.getRange();
     diag(Prev->getName().Loc, diag::note_previous_definition);
   }
   // Declared even after an error, so later uses find the newest one.
