@@ -15,7 +15,38 @@ const KindInfo KindTable[] = {
 #define DIAG(Id, Sev, Format) {Severity::Sev, Format, #Id},
 #include "bsc/Basic/DiagnosticKinds.def"
 };
+/// The warnings `-Wno-<Name>` silences.
+const struct {
+  const char *Name;
+  diag::Kind Kind;
+} WarningGroups[] = {
+    {"yield-loop", diag::warn_yield_loop},
+    {"yield-loop", diag::warn_endless_loop_in_func},
+    {"unreachable-code", diag::warn_unreachable_code},
+    {"duplicate-require", diag::warn_duplicate_require},
+};
 } // namespace
+
+bool DiagnosticEngine::ignoreWarningGroup(llvm::StringRef Group) {
+  bool Found = false;
+  for (const auto &G : WarningGroups)
+    if (Group == G.Name) {
+      Ignored[G.Kind] = true;
+      Found = true;
+    }
+  return Found;
+}
+
+std::string DiagnosticEngine::getWarningGroupList() {
+  std::string List;
+  for (const auto &G : WarningGroups) {
+    std::string Quoted = "'" + std::string(G.Name) + "'";
+    if (List.find(Quoted) != std::string::npos)
+      continue;
+    List += List.empty() ? Quoted : ", " + Quoted;
+  }
+  return List;
+}
 
 Severity bsc::getSeverity(diag::Kind K) { return KindTable[K].Sev; }
 llvm::StringRef bsc::getFormat(diag::Kind K) { return KindTable[K].Format; }
@@ -57,7 +88,7 @@ void DiagnosticEngine::record(diag::Kind K, llvm::SMLoc Loc,
     ++NumErrors;
     break;
   case Severity::Warning:
-    if (tooManyErrors()) {
+    if (tooManyErrors() || Ignored[K]) {
       DroppingNotes = true;
       return;
     }

@@ -269,9 +269,11 @@ void FunctionEmitter::emitFor(const ForStmt &S) {
 
   // A missing condition is true.
   Builder.SetInsertPoint(CondBB);
-  if (CGM.getOptions().Probes)
-    emitProbe(LoopProbeSymbol,
-              CGM.addSite({DebugSite::Loop, &D, S.getLoc(), ""}));
+  unsigned Site = 0;
+  if (CGM.getOptions().Probes) {
+    Site = CGM.addSite({DebugSite::Loop, &D, S.getLoc(), ""});
+    emitProbe(LoopProbeSymbol, Site);
+  }
   if (S.Cond)
     Builder.CreateCondBr(emitFullCond(S.Cond), BodyBB, EndBB);
   else
@@ -279,7 +281,7 @@ void FunctionEmitter::emitFor(const ForStmt &S) {
 
   BodyBB->insertInto(Fn);
   Builder.SetInsertPoint(BodyBB);
-  Loops.push_back({EndBB, StepBB, Live.size()});
+  Loops.push_back({EndBB, StepBB, Live.size(), Site});
   emitBlock(S.Body);
   Loops.pop_back();
   emitBranch(StepBB);
@@ -294,6 +296,10 @@ void FunctionEmitter::emitFor(const ForStmt &S) {
 
   EndBB->insertInto(Fn);
   Builder.SetInsertPoint(EndBB);
+  // Out of the loop, the probe names the enclosing loop again (0: none),
+  // so that a watchdog stopping an outer loop does not blame this one.
+  if (CGM.getOptions().Probes)
+    emitProbe(LoopProbeSymbol, Loops.empty() ? 0 : Loops.back().ProbeSite);
   emitLiveCleanups(HeadDepth, /*Forget=*/true);
   popDebugScope();
 }

@@ -836,8 +836,24 @@ void FunctionEmitter::run() {
   // Statements after `return`, `break` or `continue` were emitted into
   // blocks nothing branches to; drop them so -O0 code has no dead blocks.
   llvm::EliminateUnreachableBlocks(*Fn);
+  if (CGM.getOptions().Probes)
+    restoreLoopProbeOnReturn();
   EntryPoint->eraseFromParent();
   EntryPoint = nullptr;
+}
+
+void FunctionEmitter::restoreLoopProbeOnReturn() {
+  // A call leaves the loop probe as it found it: the caller's loop, not a
+  // loop of this function that a `return` or `yield` left.
+  llvm::GlobalVariable *Probe = CGM.getProbe(LoopProbeSymbol);
+  llvm::IRBuilder<> B(EntryPoint);
+  llvm::Value *Saved = B.CreateLoad(B.getInt32Ty(), Probe, /*isVolatile=*/true,
+                                    "probe.saved");
+  for (llvm::BasicBlock &BB : *Fn)
+    if (auto *Ret = llvm::dyn_cast<llvm::ReturnInst>(BB.getTerminator())) {
+      B.SetInsertPoint(Ret);
+      B.CreateStore(Saved, Probe, /*isVolatile=*/true);
+    }
 }
 
 unsigned FunctionEmitter::getFirstParamArg() const {

@@ -471,6 +471,8 @@ private:
   /// lives: its frame field, or its alloca.
   void declareForDebugger(const Decl &D, const Type *Ty, unsigned ArgNo = 0);
 
+  /// With probes: every `ret` stores back the loop probe's value at entry.
+  void restoreLoopProbeOnReturn();
   /// With probes: stores site `Site` (0: none) into probe global `Symbol`.
   void emitProbe(const char *Symbol, unsigned Site);
   /// The statement being lowered: the place a native call's probe names.
@@ -497,6 +499,7 @@ private:
     llvm::BasicBlock *Break;
     llvm::BasicBlock *Continue;
     size_t LiveDepth; ///< Variables alive where they branch to.
+    unsigned ProbeSite; ///< With probes: the loop's site.
   };
   llvm::SmallVector<LoopTargets, 4> Loops;
   /// Task bodies: the dispatch on frame.resume; a case is added per yield.

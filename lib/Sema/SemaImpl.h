@@ -137,6 +137,8 @@ public:
   void declare(Decl *D);
   Decl *findVisible(llvm::StringRef Name);
   const TaskDecl *getNamedTask(const Expr *E);
+  /// warn_yield_loop: a loop that certainly never ends once entered.
+  void warnIfEndless(const ForStmt *S);
   void checkVarDecl(VarDecl *V);
 
   //--- SemaStmt.cpp ---------------------------------------------------------

@@ -194,6 +194,12 @@ cl::opt<bool> DumpBindings("dump-bindings",
                            cl::desc("Print what the standard modules and the "
                                     "--bind objects register, and exit"),
                            cl::cat(BscCategory));
+cl::list<std::string>
+    WarningOptions("W", cl::Prefix,
+                   cl::desc("-Wno-<group>: silence a group of warnings "
+                            "(yield-loop, unreachable-code, "
+                            "duplicate-require)"),
+                   cl::value_desc("no-group"), cl::cat(BscCategory), BSC_BOTH);
 cl::opt<bool> DebugInfo("g",
                         cl::desc("Emit DWARF debug information (for `run` "
                                  "and `repl`: register the JIT's code with "
@@ -274,6 +280,21 @@ bool parseBackendOptions(DiagnosticEngine &Diags, BackendOptions &Out) {
   }
   Out.Target.Target = TargetArg;
   Out.Target.CPU = CPUArg;
+  return OK;
+}
+
+/// Applies the -Wno-<group> options; reports and returns false on one
+/// that names no group (or is not a `no-`).
+bool applyWarningOptions(DiagnosticEngine &Diags) {
+  bool OK = true;
+  for (const std::string &Option : WarningOptions) {
+    llvm::StringRef Group = Option;
+    if (!Group.consume_front("no-") || !Diags.ignoreWarningGroup(Group)) {
+      Diags.report(llvm::SMLoc(), diag::err_unknown_warning_option)
+          << Option << DiagnosticEngine::getWarningGroupList();
+      OK = false;
+    }
+  }
   return OK;
 }
 
@@ -739,6 +760,8 @@ int main(int argc, char **argv) {
                               "bsc: the b-script compiler for robot behaviors\n");
 
   Compilation C;
+  if (!applyWarningOptions(C.Diags))
+    return finish(C);
   FrontendOptions Opts;
   Opts.Inputs.assign(InputFiles.begin(), InputFiles.end());
   Opts.IncludeDirs.assign(IncludeDirs.begin(), IncludeDirs.end());

@@ -108,6 +108,12 @@ public:
     return DiagnosticBuilder(this, K, Loc);
   }
 
+  /// `-Wno-<group>`: drops the warnings of a group (and their notes).
+  /// Returns false if there is no such group.
+  bool ignoreWarningGroup(llvm::StringRef Group);
+  /// The names `-Wno-` takes, for messages.
+  static std::string getWarningGroupList();
+
   bool hasErrors() const { return NumErrors != 0; }
   unsigned getNumErrors() const { return NumErrors; }
   unsigned getNumWarnings() const { return NumWarnings; }
@@ -128,6 +134,7 @@ private:
   unsigned NumErrors = 0;
   unsigned NumWarnings = 0;
   bool DroppingNotes = false;
+  bool Ignored[diag::NumKinds] = {};
 };
 
 /// Prints diagnostics the way clang does: `file:line:col: error: message`,
