@@ -2,6 +2,7 @@
 #include "bsc/Basic/Diagnostic.h"
 #include "llvm/Support/ErrorHandling.h"
 #include "llvm/Support/raw_ostream.h"
+#include <algorithm>
 
 using namespace bsc;
 
@@ -56,7 +57,7 @@ DiagnosticBuilder::~DiagnosticBuilder() {
   if (!Engine)
     return;
   Engine->record(Kind, Loc, DiagnosticEngine::format(getFormat(Kind), Args),
-                 Ranges);
+                 Ranges, FixIts);
 }
 
 std::string DiagnosticEngine::format(llvm::StringRef Format,
@@ -77,7 +78,8 @@ std::string DiagnosticEngine::format(llvm::StringRef Format,
 
 void DiagnosticEngine::record(diag::Kind K, llvm::SMLoc Loc,
                               std::string Message,
-                              llvm::ArrayRef<llvm::SMRange> Ranges) {
+                              llvm::ArrayRef<llvm::SMRange> Ranges,
+                              llvm::ArrayRef<llvm::SMFixIt> FixIts) {
   Severity Sev = getSeverity(K);
   switch (Sev) {
   case Severity::Error:
@@ -103,7 +105,33 @@ void DiagnosticEngine::record(diag::Kind K, llvm::SMLoc Loc,
   if (Sev != Severity::Note)
     DroppingNotes = false;
   Diags.push_back(Diagnostic{K, Sev, Loc, std::move(Message),
-                             llvm::SmallVector<llvm::SMRange, 1>(Ranges)});
+                             llvm::SmallVector<llvm::SMRange, 1>(Ranges),
+                             llvm::SmallVector<llvm::SMFixIt, 1>(FixIts)});
+}
+
+void DiagnosticEngine::sortBySource(const llvm::SourceMgr &SM) {
+  struct Group {
+    std::pair<unsigned, const char *> Key;
+    size_t Begin, End; ///< Into Diags: the diagnostic and its notes.
+  };
+  std::vector<Group> Groups;
+  for (size_t I = 0; I < Diags.size(); ++I) {
+    if (Diags[I].Sev == Severity::Note && !Groups.empty()) {
+      Groups.back().End = I + 1;
+      continue;
+    }
+    llvm::SMLoc Loc = Diags[I].Loc;
+    unsigned Buffer = Loc.isValid() ? SM.FindBufferContainingLoc(Loc) : 0;
+    Groups.push_back({{Buffer, Buffer ? Loc.getPointer() : nullptr}, I, I + 1});
+  }
+  std::stable_sort(Groups.begin(), Groups.end(),
+                   [](const Group &A, const Group &B) { return A.Key < B.Key; });
+  std::vector<Diagnostic> Sorted;
+  Sorted.reserve(Diags.size());
+  for (const Group &G : Groups)
+    for (size_t I = G.Begin; I < G.End; ++I)
+      Sorted.push_back(std::move(Diags[I]));
+  Diags = std::move(Sorted);
 }
 
 void DiagnosticEngine::clear() {
@@ -134,8 +162,8 @@ void bsc::printDiagnostics(const llvm::SourceMgr &SM,
     // Locationless diagnostics (options, missing files) print as
     // `bsc: error: ...`; SourceMgr does that for an invalid SMLoc.
     if (D.Loc.isValid())
-      SM.PrintMessage(OS, D.Loc, toLLVM(D.Sev), D.Message, D.Ranges, {},
-                      ShowColors);
+      SM.PrintMessage(OS, D.Loc, toLLVM(D.Sev), D.Message, D.Ranges,
+                      D.FixIts, ShowColors);
     else
       llvm::SMDiagnostic("", toLLVM(D.Sev), D.Message)
           .print("bsc", OS, ShowColors);

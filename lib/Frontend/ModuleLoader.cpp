@@ -220,6 +220,7 @@ bool bsc::runFrontend(Compilation &C, const FrontendOptions &Opts) {
   // poison) so that one run reports as many independent mistakes as it can.
   bool Checked =
       checkBehavior(C.Modules, C.Ctx, C.Diags, C.Checked, &C.Natives);
+  C.Diags.sortBySource(C.SM);
   return Loaded && Checked;
 }
 

@@ -266,18 +266,21 @@ LookupResult Sema::lookupUnqualified(const Ident &Id, LookupMode Mode) {
       << Name << Id.getRange();
   if (Mode == LookupMode::Value)
     if (std::optional<std::string> Near = findNearValueName(Name))
-      diag(Id.Loc, diag::note_did_you_mean) << *Near << Id.getRange();
+      diag(Id.Loc, diag::note_did_you_mean)
+          << *Near << llvm::SMFixIt(Id.getRange(), *Near);
   return R;
 }
 
-std::optional<std::string> Sema::findNearValueName(llvm::StringRef Name) {
-  // Clang's rule of thumb: at most one edit per three characters (rounded
-  // up), and fewer edits than the name has characters (`i` is not a typo
-  // of `p`). Best is one more than what a candidate may need.
-  unsigned Best =
-      std::min<size_t>((Name.size() + 2) / 3, Name.size() - 1) + 1;
-  std::optional<std::string> Result;
-  auto Consider = [&](llvm::StringRef Candidate) {
+namespace {
+/// The candidate nearest to a misspelt name. Clang's rule of thumb: at most
+/// one edit per three characters (rounded up), and fewer edits than the
+/// name has characters (`i` is not a typo of `p`).
+class NearestName {
+public:
+  explicit NearestName(llvm::StringRef Name)
+      : Name(Name),
+        Best(std::min<size_t>((Name.size() + 2) / 3, Name.size() - 1) + 1) {}
+  void consider(llvm::StringRef Candidate) {
     if (Candidate.empty() || Candidate == Name)
       return;
     unsigned D = Name.edit_distance(Candidate, true, Best);
@@ -285,7 +288,29 @@ std::optional<std::string> Sema::findNearValueName(llvm::StringRef Name) {
       Best = D;
       Result = Candidate.str();
     }
-  };
+  }
+  const std::optional<std::string> &get() const { return Result; }
+
+private:
+  llvm::StringRef Name;
+  unsigned Best; ///< One more than what a candidate may need.
+  std::optional<std::string> Result;
+};
+} // namespace
+
+void Sema::suggestNearest(const Ident &Id,
+                          llvm::ArrayRef<llvm::StringRef> Candidates) {
+  NearestName Near(Id.Name);
+  for (llvm::StringRef C : Candidates)
+    Near.consider(C);
+  if (Near.get())
+    diag(Id.Loc, diag::note_did_you_mean)
+        << *Near.get() << llvm::SMFixIt(Id.getRange(), *Near.get());
+}
+
+std::optional<std::string> Sema::findNearValueName(llvm::StringRef Name) {
+  NearestName Near(Name);
+  auto Consider = [&](llvm::StringRef Candidate) { Near.consider(Candidate); };
   for (const Scope &S : Scopes)
     for (const auto &Entry : S)
       Consider(Entry.first);
@@ -304,7 +329,7 @@ std::optional<std::string> Sema::findNearValueName(llvm::StringRef Name) {
     Consider("input");
     Consider("output");
   }
-  return Result;
+  return Near.get();
 }
 
 LookupResult Sema::lookupEnumValue(const Type *EnumTy, llvm::StringRef EnumName,
@@ -338,6 +363,13 @@ LookupResult Sema::lookupEnumValue(const Type *EnumTy, llvm::StringRef EnumName,
   }
   diag(Value.Loc, diag::err_no_enum_value) << EnumName << Value.Name
                                            << Value.getRange();
+  llvm::SmallVector<llvm::StringRef, 8> Names;
+  if (EnumTy->isTaskState())
+    Names = {"done", "running", "failure"};
+  else
+    for (const NativeEnum::Value &NV : EnumTy->getEnum()->Values)
+      Names.push_back(NV.Name);
+  suggestNearest(Value, Names);
   return R;
 }
 
@@ -398,6 +430,10 @@ LookupResult Sema::lookupQualified(const QualifiedName &N) {
     if (It == InfoOf[QM.ScriptModule]->Decls.end()) {
       diag(Second.Loc, diag::err_no_member_in_module)
           << Q.Name << Second.Name << Second.getRange();
+      llvm::SmallVector<llvm::StringRef, 16> Names;
+      for (const auto &Entry : InfoOf[QM.ScriptModule]->Decls)
+        Names.push_back(Entry.getKey());
+      suggestNearest(Second, Names);
       return R;
     }
     if (N.Parts.size() == 3) {
@@ -431,6 +467,14 @@ LookupResult Sema::lookupQualified(const QualifiedName &N) {
     if (!F) {
       diag(Second.Loc, diag::err_no_member_in_module)
           << Q.Name << Second.Name << Second.getRange();
+      llvm::SmallVector<llvm::StringRef, 16> Names;
+      for (const NativeFunction &NF : QM.NativeMod->Functions)
+        Names.push_back(NF.Name);
+      for (const NativeEnum &NE : QM.NativeMod->Enums)
+        Names.push_back(NE.Name);
+      for (const NativeClass &NC : QM.NativeMod->Classes)
+        Names.push_back(NC.Name);
+      suggestNearest(Second, Names);
       return R;
     }
     if (N.Parts.size() == 3) {
@@ -455,11 +499,43 @@ LookupResult Sema::lookupQualified(const QualifiedName &N) {
     }
     return lookupEnumValue(EnumTy, Q.Name, Second);
   }
-  if (KnownModules.count(Q.Name))
+  if (KnownModules.count(Q.Name)) {
     diag(Q.Loc, diag::err_module_not_required) << Q.Name << Q.getRange();
-  else
-    diag(Q.Loc, diag::err_unknown_qualifier) << Q.Name << Q.getRange();
+    return R;
+  }
+  // One error per unknown qualifier: its other uses have the same cause.
+  if (!ReportedQualifiers.insert(Q.Name).second)
+    return R;
+  diag(Q.Loc, diag::err_unknown_qualifier) << Q.Name << Q.getRange();
+  // Without any binding object, the likeliest cause is a missing --bind,
+  // not a typo.
+  if (!hasBindingModules()) {
+    if (!NotedUnbound)
+      diag(Q.Loc, diag::note_maybe_unbound) << Q.Name;
+    NotedUnbound = true;
+    return R;
+  }
+  // What a qualifier may name here: modules, TaskState, enums.
+  llvm::SmallVector<llvm::StringRef, 16> Names = {CurModule->AST->Name,
+                                                  "TaskState"};
+  for (const auto &Entry : CurModule->Requires)
+    Names.push_back(Entry.getKey());
+  for (const RequireDecl &Req : CurModule->AST->Requires)
+    if (Req.Native)
+      for (const NativeEnum &NE : Req.Native->Enums)
+        Names.push_back(NE.Name);
+  if (World) {
+    Names.push_back(World->Name);
+    for (const NativeEnum &NE : World->Enums)
+      Names.push_back(NE.Name);
+  }
+  suggestNearest(Q, Names);
   return R;
+}
+
+bool Sema::hasBindingModules() const {
+  return llvm::any_of(AllNatives,
+                      [](const NativeModule *M) { return !M->File.empty(); });
 }
 
 bool bsc::checkBehavior(llvm::ArrayRef<ModuleAST *> Modules, ASTContext &Ctx,

@@ -30,6 +30,13 @@ const NativeFunction *Sema::findValueMember(const Type *ClassTy,
   if (!M || !M->hasSelf()) {
     diag(Name.Loc, diag::err_no_member)
         << ClassTy->getName() << Name.Name << Name.getRange();
+    if (!M) {
+      llvm::SmallVector<llvm::StringRef, 16> Names;
+      for (const NativeFunction &F : ClassTy->getClass()->Members)
+        if (F.hasSelf() && !llvm::StringRef(F.Name).starts_with("_"))
+          Names.push_back(F.Name);
+      suggestNearest(Name, Names);
+    }
     return nullptr;
   }
   return M;

@@ -139,9 +139,13 @@ const Type *Sema::checkIO(NameExpr *E, bool IsInput, Access A) {
   const NativeClass *C =
       World ? (IsInput ? World->Input : World->Output) : nullptr;
   if (!C) {
-    diag(E->getLoc(),
-         IsInput ? diag::err_no_input_type : diag::err_no_output_type)
-        << E->getRange();
+    // Once per compilation: every later use has the same cause.
+    bool &Reported = IsInput ? ReportedNoInput : ReportedNoOutput;
+    if (!Reported)
+      diag(E->getLoc(),
+           IsInput ? diag::err_no_input_type : diag::err_no_output_type)
+          << E->getRange();
+    Reported = true;
     return Types.getError();
   }
   return Types.getClass(C);

@@ -102,6 +102,10 @@ public:
   /// The visible value name closest to `Name` by edit distance, if one is
   /// close enough to suggest (`did you mean`).
   std::optional<std::string> findNearValueName(llvm::StringRef Name);
+  /// Adds note_did_you_mean at `Id` for the candidate nearest to its name
+  /// (NearestName's rule), if one is near enough.
+  void suggestNearest(const Ident &Id,
+                      llvm::ArrayRef<llvm::StringRef> Candidates);
   LookupResult lookupEnumValue(const Type *EnumTy, llvm::StringRef EnumName,
                                const Ident &Value);
   /// The type of a registered enum (`M::E`).
@@ -219,6 +223,14 @@ public:
   llvm::DenseMap<const ModuleAST *, ModuleInfo *> InfoOf;
   /// Names of every module a `requires` could name (known modules).
   llvm::StringSet<> KnownModules;
+  /// err_no_input_type / err_no_output_type were reported (once is enough).
+  bool ReportedNoInput = false, ReportedNoOutput = false;
+  /// The unknown qualifiers reported (each once).
+  llvm::StringSet<> ReportedQualifiers;
+  /// note_maybe_unbound was given (once is enough).
+  bool NotedUnbound = false;
+  /// Whether some native module came from a --bind object.
+  bool hasBindingModules() const;
   /// Every native module some module requires (for native enum types).
   std::vector<const NativeModule *> AllNatives;
   /// The compilation's native modules (null: the built-in ones only).

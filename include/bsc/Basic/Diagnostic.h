@@ -42,6 +42,8 @@ struct Diagnostic {
   llvm::SMLoc Loc;
   std::string Message;
   llvm::SmallVector<llvm::SMRange, 1> Ranges;
+  /// Replacements printed under the caret line, as clang's fix-its.
+  llvm::SmallVector<llvm::SMFixIt, 1> FixIts;
 };
 
 /// The severity and format string of a kind.
@@ -59,7 +61,8 @@ public:
       : Engine(Engine), Kind(K), Loc(Loc) {}
   DiagnosticBuilder(DiagnosticBuilder &&Other)
       : Engine(Other.Engine), Kind(Other.Kind), Loc(Other.Loc),
-        Args(std::move(Other.Args)), Ranges(std::move(Other.Ranges)) {
+        Args(std::move(Other.Args)), Ranges(std::move(Other.Ranges)),
+        FixIts(std::move(Other.FixIts)) {
     Other.Engine = nullptr;
   }
   DiagnosticBuilder(const DiagnosticBuilder &) = delete;
@@ -87,6 +90,11 @@ public:
     Ranges.push_back(R);
     return *this;
   }
+  /// Suggests replacing a range with a text (printed under the caret).
+  DiagnosticBuilder &operator<<(llvm::SMFixIt F) {
+    FixIts.push_back(std::move(F));
+    return *this;
+  }
 
 private:
   DiagnosticEngine *Engine;
@@ -94,6 +102,7 @@ private:
   llvm::SMLoc Loc;
   llvm::SmallVector<std::string, 3> Args;
   llvm::SmallVector<llvm::SMRange, 1> Ranges;
+  llvm::SmallVector<llvm::SMFixIt, 1> FixIts;
 };
 
 /// Keeps the diagnostics of a compilation in the order they were reported.
@@ -114,6 +123,11 @@ public:
   /// The names `-Wno-` takes, for messages.
   static std::string getWarningGroupList();
 
+  /// Orders the diagnostics so far by file (in the order the files were
+  /// loaded) and position, each with its notes; locationless ones first.
+  /// Phases report in the order they work, which is not the reader's.
+  void sortBySource(const llvm::SourceMgr &SM);
+
   bool hasErrors() const { return NumErrors != 0; }
   unsigned getNumErrors() const { return NumErrors; }
   unsigned getNumWarnings() const { return NumWarnings; }
@@ -128,7 +142,8 @@ public:
 private:
   friend class DiagnosticBuilder;
   void record(diag::Kind K, llvm::SMLoc Loc, std::string Message,
-              llvm::ArrayRef<llvm::SMRange> Ranges);
+              llvm::ArrayRef<llvm::SMRange> Ranges,
+              llvm::ArrayRef<llvm::SMFixIt> FixIts);
 
   std::vector<Diagnostic> Diags;
   unsigned NumErrors = 0;
