@@ -98,6 +98,8 @@ void Dumper::dumpModule(const ModuleAST &M) {
     line() << "Requires '" << R.Name << "'";
     loc(R.Range.Start);
   }
+  for (const ConstDecl *D : M.Consts)
+    dumpDecl(D);
   for (const CallableDecl *D : M.Decls)
     dumpDecl(D);
   --Indent;
@@ -132,6 +134,15 @@ void Dumper::dumpDecl(const Decl *D) {
     loc(D->getLoc());
     if (V->Init)
       child(V->Init);
+    return;
+  }
+  case NodeKind::ConstDecl: {
+    auto *C = llvm::cast<ConstDecl>(D);
+    OS << " '" << C->TypeName.str() << "'";
+    type(C->Ty);
+    loc(D->getLoc());
+    if (C->Init)
+      child(C->Init);
     return;
   }
 #define DECL(Class)
@@ -230,6 +241,8 @@ static llvm::StringRef getNameKindName(NameKind K) {
     return "native";
   case NameKind::EnumValue:
     return "enum";
+  case NameKind::Constant:
+    return "const";
   case NameKind::Input:
     return "input";
   case NameKind::Output:

@@ -352,6 +352,17 @@ llvm::Value *FunctionEmitter::emitName(const NameExpr &E) {
     return Fn->getArg(E.Param->Index + getFirstParamArg());
   case NameKind::EnumValue:
     return Builder.getInt32(E.EnumValue);
+  case NameKind::Constant: {
+    // Sema computed the value.
+    const ConstDecl &C = *E.Const;
+    if (C.Ty->isFloat())
+      return llvm::ConstantFP::get(Builder.getFloatTy(), C.Value.Float);
+    if (C.Ty->isBool())
+      return Builder.getInt1(C.Value.Bool);
+    if (C.Ty->isString())
+      return CGM.getString(C.Value.String);
+    return Builder.getInt32(C.Value.Int);
+  }
   case NameKind::Input:
   case NameKind::Output:
     return emitGlobalIOPointer(E.Kind);

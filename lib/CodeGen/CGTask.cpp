@@ -99,15 +99,19 @@ llvm::Value *FunctionEmitter::emitTaskState(const TaskDecl *T) {
 }
 
 /// The task state a yield's value always has, if it is a constant: an int
-/// literal, `-` one, or a named state (`TaskState::failure`).
+/// literal, `-` one, a named state (`TaskState::failure`) or a module
+/// constant.
 static std::optional<int64_t> getConstantState(const Expr *E) {
   if (!E)
     return TaskRunning;
   if (const auto *L = llvm::dyn_cast<IntLiteralExpr>(E))
     return L->Value;
-  if (const auto *N = llvm::dyn_cast<NameExpr>(E))
+  if (const auto *N = llvm::dyn_cast<NameExpr>(E)) {
     if (N->Kind == NameKind::EnumValue)
       return N->EnumValue;
+    if (N->Kind == NameKind::Constant && !N->Const->Ty->isBool())
+      return N->Const->Value.Int;
+  }
   if (const auto *U = llvm::dyn_cast<UnaryExpr>(E))
     if (U->Op == UnaryOp::Neg)
       if (const auto *L = llvm::dyn_cast<IntLiteralExpr>(U->Operand))

@@ -80,6 +80,10 @@ Stmt *Parser::parseStatement() {
     diag(Start, diag::err_requires_after_decl);
     return recoverStatement(nullptr, Start);
   }
+  if (Tok.is(tok::kw_const)) {
+    diag(Start, diag::err_const_in_body);
+    return recoverStatement(nullptr, Start);
+  }
   if (diagnoseStatementHabit())
     return recoverStatement(nullptr, Start);
   if (!startsExpression(Tok.Kind)) {
@@ -233,7 +237,7 @@ Stmt *Parser::parseForStep() {
   if (Tok.is(tok::kw_break) || Tok.is(tok::kw_continue) ||
       Tok.is(tok::kw_return) || Tok.is(tok::kw_if) || Tok.is(tok::kw_for) ||
       Tok.is(tok::kw_else) || Tok.is(tok::kw_func) || Tok.is(tok::kw_task) ||
-      Tok.is(tok::kw_requires)) {
+      Tok.is(tok::kw_requires) || Tok.is(tok::kw_const)) {
     diag(Start, diag::err_invalid_for_step);
     return nullptr;
   }

@@ -128,6 +128,10 @@ ModuleAST *Parser::parseModule(llvm::StringRef Name) {
       SeenDecl = true;
       if (CallableDecl *D = parseCallable(nullptr))
         Module->Decls.push_back(D);
+    } else if (Tok.is(tok::kw_const)) {
+      SeenDecl = true;
+      if (ConstDecl *D = parseConst())
+        Module->Consts.push_back(D);
     } else if (Tok.is(tok::indent)) {
       diag(Tok.Loc, diag::err_unexpected_indent);
       skipBlock();
@@ -140,6 +144,39 @@ ModuleAST *Parser::parseModule(llvm::StringRef Name) {
       consume();
   }
   return Module;
+}
+
+/// const-decl ::= 'const' qualified-name identifier '=' expr NEWLINE
+ConstDecl *Parser::parseConst() {
+  llvm::SMLoc Start = Tok.Loc;
+  consume();
+  QualifiedName TypeName;
+  if (Tok.isNot(tok::identifier)) {
+    diag(Tok.Loc, diag::err_expected_after) << "a type" << "'const'";
+    skipLineAndBlock();
+    return nullptr;
+  }
+  if (!parseQualifiedName(TypeName) || Tok.isNot(tok::identifier)) {
+    if (!InError)
+      diag(Tok.Loc, diag::err_expected_after) << "a name" << "the type";
+    skipLineAndBlock();
+    return nullptr;
+  }
+  Ident Name{Tok.Text, Tok.Loc};
+  consume();
+  if (Tok.isNot(tok::equal)) {
+    diag(Tok.Loc, diag::err_const_without_value) << Name.Name;
+    skipLineAndBlock();
+    return nullptr;
+  }
+  consume();
+  Expr *Init = parseExpr();
+  if (!InError && Tok.isNot(tok::newline))
+    diag(Tok.Loc, diag::err_expected) << "end of line";
+  skipLineAndBlock();
+  auto *D = make<ConstDecl>(rangeFrom(Start), Name, std::move(TypeName), Init);
+  D->Module = Module;
+  return D;
 }
 
 /// requires ::= 'requires' string-literal NEWLINE

@@ -57,6 +57,7 @@ private:
   void skipLineAndBlock();
 
   void parseRequires(bool AfterDecl);
+  ConstDecl *parseConst();
   CallableDecl *parseCallable(TaskDecl *Enclosing);
   void parseParams(CallableDecl *D);
   bool parseQualifiedName(QualifiedName &QN);

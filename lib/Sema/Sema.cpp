@@ -82,6 +82,11 @@ bool Sema::run(llvm::ArrayRef<ModuleAST *> Modules) {
   Out.Modules.assign(Modules.begin(), Modules.end());
   buildModuleTables(Modules);
 
+  // Constants first: signatures and bodies use their values.
+  for (ModuleAST *M : Modules)
+    for (ConstDecl *C : M->Consts)
+      checkConst(C);
+
   for (ModuleAST *M : Modules) {
     CurModule = InfoOf[M];
     for (CallableDecl *C : M->Decls) {
@@ -146,7 +151,19 @@ void Sema::buildModuleTables(llvm::ArrayRef<ModuleAST *> Modules) {
       }
     }
 
+    for (ConstDecl *C : M->Consts) {
+      auto [It, Inserted] = Info->Consts.try_emplace(C->getName().Name, C);
+      if (!Inserted) {
+        diag(C->getName().Loc, diag::err_redefinition) << C->getName().Name;
+        diag(It->second->getName().Loc, diag::note_previous_definition);
+      }
+    }
     for (CallableDecl *C : M->Decls) {
+      // Funcs, tasks and constants share the module's namespace.
+      if (ConstDecl *Const = Info->Consts.lookup(C->getName().Name)) {
+        diag(C->getName().Loc, diag::err_redefinition) << C->getName().Name;
+        diag(Const->getName().Loc, diag::note_previous_definition);
+      }
       auto [It, Inserted] = Info->Decls.try_emplace(C->getName().Name, C);
       if (!Inserted) {
         diag(C->getName().Loc, diag::err_redefinition) << C->getName().Name;
@@ -238,6 +255,11 @@ LookupResult Sema::lookupUnqualified(const Ident &Id, LookupMode Mode) {
     R.Callable = It->second;
     return R;
   }
+  if (ConstDecl *C = CurModule->Consts.lookup(Name)) {
+    R.Kind = LookupKind::Constant;
+    R.Const = C;
+    return R;
+  }
   if (Name == "input" || Name == "output") {
     R.Kind = Name == "input" ? LookupKind::Input : LookupKind::Output;
     return R;
@@ -318,6 +340,8 @@ std::optional<std::string> Sema::findNearValueName(llvm::StringRef Name) {
     for (FuncDecl *F : CurTask->NestedFuncs)
       Consider(F->getName().Name);
   for (const auto &Entry : CurModule->Decls)
+    Consider(Entry.getKey());
+  for (const auto &Entry : CurModule->Consts)
     Consider(Entry.getKey());
   for (const auto &Entry : CurModule->Requires)
     Consider(Entry.getKey());
@@ -426,12 +450,23 @@ LookupResult Sema::lookupQualified(const QualifiedName &N) {
   case QualifierModule::Poison:
     return R;
   case QualifierModule::Script: {
+    if (ConstDecl *C = InfoOf[QM.ScriptModule]->Consts.lookup(Second.Name)) {
+      if (N.Parts.size() == 3) {
+        diag(Q.Loc, diag::err_unknown_qualifier) << Join(2);
+        return R;
+      }
+      R.Kind = LookupKind::Constant;
+      R.Const = C;
+      return R;
+    }
     auto It = InfoOf[QM.ScriptModule]->Decls.find(Second.Name);
     if (It == InfoOf[QM.ScriptModule]->Decls.end()) {
       diag(Second.Loc, diag::err_no_member_in_module)
           << Q.Name << Second.Name << Second.getRange();
       llvm::SmallVector<llvm::StringRef, 16> Names;
       for (const auto &Entry : InfoOf[QM.ScriptModule]->Decls)
+        Names.push_back(Entry.getKey());
+      for (const auto &Entry : InfoOf[QM.ScriptModule]->Consts)
         Names.push_back(Entry.getKey());
       suggestNearest(Second, Names);
       return R;

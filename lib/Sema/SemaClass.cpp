@@ -93,6 +93,7 @@ void Sema::checkMutatingMethodBase(Expr *Base, const NativeFunction &Method) {
   case NameKind::Callable:
   case NameKind::NativeFunction:
   case NameKind::EnumValue:
+  case NameKind::Constant:
     return;
   }
 }

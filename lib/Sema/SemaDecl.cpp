@@ -33,6 +33,7 @@ const Type *Sema::resolveType(const QualifiedName &N) {
   case LookupKind::Callable:
   case LookupKind::NativeFn:
   case LookupKind::EnumValue:
+  case LookupKind::Constant:
   case LookupKind::Input:
   case LookupKind::Output:
   case LookupKind::Module:

@@ -185,6 +185,19 @@ const Type *Sema::applyLookup(NameExpr *E, const LookupResult &L, Access A) {
     E->Kind = NameKind::EnumValue;
     E->EnumValue = L.Value;
     return L.Ty;
+  case LookupKind::Constant:
+    if (A != Access::Read && A != Access::MethodBase) {
+      diag(E->getLoc(), diag::err_assign_to_constant)
+          << E->Name.str() << E->getRange();
+      return Types.getError();
+    }
+    // A constant used by another constant's value may not be checked yet.
+    checkConst(L.Const);
+    if (L.Const->State != ConstDecl::CheckState::Done || !L.Const->Ty)
+      return Types.getError();
+    E->Kind = NameKind::Constant;
+    E->Const = L.Const;
+    return L.Const->Ty;
   case LookupKind::Input:
     return checkIO(E, /*IsInput=*/true, A);
   case LookupKind::Output:
@@ -508,6 +521,7 @@ const Type *Sema::checkAssignTarget(Expr *T, Access A) {
     case LookupKind::Error:
     case LookupKind::Local:
     case LookupKind::Param: // applyLookup keeps task parameters read-only.
+    case LookupKind::Constant: // ...and constants constant.
     case LookupKind::Input:
     case LookupKind::Output:
       return N->Ty = applyLookup(N, L, A);

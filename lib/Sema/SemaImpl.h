@@ -35,6 +35,7 @@ enum class LookupKind {
   Callable,    ///< Callable: a func or a task.
   NativeFn,    ///< NativeFn.
   EnumValue,   ///< Ty (an enum or TaskState) and Value.
+  Constant,    ///< Const: a module constant.
   Input,       ///< The `input` global.
   Output,      ///< The `output` global.
   Module,      ///< A module name on its own.
@@ -51,6 +52,7 @@ struct LookupResult {
   const NativeFunction *NativeFn = nullptr;
   const Type *Ty = nullptr;
   int32_t Value = 0;
+  ConstDecl *Const = nullptr;
 };
 
 /// Whether lookup looks for a value (locals first) or a type (module-level
@@ -73,8 +75,10 @@ enum class Access {
 /// The name tables of one module.
 struct ModuleInfo {
   ModuleAST *AST = nullptr;
-  /// The module's namespace: its top-level funcs and tasks.
+  /// The module's namespace: its top-level funcs and tasks...
   llvm::StringMap<CallableDecl *> Decls;
+  /// ...and its constants.
+  llvm::StringMap<ConstDecl *> Consts;
   /// The modules it requires, by name (resolved or poison).
   llvm::StringMap<const RequireDecl *> Requires;
 };
@@ -141,6 +145,12 @@ public:
   void declare(Decl *D);
   Decl *findVisible(llvm::StringRef Name);
   const TaskDecl *getNamedTask(const Expr *E);
+  /// SemaConst.cpp: checks and evaluates a module constant (and, first,
+  /// the constants its value uses, in any module).
+  void checkConst(ConstDecl *C);
+  /// The value of a constant expression already checked, or nothing if
+  /// it is not one.
+  std::optional<ConstDecl::ValueFields> evaluateConstant(const Expr *E);
   /// warn_yield_loop: a loop that certainly never ends once entered.
   void warnIfEndless(const ForStmt *S);
   void checkVarDecl(VarDecl *V);

@@ -110,7 +110,7 @@ public:
   const Ident &getName() const { return Name; }
   static bool classof(const Node *N) {
     return N->getKind() >= NodeKind::FuncDecl &&
-           N->getKind() <= NodeKind::VarDecl;
+           N->getKind() <= NodeKind::ConstDecl;
   }
 
 protected:
@@ -164,6 +164,33 @@ public:
   unsigned ScopeBegin = 0, ScopeEnd = 0;
   static bool classof(const Node *N) {
     return N->getKind() == NodeKind::VarDecl;
+  }
+};
+
+/// `const int KICK = 3` at module scope: a named value of its module,
+/// usable in it and, qualified, in the modules that require it. Its value
+/// is computed at compile time from literals, enum values and constants.
+class ConstDecl : public Decl {
+public:
+  ConstDecl(llvm::SMRange R, Ident Name, QualifiedName TypeName, Expr *Init)
+      : Decl(NodeKind::ConstDecl, R, Name), TypeName(std::move(TypeName)),
+        Init(Init) {}
+  QualifiedName TypeName;
+  Expr *Init;
+  ModuleAST *Module = nullptr; ///< Set by the parser.
+  const Type *Ty = nullptr;    ///< Sema.
+  /// Sema: the value, in the member Ty selects (int and enums: Int).
+  struct ValueFields {
+    int32_t Int = 0;
+    float Float = 0;
+    bool Bool = false;
+    std::string String;
+  } Value;
+  /// Sema's progress: constants may use constants of other modules.
+  enum class CheckState { Unchecked, Checking, Done } State =
+      CheckState::Unchecked;
+  static bool classof(const Node *N) {
+    return N->getKind() == NodeKind::ConstDecl;
   }
 };
 
@@ -432,6 +459,7 @@ enum class NameKind {
   Callable,       ///< Callable: a FuncDecl or TaskDecl (only as a callee).
   NativeFunction, ///< NativeFn (only as a callee).
   EnumValue,      ///< EnumValue, of type Ty (an enum or TaskState).
+  Constant,       ///< Const: a module constant, of its type.
   Input,          ///< The `input` global.
   Output,         ///< The `output` global.
 };
@@ -448,6 +476,7 @@ public:
   CallableDecl *Callable = nullptr;      ///< Sema, for Callable.
   const NativeFunction *NativeFn = nullptr; ///< Sema, for NativeFunction.
   int32_t EnumValue = 0;                 ///< Sema, for EnumValue.
+  const ConstDecl *Const = nullptr;      ///< Sema, for Constant.
   static bool classof(const Node *N) {
     return N->getKind() == NodeKind::NameExpr;
   }
@@ -592,6 +621,8 @@ public:
   std::vector<RequireDecl> Requires;
   /// The funcs and tasks at module scope, in source order.
   std::vector<CallableDecl *> Decls;
+  /// The constants, in source order.
+  std::vector<ConstDecl *> Consts;
 };
 
 /// Owns every node, module and type of one compilation.
