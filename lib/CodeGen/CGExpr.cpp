@@ -454,6 +454,15 @@ llvm::Value *FunctionEmitter::emitBinary(const BinaryExpr &E) {
   }
   llvm::Value *L = emitExpr(E.LHS);
   llvm::Value *R = emitExpr(E.RHS);
+  if (E.StateTest != BinaryExpr::StateKindTest::None) {
+    // The kind of a state (docs/language.md, Tasks): the other side's.
+    llvm::Value *State = E.NamedStateOnLeft ? R : L;
+    llvm::Value *Is =
+        E.StateTest == BinaryExpr::StateKindTest::Running
+            ? Builder.CreateICmpSGT(State, Builder.getInt32(0), "is.running")
+            : Builder.CreateICmpSLT(State, Builder.getInt32(0), "is.failure");
+    return E.Op == BinaryOp::Eq ? Is : Builder.CreateNot(Is, "not");
+  }
   // Sema promotes mixed int/float operands; this only guards the IR.
   if (L->getType()->isFloatTy() && R->getType()->isIntegerTy(32))
     R = Builder.CreateSIToFP(R, L->getType());

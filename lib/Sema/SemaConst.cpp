@@ -255,6 +255,14 @@ Sema::evaluateConstant(const Expr *E) {
         return A != C;
       }
     };
+    if (B->StateTest != BinaryExpr::StateKindTest::None) {
+      // As at run time: the kind of the state the other side holds.
+      bool RunningTest = B->StateTest == BinaryExpr::StateKindTest::Running;
+      int32_t State = B->NamedStateOnLeft ? R->Int : L->Int;
+      bool Is = RunningTest ? State > 0 : State < 0;
+      V.Bool = B->Op == BinaryOp::Eq ? Is : !Is;
+      return V;
+    }
     if (OpTy->isFloat())
       V.Bool = Compare(L->Float, R->Float);
     else if (OpTy->isBool())

@@ -313,6 +313,27 @@ const TaskDecl *Sema::getNamedTask(const Expr *E) {
   return llvm::dyn_cast<TaskDecl>(It->second);
 }
 
+/// `taskState(t) == TaskState::running` asks whether t is running, whatever
+/// running state (> 0) its `yield N` set; `== TaskState::failure` likewise
+/// for any failure (< 0). Other states compare by number.
+void Sema::markStateKindTest(BinaryExpr *E) {
+  auto NamedState = [](const Expr *Side) -> std::optional<int32_t> {
+    const auto *N = llvm::dyn_cast<NameExpr>(Side);
+    if (!N || N->Kind != NameKind::EnumValue || !N->Ty ||
+        !N->Ty->isTaskState())
+      return std::nullopt;
+    return N->EnumValue;
+  };
+  std::optional<int32_t> V = NamedState(E->RHS);
+  E->NamedStateOnLeft = !V;
+  if (!V)
+    V = NamedState(E->LHS);
+  if (V == 1)
+    E->StateTest = BinaryExpr::StateKindTest::Running;
+  else if (V == -1)
+    E->StateTest = BinaryExpr::StateKindTest::Failure;
+}
+
 const Type *Sema::checkBinary(BinaryExpr *E) {
   // `a == b` between tasks, as if tasks were objects: one error that says
   // what to compare instead.
@@ -357,6 +378,8 @@ const Type *Sema::checkBinary(BinaryExpr *E) {
       promoteArithmetic(*this, E->LHS, E->RHS);
       return Types.getBool();
     }
+    if (L->isTaskState() && R->isTaskState())
+      markStateKindTest(E);
     if (L == R && (L->isBool() || L->isEnum() || L->isTaskState()))
       return Types.getBool();
     break;

@@ -145,6 +145,7 @@ public:
   void declare(Decl *D);
   Decl *findVisible(llvm::StringRef Name);
   const TaskDecl *getNamedTask(const Expr *E);
+  void markStateKindTest(BinaryExpr *E);
   /// SemaConst.cpp: checks and evaluates a module constant (and, first,
   /// the constants its value uses, in any module).
   void checkConst(ConstDecl *C);

@@ -552,6 +552,13 @@ public:
   /// operator calls with RHS as its argument (`+` is `_plus_`, ...;
   /// docs/bindings.md "Operator names"). Ty is its result type.
   const NativeFunction *Operator = nullptr;
+  /// Sema: `==`/`!=` between task states where one side is the named
+  /// state `TaskState::running` or `TaskState::failure` test the kind of
+  /// the other (> 0, < 0), not its number (docs/language.md, Tasks).
+  enum class StateKindTest { None, Running, Failure } StateTest =
+      StateKindTest::None;
+  /// With StateTest: whether the named state is the left operand.
+  bool NamedStateOnLeft = false;
   /// Sema: `!=` through `_eq_` (the class registers no `_ne_`): the result
   /// of Operator is negated.
   bool NegateOperator = false;
