@@ -802,6 +802,10 @@ void ObjectReader::readDescriptor(StringRef SymName, uint64_t Base,
   // Once a class's key has internal linkage, so has every thunk of the
   // class: report the class once.
   bool QuietLinkage = false;
+  // Hidden thunks of a shared library have one cause (its visibility):
+  // the first is reported, with the count of the others added at the end.
+  std::optional<size_t> HiddenThunkMessage;
+  unsigned HiddenThunks = 0;
   // A thunk through its holder: must be callable by name.
   auto Thunk = [&](std::optional<Pointee> Holder, unsigned Slot,
                    const Twine &Path) -> std::string {
@@ -817,7 +821,9 @@ void ObjectReader::readDescriptor(StringRef SymName, uint64_t Base,
     if (IsDyn) {
       // Undefined: another library is to define it, which the driver
       // checks against the libraries it links (findUndefinedSymbols).
-      if ((*T)->Defined && !(*T)->Exported && !QuietLinkage)
+      if ((*T)->Defined && !(*T)->Exported && !QuietLinkage &&
+          HiddenThunks++ == 0) {
+        HiddenThunkMessage = Errs.Messages.size();
         Errs.add(File, Path.str(),
                  "thunk '" +
                      ((*T)->Name.empty()
@@ -831,6 +837,7 @@ void ObjectReader::readDescriptor(StringRef SymName, uint64_t Base,
                      "bindings without -fvisibility=hidden, or list "
                      "bs::detail::* as global in the version script) or "
                      "link the binding objects statically");
+      }
       return (*T)->Name;
     }
     if (!hasExternalLinkage((*T)->Binding) && !QuietLinkage)
@@ -1028,6 +1035,10 @@ void ObjectReader::readDescriptor(StringRef SymName, uint64_t Base,
       Add(uint8_t(uint64_t(*Off) >> (8 * K)));
   }
   M.Hash = Hash;
+  if (HiddenThunkMessage && HiddenThunks > 1)
+    Errs.Messages[*HiddenThunkMessage] +=
+        " (" + std::to_string(HiddenThunks - 1) +
+        " more thunks of this module are hidden the same way)";
   Out.push_back(std::move(M));
 }
 
