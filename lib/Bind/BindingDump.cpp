@@ -66,7 +66,9 @@ const char *kindName(MemberKind K) {
 
 void dumpMember(const BindingModel &Model, const BoundMember &M,
                 raw_ostream &OS) {
-  OS << "    " << kindName(M.Kind) << " " << M.Name;
+  std::string Unusable = getUnusableReason(M);
+  OS << "    " << (Unusable.empty() ? "" : "skipped ") << kindName(M.Kind)
+     << " " << M.Name;
   if (M.Kind == MemberKind::Field || M.Kind == MemberKind::Property) {
     OS << " : " << typeName(Model, M.Result);
     if (M.FieldOffset)
@@ -97,12 +99,30 @@ void dumpMember(const BindingModel &Model, const BoundMember &M,
     OS << " out";
   if (!M.CppName.empty())
     OS << " = " << M.CppName;
+  if (!Unusable.empty())
+    OS << "\n      unusable: " << Unusable;
   OS << "\n      thunk " << M.Thunk << "\n";
   if (!M.Setter.empty())
     OS << "      setter " << M.Setter << "\n";
 }
 
 } // namespace
+
+std::string bind::getUnusableReason(const BoundMember &M) {
+  for (size_t I = 0; I < M.Params.size(); ++I) {
+    const BoundType &T = M.Params[I].Type;
+    if (!T.isOutPointer())
+      continue;
+    const char *Name = T.Code == TypeCode::Bool    ? "bool&"
+                       : T.Code == TypeCode::Float ? "float&"
+                       : T.Code == TypeCode::Enum  ? "an enum&"
+                                                   : "int&";
+    return "parameter " + std::to_string(I + 1) + " is '" + Name +
+           "', an out-parameter, and b-script passes scalars by value; "
+           "register a function that returns the value instead";
+  }
+  return "";
+}
 
 void bind::dumpBindings(const BindingModel &Model, raw_ostream &OS) {
   for (const BoundModule &M : Model.Modules) {

@@ -81,7 +81,7 @@ private:
       if (convertMember(F, nullptr, NF))
         NM.Functions.push_back(std::move(NF));
       else
-        Skipped.push_back(M.Name + "::" + F.Name);
+        skip(M.Name + "::" + F.Name, F, NM.Unusable);
     }
     for (size_t I = 0; I != M.Classes.size(); ++I) {
       NativeClass &NC = NM.Classes[I];
@@ -90,9 +90,19 @@ private:
         if (convertMember(Mb, &NC, NF))
           NC.Members.push_back(std::move(NF));
         else
-          Skipped.push_back(NC.QualifiedName + "." + Mb.Name);
+          skip(NC.QualifiedName + "." + Mb.Name, Mb, NC.Unusable);
       }
     }
+  }
+
+  /// Records a member left out, with the reason Sema gives on its use.
+  void skip(std::string Path, const BoundMember &B,
+            std::vector<UnusableMember> &Into) {
+    Skipped.push_back(std::move(Path));
+    std::string Reason = getUnusableReason(B);
+    if (Reason.empty())
+      Reason = "its types are not registered"; // An enum or class of no module.
+    Into.push_back({B.Name, std::move(Reason)});
   }
 
   /// False for what b-script cannot express (out parameters).

@@ -499,6 +499,14 @@ LookupResult Sema::lookupQualified(const QualifiedName &N) {
       return R;
     }
     const NativeFunction *F = QM.NativeMod->findFunction(Member);
+    if (!F)
+      for (const UnusableMember &U : QM.NativeMod->Unusable)
+        if (U.Name == Member) {
+          diag(Second.Loc, diag::err_member_unusable)
+              << Q.Name.str() + "::" + U.Name << U.Reason
+              << Second.getRange();
+          return R;
+        }
     if (!F) {
       diag(Second.Loc, diag::err_no_member_in_module)
           << Q.Name << Second.Name << Second.getRange();

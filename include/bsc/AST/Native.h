@@ -104,6 +104,13 @@ struct NativeFunction {
   size_t getMinArgs() const { return Params.size() - Defaults.size(); }
 };
 
+/// A registered member that b-script cannot call, and why (an out
+/// parameter): Sema reports the reason instead of "no member".
+struct UnusableMember {
+  std::string Name;
+  std::string Reason;
+};
+
 /// A registered C++ class: a value type of b-script.
 struct NativeClass {
   std::string Name;          ///< Inside its module (`Vector2f`).
@@ -120,6 +127,7 @@ struct NativeClass {
   /// assign(T *dst, const T *src), destroy(T *).
   std::string Construct, Copy, Assign, Destroy;
   std::vector<NativeFunction> Members;
+  std::vector<UnusableMember> Unusable;
 
   const NativeFunction *findMember(llvm::StringRef N) const {
     for (const NativeFunction &M : Members)
@@ -144,6 +152,8 @@ struct NativeModule {
   std::vector<NativeFunction> Functions;
   std::vector<NativeEnum> Enums;
   std::vector<NativeClass> Classes;
+  /// Module functions b-script cannot call.
+  std::vector<UnusableMember> Unusable;
   /// The types of `input` and `output`, if this module declares them (it is
   /// then the world module: its names are visible unqualified everywhere).
   const NativeClass *Input = nullptr;

@@ -211,6 +211,12 @@ readBindingBuffers(llvm::ArrayRef<llvm::MemoryBufferRef> Buffers,
 /// --dump-bindings).
 void dumpBindings(const BindingModel &Model, llvm::raw_ostream &OS);
 
+/// Why b-script cannot call a registered member (an `int&`, `float&` or
+/// `bool&` out-parameter: b-script passes scalars by value), or "" if it
+/// can. --dump-bindings lists such members as skipped, and Sema gives the
+/// reason when a script uses one.
+std::string getUnusableReason(const BoundMember &M);
+
 /// Adds every module of `Model` to `Registry` in the Native.h form that
 /// Sema and CodeGen read: classes with their members, module functions,
 /// enums, and the `input`/`output` classes, with types resolved to
