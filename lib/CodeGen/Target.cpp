@@ -27,6 +27,7 @@ void bsc::initializeTargets() {
     llvm::InitializeAllTargetMCs();
     llvm::InitializeAllAsmPrinters();
     llvm::InitializeAllAsmParsers();
+    llvm::InitializeAllDisassemblers();
     return true;
   }();
   (void)Done;

@@ -465,6 +465,32 @@ bool linkProgram(Compilation &C, const llvm::Triple &T, llvm::StringRef Object,
   return true;
 }
 
+/// For a 32-bit x86 target (the robot), reports each --bind object that
+/// holds instructions the target CPU lacks: it would die of SIGILL there.
+bool checkBindingCPU(Compilation &C, const llvm::TargetMachine &TM) {
+  if (TM.getTargetTriple().getArch() != llvm::Triple::x86)
+    return true;
+  bool OK = true;
+  for (const std::string &Path : BindObjects) {
+    llvm::Expected<CPUMismatch> Found = findInstructionsCPULacks(TM, Path);
+    if (!Found) {
+      llvm::consumeError(Found.takeError()); // The reader reported it.
+      continue;
+    }
+    if (!Found->Count)
+      continue;
+    std::string More =
+        Found->Count > 1
+            ? " (and " + std::to_string(Found->Count - 1) + " more)"
+            : "";
+    C.Diags.report(llvm::SMLoc(), diag::err_bind_cpu_lacks)
+        << Path << Found->Function << Found->Instruction
+        << TM.getTargetCPU().str() << More;
+    OK = false;
+  }
+  return OK;
+}
+
 /// What the top-level command produces when it goes past the front end.
 enum class OutputKind { LLVM, Asm, Obj, Header, Program };
 
@@ -492,6 +518,8 @@ int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
         << TM->getTargetTriple().str();
     return finish(C);
   }
+  if (!checkBindingCPU(C, *TM))
+    return finish(C);
   CodeGenOptions CGOpts;
   CGOpts.Instrument = InstrumentFlag;
   CGOpts.NarrowX87Floats = usesX87Floats(*TM);

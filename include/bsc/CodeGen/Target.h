@@ -72,6 +72,22 @@ std::optional<unsigned> parseOptLevel(llvm::StringRef Value);
 /// and a wider exponent than a float (CodeGenOptions::NarrowX87Floats).
 bool usesX87Floats(const llvm::TargetMachine &TM);
 
+/// What findInstructionsCPULacks found: how many instructions the target
+/// CPU lacks, and the first one with its function.
+struct CPUMismatch {
+  unsigned Count = 0;
+  std::string Function;    ///< Demangled.
+  std::string Instruction; ///< Its mnemonic (`cmovl`).
+};
+
+/// Disassembles the functions of a binding object, archive or shared
+/// library built for x86 and counts the instructions that `TM`'s CPU lacks
+/// (CMOV and the P6 x87 compares, SSE and AVX registers: a Geode has none
+/// of them). Files that are not objects count nothing; the binding reader
+/// reports them.
+llvm::Expected<CPUMismatch> findInstructionsCPULacks(const llvm::TargetMachine &TM,
+                                                     llvm::StringRef Path);
+
 /// Whether LLVM can write DWARF into machine code for `T` (`-g`): not
 /// into GOFF objects (z/OS), where LLVM 19's writer crashes on it.
 bool supportsDebugInfo(const llvm::Triple &T);
