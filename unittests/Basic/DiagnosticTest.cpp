@@ -71,4 +71,44 @@ TEST(DiagnosticTest, PrintsFileLineColumnSourceLineAndCaret) {
             "bsc: error: no input files\n");
 }
 
+TEST(DiagnosticTest, SortsBySourceKeepingNotesWithTheirDiagnostic) {
+  llvm::SourceMgr SM;
+  unsigned A = SM.AddNewSourceBuffer(
+      llvm::MemoryBuffer::getMemBufferCopy("a1\na2\n", "a.bs"), llvm::SMLoc());
+  unsigned B = SM.AddNewSourceBuffer(
+      llvm::MemoryBuffer::getMemBufferCopy("b1\n", "b.bs"), llvm::SMLoc());
+  auto At = [&](unsigned ID, unsigned Offset) {
+    return llvm::SMLoc::getFromPointer(
+        SM.getMemoryBuffer(ID)->getBufferStart() + Offset);
+  };
+  DiagnosticEngine D;
+  D.report(At(B, 0), diag::err_undeclared_name) << "b1";
+  D.report(At(A, 3), diag::err_undeclared_name) << "a2";
+  D.report(At(A, 3), diag::note_did_you_mean) << "a1";
+  D.report(llvm::SMLoc(), diag::err_no_input_files);
+  D.report(At(A, 0), diag::err_undeclared_name) << "a1";
+  D.sortBySource(SM);
+  std::vector<std::string> Order;
+  for (const Diagnostic &Diag : D.getDiagnostics())
+    Order.push_back(Diag.Message);
+  EXPECT_EQ(Order, (std::vector<std::string>{
+                       "no input files", "use of undeclared name 'a1'",
+                       "use of undeclared name 'a2'", "did you mean 'a1'?",
+                       "use of undeclared name 'b1'"}));
+}
+
+TEST(DiagnosticTest, WarningGroupsSilenceTheirWarningsAndNotes) {
+  DiagnosticEngine D;
+  EXPECT_FALSE(D.ignoreWarningGroup("no-such-group"));
+  EXPECT_TRUE(D.ignoreWarningGroup("yield-loop"));
+  D.report(llvm::SMLoc(), diag::warn_yield_loop);
+  D.report(llvm::SMLoc(), diag::note_previous_definition);
+  D.report(llvm::SMLoc(), diag::warn_unreachable_code) << "return";
+  ASSERT_EQ(D.getDiagnostics().size(), 1u);
+  EXPECT_EQ(D.getDiagnostics()[0].Kind, diag::warn_unreachable_code);
+  EXPECT_EQ(D.getNumWarnings(), 1u);
+  EXPECT_EQ(DiagnosticEngine::getWarningGroupList(),
+            "'yield-loop', 'unreachable-code', 'duplicate-require'");
+}
+
 } // namespace

@@ -291,6 +291,39 @@ TEST_F(CodeGenTest, EveryProgramVerifiesOnEveryTarget) {
   }
 }
 
+TEST_F(CodeGenTest, DebugInfoVerifiesAndCoversEveryFunction) {
+  // -g on every program and target, unoptimised and optimised: the module
+  // and its debug information verify (the verifier checks every call's
+  // location and scope), and every defined function has a subprogram.
+  for (const auto &[Name, Files] : getPrograms()) {
+    SCOPED_TRACE(Name);
+    ASSERT_TRUE(check(Files));
+    for (const TargetCase &T : Targets) {
+      SCOPED_TRACE(T.Triple);
+      for (unsigned Level : {0u, 2u}) {
+        CodeGenOptions Opts;
+        Opts.DebugInfo = true;
+        Opts.Sources = &C->SM;
+        Opts.OptLevel = Level;
+        BehaviorLayout L;
+        std::unique_ptr<llvm::Module> M = emit(T, L, Opts);
+        std::string Err;
+        llvm::raw_string_ostream OS(Err);
+        bool BrokenDebugInfo = false;
+        EXPECT_FALSE(llvm::verifyModule(*M, &OS, &BrokenDebugInfo)) << Err;
+        EXPECT_FALSE(BrokenDebugInfo) << Err;
+        for (const llvm::Function &F : *M)
+          if (!F.isDeclaration())
+            EXPECT_NE(F.getSubprogram(), nullptr) << F.getName().str();
+        if (Level)
+          optimize(*M, llvm::OptimizationLevel::O2);
+        EXPECT_FALSE(llvm::verifyModule(*M, &OS, &BrokenDebugInfo)) << Err;
+        EXPECT_FALSE(BrokenDebugInfo) << Err;
+      }
+    }
+  }
+}
+
 TEST_F(CodeGenTest, NoLibcNoCoroutinesNoTrapsAfterOptimisation) {
   for (const auto &[Name, Files] : getPrograms()) {
     SCOPED_TRACE(Name);

@@ -167,7 +167,8 @@ TEST(LexerTest, InvalidCharactersOnePerRun) {
   EXPECT_EQ(L.Diags.getDiagnostics()[1].Message,
             "invalid character '\\x00' in source");
   EXPECT_EQ(L.Diags.getDiagnostics()[2].Message,
-            "invalid character '\\xC3' in source");
+            "non-ASCII byte '\\xC3': b-script names and operators are "
+            "ASCII; UTF-8 text belongs in strings and comments");
   // Raw bytes are fine in comments and strings.
   Lexed Ok("a # \xff\xfe\n\"\xC3\xA9\xff\"\n");
   EXPECT_TRUE(Ok.diags().empty());
