@@ -47,13 +47,16 @@ bool Parser::diagnoseStatementHabit() {
   }
   // `++x` / `--x` as a statement.
   if ((Tok.is(tok::plus) || Tok.is(tok::minus)) &&
-      Tok.Loc.getPointer()[1] == Tok.Text[0]) {
-    bool Plus = Tok.is(tok::plus);
-    diag(Tok.Loc, diag::err_habit_increment)
-        << (Plus ? "++" : "--") << (Plus ? "+=" : "-=");
-    return true;
-  }
+      Tok.Loc.getPointer()[1] == Tok.Text[0])
+    return reportIncrementHabit();
   return false;
+}
+
+bool Parser::reportIncrementHabit() {
+  bool Plus = Tok.is(tok::plus);
+  diag(Tok.Loc, diag::err_habit_increment)
+      << (Plus ? "++" : "--") << (Plus ? "+=" : "-=");
+  return true;
 }
 
 bool Parser::diagnoseOperatorHabit() {
@@ -71,10 +74,7 @@ bool Parser::diagnoseOperatorHabit() {
     if (Tok.is(tok::minus) &&
         !restOfLineIsEmpty(P + 2, Source.data() + Source.size()))
       return false;
-    bool Plus = Tok.is(tok::plus);
-    diag(Tok.Loc, diag::err_habit_increment)
-        << (Plus ? "++" : "--") << (Plus ? "+=" : "-=");
-    return true;
+    return reportIncrementHabit();
   }
   return false;
 }

@@ -87,6 +87,8 @@ private:
   bool diagnoseOperandHabit();
   /// Where a statement should end: a trailing `;`.
   bool diagnoseEndOfLineHabit();
+  /// Reports `++`/`--` at Tok (`+=`/`-=` in b-script); returns true.
+  bool reportIncrementHabit();
 
   //--- ParseExpr.cpp -------------------------------------------------------
   Expr *parseExpr();
