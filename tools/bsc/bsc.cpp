@@ -122,6 +122,14 @@ cl::opt<std::string> BatchFile(
              "when standard input is not a terminal)"),
     cl::value_desc("file"), cl::cat(BscCategory), cl::sub(ReplCmd));
 
+cl::opt<bool> DepFileFlag(
+    "MD", cl::desc("Also write a make-style dependency file: the output "
+                   "depends on every module file read and every --bind object"),
+    cl::cat(BscCategory));
+cl::opt<std::string> DepFilePath(
+    "MF", cl::desc("The dependency file's name (default: the output's, with "
+                   "'.d')"),
+    cl::value_desc("file"), cl::cat(BscCategory));
 cl::opt<bool> InstrumentFlag(
     "instrument",
     cl::desc("Embed the debugger's tables (task names, yield lines) in the "
@@ -399,6 +407,26 @@ std::vector<std::string> getStandardModules(const llvm::Triple &T,
   return {std::string(Path)};
 }
 
+/// The path bsc was started as, for the version printer (which cl calls
+/// without arguments).
+const char *Argv0ForVersion = "bsc";
+
+/// `bsc --version`: bsc's and LLVM's versions, the default target, and the
+/// runtimes this bsc links programs with (and where it looked).
+void printVersion(llvm::raw_ostream &OS) {
+  OS << "bsc " << BSC_VERSION << " (b-script compiler for robot behaviors)\n"
+     << "LLVM " << BSC_LLVM_VERSION << "\n"
+     << "default target: " << resolveTargetTriple("").str() << "\n";
+  std::string Dir = getRuntimeDir(Argv0ForVersion);
+  for (const char *Target : {"x86_64", "i586"}) {
+    llvm::SmallString<256> Path(Dir);
+    llvm::sys::path::append(
+        Path, getRuntimeArchiveName(resolveTargetTriple(Target)));
+    OS << "runtime (" << Target << "): " << Path
+       << (llvm::sys::fs::exists(Path) ? "" : " (missing)") << "\n";
+  }
+}
+
 /// Links `Object` with the runtime shim into the program `Output` with the
 /// system's C compiler driver. Reports and returns false on failure.
 bool linkProgram(Compilation &C, const llvm::Triple &T, llvm::StringRef Object,
@@ -491,6 +519,46 @@ bool checkBindingCPU(Compilation &C, const llvm::TargetMachine &TM) {
   return OK;
 }
 
+/// -MD: writes `Output: sources and binding objects` for make and Ninja
+/// (spaces escaped as make wants). Reports and returns false on failure.
+bool writeDepFile(Compilation &C, llvm::StringRef Output) {
+  if (!DepFileFlag)
+    return true;
+  std::string Path = DepFilePath;
+  if (Path.empty()) {
+    if (Output == "-") {
+      C.Diags.report(llvm::SMLoc(), diag::err_depfile_needs_path);
+      return false;
+    }
+    llvm::SmallString<256> D(Output);
+    llvm::sys::path::replace_extension(D, ".d");
+    Path = std::string(D);
+  }
+  auto Out = openOutput(C, Path, /*Text=*/true);
+  if (!Out)
+    return false;
+  auto Escaped = [](llvm::StringRef S) {
+    std::string E;
+    for (char Ch : S) {
+      if (Ch == ' ' || Ch == '#')
+        E += '\\';
+      else if (Ch == '$')
+        E += '$';
+      E += Ch;
+    }
+    return E;
+  };
+  llvm::raw_ostream &OS = Out->os();
+  OS << Escaped(Output) << ":";
+  for (const ModuleAST *M : C.Modules)
+    OS << " \\\n  " << Escaped(M->Path);
+  for (const std::string &Obj : BindObjects)
+    OS << " \\\n  " << Escaped(Obj);
+  OS << "\n";
+  Out->keep();
+  return true;
+}
+
 /// What the top-level command produces when it goes past the front end.
 enum class OutputKind { LLVM, Asm, Obj, Header, Program };
 
@@ -560,6 +628,7 @@ int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
                         TM->getTargetTriple(), TM->createDataLayout(),
                         Out->os());
     Out->keep();
+    writeDepFile(C, OutputFile.empty() ? "-" : OutputFile.getValue());
     return finish(C);
   }
 
@@ -572,6 +641,7 @@ int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
       return finish(C);
     M->print(Out->os(), nullptr);
     Out->keep();
+    writeDepFile(C, OutputFile.empty() ? "-" : OutputFile.getValue());
     return finish(C);
   }
   case OutputKind::Asm:
@@ -590,6 +660,7 @@ int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
                          Out->os(), C.Diags))
       return finish(C);
     Out->keep();
+    writeDepFile(C, Path);
     return finish(C);
   }
   case OutputKind::Program: {
@@ -618,6 +689,8 @@ int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
         !linkProgram(C, TM->getTargetTriple(), ObjPath, Path, Argv0,
                      BindObjects))
       llvm::sys::fs::remove(Path);
+    else
+      writeDepFile(C, Path);
     return finish(C);
   }
   case OutputKind::Header:
@@ -784,6 +857,8 @@ int main(int argc, char **argv) {
   cl::HideUnrelatedOptions(BscCategory, RunCmd);
   cl::HideUnrelatedOptions(BscCategory, TraceDecodeCmd);
   cl::HideUnrelatedOptions(BscCategory, ReplCmd);
+  Argv0ForVersion = argv[0];
+  cl::SetVersionPrinter(printVersion);
   cl::ParseCommandLineOptions(argc, argv,
                               "bsc: the b-script compiler for robot behaviors\n");
 
