@@ -43,6 +43,7 @@
 #include "llvm/Support/ToolOutputFile.h"
 #include "llvm/Support/WithColor.h"
 #include "llvm/Support/raw_ostream.h"
+#include <cstdlib>
 
 using namespace bsc;
 namespace cl = llvm::cl;
@@ -122,6 +123,11 @@ cl::opt<std::string> BatchFile(
              "when standard input is not a terminal)"),
     cl::value_desc("file"), cl::cat(BscCategory), cl::sub(ReplCmd));
 
+cl::opt<std::string> RuntimeDirArg(
+    "runtime-dir",
+    cl::desc("The folder holding the runtime libraries (default: "
+             "$BSCRIPT_RUNTIME_DIR, else ../lib beside bsc's folder)"),
+    cl::value_desc("dir"), cl::cat(BscCategory), BSC_ALL);
 cl::opt<bool> DepFileFlag(
     "MD", cl::desc("Also write a make-style dependency file: the output "
                    "depends on every module file read and every --bind object"),
@@ -372,8 +378,14 @@ std::string defaultOutputName(llvm::StringRef Ext) {
   return (Stem + Ext).str();
 }
 
-/// The folder the runtime libraries are in: `<bsc's folder>/../lib`.
+/// The folder the runtime libraries are in: --runtime-dir, else
+/// $BSCRIPT_RUNTIME_DIR, else `<bsc's folder>/../lib` (the build tree's
+/// layout), so that a copied or installed bsc finds its own.
 std::string getRuntimeDir(const char *Argv0) {
+  if (!RuntimeDirArg.empty())
+    return RuntimeDirArg;
+  if (const char *Env = std::getenv("BSCRIPT_RUNTIME_DIR"); Env && *Env)
+    return Env;
   std::string Exe =
       llvm::sys::fs::getMainExecutable(Argv0, (void *)&getRuntimeDir);
   llvm::SmallString<256> Dir(Exe);
