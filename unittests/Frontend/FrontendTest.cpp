@@ -166,9 +166,12 @@ TEST(FrontendTest, MissingStandardModulesAreReported) {
   FrontendOptions O;
   O.StandardModules = {Dir.path() + "/libbscript_rt.a"};
   EXPECT_FALSE(readBindingObjects(C, O));
-  EXPECT_EQ(messages(C), std::vector<std::string>{
-                             "runtime library 'libbscript_rt.a' not found "
-                             "(looked in '" + Dir.path() + "')"});
+  EXPECT_EQ(messages(C),
+            std::vector<std::string>{
+                "runtime library 'libbscript_rt.a' not found (looked in '" +
+                Dir.path() +
+                "'); point --runtime-dir or BSCRIPT_RUNTIME_DIR at the folder "
+                "that holds it"});
   EXPECT_EQ(C.Natives.find("io"), nullptr);
 }
 
