@@ -172,12 +172,12 @@ bsc::findInstructionsCPULacks(const llvm::TargetMachine &TM,
         continue;
       }
       if (llvm::Error E = ScanBinary(*Ref))
-        return std::move(E);
+        return E;
     }
     llvm::consumeError(std::move(Err));
     return Result;
   }
   if (llvm::Error E = ScanBinary((*Buf)->getMemBufferRef()))
-    return std::move(E);
+    return E;
   return Result;
 }

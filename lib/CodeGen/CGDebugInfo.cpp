@@ -77,17 +77,20 @@ llvm::DIFile *DebugInfoEmitter::getFile(llvm::SMLoc Loc) {
   return F;
 }
 
-unsigned DebugInfoEmitter::getLine(llvm::SMLoc Loc) {
+std::pair<unsigned, unsigned>
+DebugInfoEmitter::getLineAndColumn(llvm::SMLoc Loc) {
   if (!Loc.isValid() || !SM.FindBufferContainingLoc(Loc))
-    return 0;
-  return SM.getLineAndColumn(Loc).first;
+    return {0, 0}; // DWARF's "no line".
+  return SM.getLineAndColumn(Loc);
+}
+
+unsigned DebugInfoEmitter::getLine(llvm::SMLoc Loc) {
+  return getLineAndColumn(Loc).first;
 }
 
 llvm::DILocation *DebugInfoEmitter::getLocation(llvm::SMLoc Loc,
                                                 llvm::DIScope *Scope) {
-  unsigned Line = 0, Col = 0;
-  if (Loc.isValid() && SM.FindBufferContainingLoc(Loc))
-    std::tie(Line, Col) = SM.getLineAndColumn(Loc);
+  auto [Line, Col] = getLineAndColumn(Loc);
   return llvm::DILocation::get(CGM.getContext(), Line, Col, Scope);
 }
 
@@ -102,9 +105,7 @@ llvm::DINamespace *DebugInfoEmitter::getNamespace(llvm::StringRef Name,
 
 llvm::DILexicalBlock *DebugInfoEmitter::createBlock(llvm::DIScope *Parent,
                                                     llvm::SMLoc Loc) {
-  unsigned Line = 0, Col = 0;
-  if (Loc.isValid() && SM.FindBufferContainingLoc(Loc))
-    std::tie(Line, Col) = SM.getLineAndColumn(Loc);
+  auto [Line, Col] = getLineAndColumn(Loc);
   return DIB.createLexicalBlock(Parent, getFile(Loc), Line, Col);
 }
 
@@ -481,13 +482,10 @@ void FunctionEmitter::emitDebugPrologue() {
     return; // A func's parameters are in slots anyway (emitFuncPrologue).
   // A task's frame keeps a copy of a parameter for nested funcs, stored
   // only after the reset check; the argument is what the body reads.
-  const llvm::DataLayout &DL = CGM.getModule().getDataLayout();
   for (const ParamDecl *P : Task->Params) {
     if (!P->Ty->isClass()) {
-      llvm::Type *MemTy = CGM.getMemoryType(P->Ty);
-      auto *Slot = new llvm::AllocaInst(MemTy, 0, P->getName().Name + ".addr",
-                                        EntryPoint);
-      Slot->setAlignment(DL.getABITypeAlign(MemTy));
+      llvm::AllocaInst *Slot =
+          createSlot(P->Ty, P->getName().Name + ".addr");
       emitStore(P->Ty, Fn->getArg(P->Index + 1), Slot);
       Slots[P] = Slot;
     }

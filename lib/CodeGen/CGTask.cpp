@@ -141,15 +141,9 @@ void FunctionEmitter::emitTaskPrologue() {
   const FrameInfo &FI = CGM.getFrame(Task);
   llvm::Type *I32 = Builder.getInt32Ty();
   // Locals whose values never outlive a call are allocas, as a func's.
-  const llvm::DataLayout &DL = CGM.getModule().getDataLayout();
   for (const VarDecl *V : Task->Locals)
-    if (!CGM.keepsInFrame(V)) {
-      llvm::Type *MemTy = CGM.getMemoryType(V->Ty);
-      auto *Slot =
-          new llvm::AllocaInst(MemTy, 0, V->getName().Name, EntryPoint);
-      Slot->setAlignment(DL.getABITypeAlign(MemTy));
-      Slots[V] = Slot;
-    }
+    if (!CGM.keepsInFrame(V))
+      Slots[V] = createSlot(V->Ty, V->getName().Name);
 
   llvm::Value *StateAddr = getFrameFieldPtr(Task, FrameState);
   llvm::Value *LastAddr = getFrameFieldPtr(Task, FrameLastCall);

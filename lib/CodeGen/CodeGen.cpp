@@ -333,11 +333,10 @@ void ModuleEmitter::layoutState() {
   for (const TaskDecl *T : B.Tasks) {
     const FrameInfo &FI = Frames[T];
     uint64_t FrameOffset = SL->getElementOffset(FI.StateFieldNo);
-    const llvm::StructLayout *FL = DL.getStructLayout(FI.Ty);
     BehaviorLayout::Task Entry{T, FrameOffset, DL.getTypeStoreSize(FI.Ty), {}};
     auto Add = [&](const Decl *D, const Type *Ty) {
       Entry.Fields.push_back(
-          {D, Ty, FrameOffset + FL->getElementOffset(FI.Fields.lookup(D))});
+          {D, Ty, getFrameFieldOffset(T, FI.Fields.lookup(D))});
     };
     for (const ParamDecl *P : T->Params)
       if (FI.Fields.count(P))
@@ -860,19 +859,20 @@ unsigned FunctionEmitter::getFirstParamArg() const {
   return ModuleEmitter::returnsClass(D) ? 2 : 1;
 }
 
+llvm::AllocaInst *FunctionEmitter::createSlot(const Type *T,
+                                              const llvm::Twine &Name) {
+  llvm::Type *MemTy = CGM.getMemoryType(T);
+  auto *Slot = new llvm::AllocaInst(MemTy, 0, Name, EntryPoint);
+  Slot->setAlignment(CGM.getModule().getDataLayout().getABITypeAlign(MemTy));
+  return Slot;
+}
+
 void FunctionEmitter::emitFuncPrologue() {
-  const llvm::DataLayout &DL = CGM.getModule().getDataLayout();
-  auto CreateSlot = [&](const Type *T, const llvm::Twine &Name) {
-    llvm::Type *MemTy = CGM.getMemoryType(T);
-    auto *Slot = new llvm::AllocaInst(MemTy, 0, Name, EntryPoint);
-    Slot->setAlignment(DL.getABITypeAlign(MemTy));
-    return Slot;
-  };
   // A class parameter is the func's own copy: copy-constructed from the
   // caller's value, destroyed at every return. Locals are constructed by
   // their declarations (emitDecl).
   for (const ParamDecl *P : D.Params) {
-    llvm::AllocaInst *Slot = CreateSlot(P->Ty, P->getName().Name + ".addr");
+    llvm::AllocaInst *Slot = createSlot(P->Ty, P->getName().Name + ".addr");
     Slots[P] = Slot;
     llvm::Value *Arg = Fn->getArg(P->Index + getFirstParamArg());
     if (P->Ty->isClass()) {
@@ -887,7 +887,7 @@ void FunctionEmitter::emitFuncPrologue() {
     declareForDebugger(*P, P->Ty, P->Index + 2);
   for (const VarDecl *V : D.Locals)
     if (!CGM.getReplSlot(V))
-      Slots[V] = CreateSlot(V->Ty, V->getName().Name);
+      Slots[V] = createSlot(V->Ty, V->getName().Name);
 }
 
 void FunctionEmitter::emitFuncEpilogue() {

@@ -136,6 +136,8 @@ public:
 
 private:
   llvm::DIFile *getFile(llvm::SMLoc Loc);
+  /// Line and column of `Loc`; 0, 0 where it has none.
+  std::pair<unsigned, unsigned> getLineAndColumn(llvm::SMLoc Loc);
   unsigned getLine(llvm::SMLoc Loc);
   llvm::DINamespace *getNamespace(llvm::StringRef Name,
                                   llvm::DIScope *Parent = nullptr);
@@ -326,6 +328,10 @@ public:
 
 private:
   // CodeGen.cpp: funcs.
+  /// An aligned stack slot for a value of `T` in memory, at the top of the
+  /// entry block (a func's parameters and locals, a task's short-lived
+  /// locals, the debugger's copies).
+  llvm::AllocaInst *createSlot(const Type *T, const llvm::Twine &Name);
   void emitFuncPrologue();
   void emitFuncEpilogue();
 

@@ -312,9 +312,11 @@ TEST_F(CodeGenTest, DebugInfoVerifiesAndCoversEveryFunction) {
         bool BrokenDebugInfo = false;
         EXPECT_FALSE(llvm::verifyModule(*M, &OS, &BrokenDebugInfo)) << Err;
         EXPECT_FALSE(BrokenDebugInfo) << Err;
-        for (const llvm::Function &F : *M)
-          if (!F.isDeclaration())
+        for (const llvm::Function &F : *M) {
+          if (!F.isDeclaration()) {
             EXPECT_NE(F.getSubprogram(), nullptr) << F.getName().str();
+          }
+        }
         if (Level)
           optimize(*M, llvm::OptimizationLevel::O2);
         EXPECT_FALSE(llvm::verifyModule(*M, &OS, &BrokenDebugInfo)) << Err;
