@@ -153,22 +153,16 @@ void Sema::buildModuleTables(llvm::ArrayRef<ModuleAST *> Modules) {
 
     for (ConstDecl *C : M->Consts) {
       auto [It, Inserted] = Info->Consts.try_emplace(C->getName().Name, C);
-      if (!Inserted) {
-        diag(C->getName().Loc, diag::err_redefinition) << C->getName().Name;
-        diag(It->second->getName().Loc, diag::note_previous_definition);
-      }
+      if (!Inserted)
+        reportRedefinition(*C, *It->second);
     }
     for (CallableDecl *C : M->Decls) {
       // Funcs, tasks and constants share the module's namespace.
-      if (ConstDecl *Const = Info->Consts.lookup(C->getName().Name)) {
-        diag(C->getName().Loc, diag::err_redefinition) << C->getName().Name;
-        diag(Const->getName().Loc, diag::note_previous_definition);
-      }
+      if (ConstDecl *Const = Info->Consts.lookup(C->getName().Name))
+        reportRedefinition(*C, *Const);
       auto [It, Inserted] = Info->Decls.try_emplace(C->getName().Name, C);
-      if (!Inserted) {
-        diag(C->getName().Loc, diag::err_redefinition) << C->getName().Name;
-        diag(It->second->getName().Loc, diag::note_previous_definition);
-      }
+      if (!Inserted)
+        reportRedefinition(*C, *It->second);
       // Two nested funcs of one task with one name are a redefinition too.
       auto *T = llvm::dyn_cast<TaskDecl>(C);
       if (!T)
@@ -176,10 +170,8 @@ void Sema::buildModuleTables(llvm::ArrayRef<ModuleAST *> Modules) {
       llvm::StringMap<FuncDecl *> Nested;
       for (FuncDecl *F : T->NestedFuncs) {
         auto [NIt, NInserted] = Nested.try_emplace(F->getName().Name, F);
-        if (!NInserted) {
-          diag(F->getName().Loc, diag::err_redefinition) << F->getName().Name;
-          diag(NIt->second->getName().Loc, diag::note_previous_definition);
-        }
+        if (!NInserted)
+          reportRedefinition(*F, *NIt->second);
       }
     }
   }
@@ -216,8 +208,22 @@ LookupResult Sema::lookup(const QualifiedName &N, LookupMode Mode) {
 }
 
 LookupResult Sema::lookupUnqualified(const Ident &Id, LookupMode Mode) {
-  LookupResult R;
+  LookupResult R = findUnqualified(Id.Name, Mode);
+  if (R.Kind != LookupKind::Error)
+    return R;
   llvm::StringRef Name = Id.Name;
+  diag(Id.Loc, Mode == LookupMode::Type ? diag::err_unknown_type
+                                        : diag::err_undeclared_name)
+      << Name << Id.getRange();
+  if (Mode == LookupMode::Value)
+    if (std::optional<std::string> Near = findNearValueName(Name))
+      diag(Id.Loc, diag::note_did_you_mean)
+          << *Near << llvm::SMFixIt(Id.getRange(), *Near);
+  return R;
+}
+
+LookupResult Sema::findUnqualified(llvm::StringRef Name, LookupMode Mode) {
+  LookupResult R;
   if (Mode == LookupMode::Type) {
     const Type *Builtin = llvm::StringSwitch<const Type *>(Name)
                               .Case("int", Types.getInt())
@@ -283,14 +289,7 @@ LookupResult Sema::lookupUnqualified(const Ident &Id, LookupMode Mode) {
     R.Ty = Types.getTaskState();
     return R;
   }
-  diag(Id.Loc, Mode == LookupMode::Type ? diag::err_unknown_type
-                                        : diag::err_undeclared_name)
-      << Name << Id.getRange();
-  if (Mode == LookupMode::Value)
-    if (std::optional<std::string> Near = findNearValueName(Name))
-      diag(Id.Loc, diag::note_did_you_mean)
-          << *Near << llvm::SMFixIt(Id.getRange(), *Near);
-  return R;
+  return R; // Not found: Kind Error, nothing reported.
 }
 
 namespace {
@@ -500,13 +499,12 @@ LookupResult Sema::lookupQualified(const QualifiedName &N) {
     }
     const NativeFunction *F = QM.NativeMod->findFunction(Member);
     if (!F)
-      for (const UnusableMember &U : QM.NativeMod->Unusable)
-        if (U.Name == Member) {
-          diag(Second.Loc, diag::err_member_unusable)
-              << Q.Name.str() + "::" + U.Name << U.Reason
-              << Second.getRange();
-          return R;
-        }
+      if (const UnusableMember *U =
+              findUnusable(QM.NativeMod->Unusable, Member)) {
+        diag(Second.Loc, diag::err_member_unusable)
+            << Q.Name.str() + "::" + U->Name << U->Reason << Second.getRange();
+        return R;
+      }
     if (!F) {
       diag(Second.Loc, diag::err_no_member_in_module)
           << Q.Name << Second.Name << Second.getRange();
@@ -574,6 +572,11 @@ LookupResult Sema::lookupQualified(const QualifiedName &N) {
   }
   suggestNearest(Q, Names);
   return R;
+}
+
+void Sema::reportRedefinition(const Decl &New, const Decl &Prev) {
+  diag(New.getName().Loc, diag::err_redefinition) << New.getName().Name;
+  diag(Prev.getName().Loc, diag::note_previous_definition);
 }
 
 bool Sema::hasBindingModules() const {

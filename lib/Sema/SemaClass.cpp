@@ -28,13 +28,13 @@ const NativeFunction *Sema::findValueMember(const Type *ClassTy,
                                             const Ident &Name) {
   const NativeFunction *M = ClassTy->getClass()->findMember(Name.Name);
   if (!M)
-    for (const UnusableMember &U : ClassTy->getClass()->Unusable)
-      if (U.Name == Name.Name) {
-        diag(Name.Loc, diag::err_member_unusable)
-            << (ClassTy->getName() + "." + U.Name).str() << U.Reason
-            << Name.getRange();
-        return nullptr;
-      }
+    if (const UnusableMember *U =
+            findUnusable(ClassTy->getClass()->Unusable, Name.Name)) {
+      diag(Name.Loc, diag::err_member_unusable)
+          << (ClassTy->getName() + "." + U->Name).str() << U->Reason
+          << Name.getRange();
+      return nullptr;
+    }
   if (!M || !M->hasSelf()) {
     diag(Name.Loc, diag::err_no_member)
         << ClassTy->getName() << Name.Name << Name.getRange();

@@ -300,17 +300,9 @@ const TaskDecl *Sema::getNamedTask(const Expr *E) {
   const auto *N = llvm::dyn_cast<NameExpr>(E);
   if (!N || N->Name.isQualified() || N->Name.empty())
     return nullptr;
-  llvm::StringRef Name = N->Name.Parts[0].Name;
-  if (findVisible(Name))
-    return nullptr;
-  if (CurTask)
-    for (FuncDecl *F : CurTask->NestedFuncs)
-      if (F->getName().Name == Name)
-        return nullptr;
-  auto It = CurModule->Decls.find(Name);
-  if (It == CurModule->Decls.end())
-    return nullptr;
-  return llvm::dyn_cast<TaskDecl>(It->second);
+  LookupResult L = findUnqualified(N->Name.Parts[0].Name, LookupMode::Value);
+  return L.Kind == LookupKind::Callable ? llvm::dyn_cast<TaskDecl>(L.Callable)
+                                        : nullptr;
 }
 
 /// `taskState(t) == TaskState::running` asks whether t is running, whatever

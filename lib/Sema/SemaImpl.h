@@ -102,6 +102,8 @@ public:
   void buildModuleTables(llvm::ArrayRef<ModuleAST *> Modules);
   LookupResult lookup(const QualifiedName &N, LookupMode Mode);
   LookupResult lookupUnqualified(const Ident &Id, LookupMode Mode);
+  /// lookupUnqualified without diagnostics: Kind Error when not found.
+  LookupResult findUnqualified(llvm::StringRef Name, LookupMode Mode);
   LookupResult lookupQualified(const QualifiedName &N);
   /// The visible value name closest to `Name` by edit distance, if one is
   /// close enough to suggest (`did you mean`).
@@ -240,6 +242,8 @@ public:
   llvm::StringSet<> ReportedQualifiers;
   /// note_maybe_unbound was given (once is enough).
   bool NotedUnbound = false;
+  /// err_redefinition at `New`, with a note at `Prev`.
+  void reportRedefinition(const Decl &New, const Decl &Prev);
   /// Whether some native module came from a --bind object.
   bool hasBindingModules() const;
   /// Every native module some module requires (for native enum types).

@@ -189,7 +189,8 @@ struct VerifyFixture {
     for (unsigned L = 1; L < Line; ++L)
       P = strchr(P, '\n') + 1;
     Diags.push_back({diag::err_undeclared_name, S,
-                     llvm::SMLoc::getFromPointer(P), std::move(Message), {}});
+                     llvm::SMLoc::getFromPointer(P), std::move(Message), {},
+                     {}});
   }
   bool verify(std::string &Out) {
     llvm::raw_string_ostream OS(Out);

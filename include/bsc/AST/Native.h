@@ -111,6 +111,15 @@ struct UnusableMember {
   std::string Reason;
 };
 
+/// The member named `N` of `List`, or null.
+inline const UnusableMember *
+findUnusable(const std::vector<UnusableMember> &List, llvm::StringRef N) {
+  for (const UnusableMember &U : List)
+    if (U.Name == N)
+      return &U;
+  return nullptr;
+}
+
 /// A registered C++ class: a value type of b-script.
 struct NativeClass {
   std::string Name;          ///< Inside its module (`Vector2f`).
