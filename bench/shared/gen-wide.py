@@ -53,7 +53,7 @@ def main():
             "    int base = input.frame % 1000"]
     for k in range(CHAINS):
         out += [f"    c{k}_0(base + {k})",
-                f"    output.wide{k} = int(taskState(c{k}_0)) - 1"]
+                f"    output.wide[{k}] = int(taskState(c{k}_0)) - 1"]
     print("\n".join(out))
 
 

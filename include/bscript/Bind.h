@@ -173,6 +173,8 @@ struct Member {
   u32 resultCode, resultFlags, resultSize;
   u32 flags; // MemberFlag
   u32 firstParam, numParams;
+  // Appended in descriptor version 1 (readers of shorter records read 0):
+  u32 extent[4]; // an array field: its extents, outermost first, then 0s
 };
 
 struct Param {
@@ -199,7 +201,7 @@ struct Value {
 
 static_assert(sizeof(Header) == 112, "descriptor header layout");
 static_assert(sizeof(Class) == 2 * sizeof(void *) + 24, "class record layout");
-static_assert(sizeof(Member) == 4 * sizeof(void *) + 40,
+static_assert(sizeof(Member) == 4 * sizeof(void *) + 56,
               "member record layout");
 static_assert(sizeof(Param) == sizeof(void *) + 32, "param record layout");
 static_assert(sizeof(Enum) == sizeof(void *) + 24, "enum record layout");
@@ -932,6 +934,14 @@ public:
 namespace detail {
 
 /// Fills in the result fields of member record M for C++ type R.
+/// The extents of array type X, outermost first.
+template <class X> constexpr void setExtents(u32 *Extent) {
+  if constexpr (std::is_array_v<X>) {
+    *Extent = u32(std::extent_v<X>);
+    setExtents<std::remove_extent_t<X>>(Extent + 1);
+  }
+}
+
 template <class R> constexpr void setResult(rec::Member *M) {
   if (!M)
     return;
@@ -1025,6 +1035,8 @@ public:
   constexpr ClassBuilder(Module &M, detail::u32 Index) : M(&M), Index(Index) {}
 
   /// A data member: `.var<&T::m>("m")`. Read-only if the member is const.
+  /// An array member (`int32_t wide[8]`, `float m[3][3]`) is indexed in
+  /// b-script by its offset; it has no thunks.
   template <auto Ptr>
   constexpr ClassBuilder &var(const char *Name, const char *CppName = nullptr) {
     static_assert(std::is_member_object_pointer_v<decltype(Ptr)>,
@@ -1032,18 +1044,25 @@ public:
                   ".func for member functions");
     using namespace detail;
     using X = typename MemberPtrTraits<T, Ptr>::Type;
-    using D = std::remove_cv_t<X>;
-    (void)ParamWire<D>::C; // rejects unsupported field types
+    using E = std::remove_all_extents_t<X>; // X itself unless an array
+    static_assert(std::rank_v<X> <= 4,
+                  "bs: array fields have at most 4 dimensions");
+    (void)ParamWire<std::remove_cv_t<E>>::C; // rejects unsupported types
     u32 I = M->addMember(KindField, Index, Name, CppName);
     if (rec::Member *R = M->member(I)) {
-      R->thunk = holder<&FieldImpl<T, Ptr>::get>();
-      if constexpr (!std::is_const_v<X>)
-        R->thunk2 = holder<&FieldImpl<T, Ptr>::set>();
-      else
+      setResult<E>(R);
+      if constexpr (std::is_array_v<X>) {
+        setExtents<X>(R->extent);
+        R->flags &= ~MemberResultOut; // no getter
+      } else {
+        R->thunk = holder<&FieldImpl<T, Ptr>::get>();
+        if constexpr (!std::is_const_v<X>)
+          R->thunk2 = holder<&FieldImpl<T, Ptr>::set>();
+      }
+      if constexpr (std::is_const_v<E>)
         R->flags |= MemberReadOnly;
       R->memptr = &FieldHolder<T, Ptr>::ptr;
       R->flags |= MemberConstSelf;
-      setResult<X>(R);
     }
     M->LastMember = detail::None;
     return *this;

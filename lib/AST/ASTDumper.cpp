@@ -317,6 +317,13 @@ void Dumper::dumpExpr(const Expr *E) {
       OS << " -> " << getMemberKindName(ME->Resolved->Kind);
     break;
   }
+  case NodeKind::IndexExpr: {
+    auto *I = llvm::cast<IndexExpr>(E);
+    if (I->Extent)
+      OS << " of " << I->Extent << " stride " << I->Stride
+         << (I->ConstIndex ? " constant" : " clamped");
+    break;
+  }
   case NodeKind::CallExpr: {
     auto *C = llvm::cast<CallExpr>(E);
     if (C->Kind != CallKind::Unresolved)
@@ -363,6 +370,9 @@ void Dumper::dumpExpr(const Expr *E) {
   switch (E->getKind()) {
   case NodeKind::MemberExpr:
     child(llvm::cast<MemberExpr>(E)->Base);
+    return;
+  case NodeKind::IndexExpr:
+    children({llvm::cast<IndexExpr>(E)->Base, llvm::cast<IndexExpr>(E)->Index});
     return;
   case NodeKind::CallExpr: {
     auto *C = llvm::cast<CallExpr>(E);

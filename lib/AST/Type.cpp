@@ -24,3 +24,16 @@ const Type *TypeContext::getClass(const NativeClass *C) {
     Slot = std::make_unique<Type>(TypeKind::Class, C->QualifiedName, nullptr, C);
   return Slot.get();
 }
+
+const Type *TypeContext::getArray(const Type *Element, uint32_t Extent) {
+  std::unique_ptr<Type> &Slot = Arrays[{Element, Extent}];
+  if (!Slot) {
+    // The extent goes before the element's own: an array of 3 `float[3]`
+    // is `float[3][3]`.
+    std::string Name = Element->getName().str();
+    size_t Bracket = std::min(Name.find('['), Name.size());
+    Name.insert(Bracket, "[" + std::to_string(Extent) + "]");
+    Slot = std::make_unique<Type>(std::move(Name), Element, Extent);
+  }
+  return Slot.get();
+}

@@ -41,10 +41,16 @@ std::string typeName(const BindingModel &Model, const BoundType &T) {
       S = "?" + T.Key;
     break;
   }
-  // The C++ storage when it differs from the wire type (double, short...).
+  // The C++ storage when it differs from the wire type (double, short...);
+  // an array field shows its extents instead, and its element size below.
   unsigned Wire = T.Code == TypeCode::Bool ? 1 : 4;
-  if (T.isScalar() && T.Code != TypeCode::String && T.StorageSize != Wire)
+  if (T.isArray()) {
+    for (uint32_t Extent : T.Extents)
+      S += "[" + std::to_string(Extent) + "]";
+  } else if (T.isScalar() && T.Code != TypeCode::String &&
+             T.StorageSize != Wire) {
     S += "[" + std::to_string(T.StorageSize) + "]";
+  }
   if (T.Flags & TF_Ref)
     S += (T.Flags & TF_Const) ? " const&" : "&";
   return S;
@@ -73,7 +79,8 @@ void dumpMember(const BindingModel &Model, const BoundMember &M,
     OS << " : " << typeName(Model, M.Result);
     if (M.FieldOffset)
       OS << " offset " << *M.FieldOffset;
-    OS << " size " << M.Result.StorageSize;
+    OS << (M.Result.isArray() ? " element size " : " size ")
+       << M.Result.StorageSize;
     OS << (M.isReadOnly() ? " read-only" : " read-write");
   } else {
     OS << "(";
@@ -101,7 +108,9 @@ void dumpMember(const BindingModel &Model, const BoundMember &M,
     OS << " = " << M.CppName;
   if (!Unusable.empty())
     OS << "\n      unusable: " << Unusable;
-  OS << "\n      thunk " << M.Thunk << "\n";
+  OS << "\n";
+  if (!M.Thunk.empty()) // Array fields have none: reached by offset.
+    OS << "      thunk " << M.Thunk << "\n";
   if (!M.Setter.empty())
     OS << "      setter " << M.Setter << "\n";
 }

@@ -918,19 +918,47 @@ void ObjectReader::readDescriptor(StringRef SymName, uint64_t Base,
     Mb.Flags = Word(T_Member, I, 7);
     QuietLinkage = Owner != NoIndex && InternalClass[Owner];
     uint32_t First = Word(T_Member, I, 8), N = Word(T_Member, I, 9);
+    // An array field's extents: words appended to the record, so a shorter
+    // record (an older Bind.h) has none.
+    for (unsigned W = 10; W < 14 && TablePtrs[T_Member] * P + 4 * (W + 1) <=
+                                        Size[T_Member];
+         ++W) {
+      uint32_t Extent = Word(T_Member, I, W);
+      if (Extent == 0)
+        break;
+      Mb.Result.Extents.push_back(Extent);
+    }
     size_t ErrorsBeforeThunk = Errs.Messages.size();
     Mb.Thunk = Thunk(Ptr(T_Member, I, 0, Path), 0, Path);
     Mb.Setter = Thunk(Ptr(T_Member, I, 1, Path + " setter"), 0,
                       Path + " setter");
-    if (Mb.Thunk.empty() && !QuietLinkage &&
-        Errs.Messages.size() == ErrorsBeforeThunk)
-      Errs.add(File, Path, "member without a thunk");
     if (std::optional<Pointee> MP = Ptr(T_Member, I, 2, Path)) {
       Expected<int64_t> Off = readMemberPointer(*MP);
       if (!Off)
         Errs.add(File, Path, Off.takeError());
       else
         Mb.FieldOffset = uint64_t(*Off);
+    }
+    if (Mb.Result.isArray()) {
+      // Arrays are reached only by offset, element by element.
+      if (Mb.Kind != MemberKind::Field || !Mb.FieldOffset ||
+          Mb.Result.Code == TypeCode::Void) {
+        if (Errs.Messages.size() == ErrorsBeforeThunk)
+          Errs.add(File, Path, "an array member must be a data field");
+        continue;
+      }
+      // Generated code indexes within the array; the array must lie within
+      // its object.
+      uint64_t Bytes = Mb.Result.StorageSize;
+      for (uint32_t Extent : Mb.Result.Extents)
+        Bytes = std::min<uint64_t>(Bytes * Extent, uint64_t(1) << 40);
+      if (Bytes == 0 || *Mb.FieldOffset + Bytes > M.Classes[Owner].Size) {
+        Errs.add(File, Path, "array field outside its object");
+        continue;
+      }
+    } else if (Mb.Thunk.empty() && !QuietLinkage &&
+               Errs.Messages.size() == ErrorsBeforeThunk) {
+      Errs.add(File, Path, "member without a thunk");
     }
     if (Mb.Result.Code == TypeCode::Enum || Mb.Result.Code == TypeCode::Class)
       Mb.Result.Key = Key(Ptr(T_Member, I, 3, Path), Path);

@@ -109,6 +109,7 @@ private:
   bool convertType(const BoundType &T, NativeType &Out) {
     Out.StorageSize = T.StorageSize;
     Out.Unsigned = T.Flags & TF_Unsigned;
+    Out.Extents = T.Extents;
     switch (T.Code) {
     case TypeCode::Void:
       Out.TheCode = NativeType::Void;

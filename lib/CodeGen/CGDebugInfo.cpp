@@ -165,6 +165,20 @@ llvm::DIType *DebugInfoEmitter::getEnumType(const NativeEnum *E) {
 }
 
 llvm::DIType *DebugInfoEmitter::getNativeType(const NativeType &NT) {
+  llvm::DIType *Element = getNativeElementType(NT);
+  if (!NT.isArray() || !Element)
+    return Element;
+  // `float m[3][3]`: one array type with a subrange per dimension.
+  llvm::SmallVector<llvm::Metadata *, 4> Ranges;
+  uint64_t Bits = Element->getSizeInBits();
+  for (uint32_t Extent : NT.Extents) {
+    Ranges.push_back(DIB.getOrCreateSubrange(0, int64_t(Extent)));
+    Bits *= Extent;
+  }
+  return DIB.createArrayType(Bits, 0, Element, DIB.getOrCreateArray(Ranges));
+}
+
+llvm::DIType *DebugInfoEmitter::getNativeElementType(const NativeType &NT) {
   unsigned Bits = NT.StorageSize * 8;
   switch (NT.TheCode) {
   case NativeType::Void:
@@ -219,8 +233,9 @@ llvm::DIType *DebugInfoEmitter::getClassType(const NativeClass *C) {
     llvm::DIType *FieldTy = getNativeType(F.Result);
     if (!FieldTy)
       continue;
-    uint64_t Bits = F.Result.StorageSize ? F.Result.StorageSize * 8
-                                         : FieldTy->getSizeInBits();
+    uint64_t Bits = F.Result.StorageSize && !F.Result.isArray()
+                        ? F.Result.StorageSize * 8
+                        : FieldTy->getSizeInBits();
     Members.push_back(DIB.createMemberType(Struct, F.Name, nullptr, 0, Bits, 0,
                                            *F.FieldOffset * 8,
                                            llvm::DINode::FlagZero, FieldTy));
@@ -233,6 +248,7 @@ llvm::DIType *DebugInfoEmitter::getType(const Type *T) {
   switch (T->getKind()) {
   case TypeKind::Error:
   case TypeKind::Void:
+  case TypeKind::Array: // Not a variable's type; fields: getClassType.
     return nullptr;
   case TypeKind::Int:
     return getBasicType("int", 32, llvm::dwarf::DW_ATE_signed);

@@ -81,20 +81,15 @@ llvm::Value *FunctionEmitter::getDeclAddress(const Decl *Dcl) {
   return Slots.lookup(P);
 }
 
-llvm::Value *FunctionEmitter::getLValueAddress(const Expr *E) {
-  if (const auto *N = llvm::dyn_cast<NameExpr>(E)) {
-    const Decl *Target = N->Kind == NameKind::Local
-                             ? static_cast<const Decl *>(N->Local)
-                             : static_cast<const Decl *>(N->Param);
-    assert((N->Kind == NameKind::Local || N->Kind == NameKind::Param) &&
-           "Sema allows assignment only to variables");
-    llvm::Value *Addr = getDeclAddress(Target);
-    assert(Addr && "Sema rejects assignment to a task parameter");
-    return Addr;
-  }
-  // `output.motion = ...`: the output pointer plus the field's offset
-  // (properties go through their setter: emitAssign).
-  return emitFieldAddress(*llvm::cast<MemberExpr>(E));
+llvm::Value *FunctionEmitter::getLValueAddress(const NameExpr &N) {
+  const Decl *Target = N.Kind == NameKind::Local
+                           ? static_cast<const Decl *>(N.Local)
+                           : static_cast<const Decl *>(N.Param);
+  assert((N.Kind == NameKind::Local || N.Kind == NameKind::Param) &&
+         "Sema allows assignment only to variables");
+  llvm::Value *Addr = getDeclAddress(Target);
+  assert(Addr && "Sema rejects assignment to a task parameter");
+  return Addr;
 }
 
 llvm::Value *FunctionEmitter::emitFieldAddress(const MemberExpr &E) {
@@ -103,6 +98,29 @@ llvm::Value *FunctionEmitter::emitFieldAddress(const MemberExpr &E) {
   return Builder.CreateConstInBoundsGEP1_64(Builder.getInt8Ty(), Base,
                                             *E.Resolved->FieldOffset,
                                             E.Member.Name + ".addr");
+}
+
+llvm::Value *FunctionEmitter::emitElementAddress(const IndexExpr &E) {
+  const Expr *Base = E.Base;
+  llvm::Value *Array =
+      llvm::isa<IndexExpr>(Base)
+          ? emitElementAddress(*llvm::cast<IndexExpr>(Base))
+          : emitFieldAddress(*llvm::cast<MemberExpr>(Base));
+  llvm::Value *Index;
+  if (E.ConstIndex) {
+    Index = Builder.getInt32(*E.ConstIndex); // Checked by Sema.
+  } else {
+    // Clamped into [0, Extent - 1] (docs/language.md, "Array fields"): an
+    // index never leaves the array, so compiled code stays memory safe.
+    Index = emitExpr(E.Index);
+    Index = Builder.CreateBinaryIntrinsic(llvm::Intrinsic::smax, Index,
+                                          Builder.getInt32(0));
+    Index = Builder.CreateBinaryIntrinsic(llvm::Intrinsic::smin, Index,
+                                          Builder.getInt32(E.Extent - 1),
+                                          nullptr, "index.clamped");
+  }
+  llvm::Type *Element = llvm::ArrayType::get(Builder.getInt8Ty(), E.Stride);
+  return Builder.CreateInBoundsGEP(Element, Array, Index, "element.addr");
 }
 
 llvm::Value *FunctionEmitter::emitFieldLoad(const Type *T, const NativeType &NT,
@@ -321,6 +339,12 @@ llvm::Value *FunctionEmitter::emitExpr(const Expr *E) {
     return emitName(*llvm::cast<NameExpr>(E));
   case NodeKind::MemberExpr:
     return emitMember(*llvm::cast<MemberExpr>(E));
+  case NodeKind::IndexExpr: {
+    // An element (arrays are never values: Sema): loaded as the field
+    // stores it, or for a class element its storage.
+    const auto &IE = *llvm::cast<IndexExpr>(E);
+    return emitFieldLoad(IE.Ty, *IE.Field, emitElementAddress(IE));
+  }
   case NodeKind::CallExpr:
     return emitCall(*llvm::cast<CallExpr>(E));
   case NodeKind::UnaryExpr:

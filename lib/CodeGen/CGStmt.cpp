@@ -182,27 +182,38 @@ void FunctionEmitter::emitAssign(const AssignStmt &S) {
       V = Builder.CreateSIToFP(V, Builder.getFloatTy());
     return V;
   };
-  if (const auto *ME = llvm::dyn_cast<MemberExpr>(S.Target)) {
-    // `output.motion = ...`, `v.x += 1`: a field by offset, or a property
-    // through its getter and setter thunks.
-    const NativeFunction &NF = *ME->Resolved;
-    if (NF.Kind == NativeFunction::Field && NF.FieldOffset) {
-      llvm::Value *Addr = emitFieldAddress(*ME);
-      if (T->isClass()) {
-        assert(!Compound && "Sema has no compound assignment of classes");
-        emitStore(T, emitExpr(S.Value), Addr);
-        return;
-      }
-      llvm::Value *V;
-      if (Compound) {
-        llvm::Value *Old = emitFieldLoad(T, NF.Result, Addr);
-        V = emitArith(Op, Old, Convert(emitExpr(S.Value)));
-      } else {
-        V = Convert(emitExpr(S.Value));
-      }
-      emitFieldStore(T, NF.Result, V, Addr);
+  // `output.motion = ...`, `v.x += 1`, `output.wide[k] = 3`: C++ storage
+  // reached by offset (a field, an element of an array field)...
+  const auto *ME = llvm::dyn_cast<MemberExpr>(S.Target);
+  const NativeType *Storage = nullptr;
+  llvm::Value *Addr = nullptr;
+  if (const auto *IE = llvm::dyn_cast<IndexExpr>(S.Target)) {
+    Storage = IE->Field;
+    Addr = emitElementAddress(*IE);
+  } else if (ME && ME->Resolved->Kind == NativeFunction::Field &&
+             ME->Resolved->FieldOffset) {
+    Storage = &ME->Resolved->Result;
+    Addr = emitFieldAddress(*ME);
+  }
+  if (Storage) {
+    if (T->isClass()) {
+      assert(!Compound && "Sema has no compound assignment of classes");
+      emitStore(T, emitExpr(S.Value), Addr);
       return;
     }
+    llvm::Value *V;
+    if (Compound) {
+      llvm::Value *Old = emitFieldLoad(T, *Storage, Addr);
+      V = emitArith(Op, Old, Convert(emitExpr(S.Value)));
+    } else {
+      V = Convert(emitExpr(S.Value));
+    }
+    emitFieldStore(T, *Storage, V, Addr);
+    return;
+  }
+  if (ME) {
+    // ...or a property through its getter and setter thunks.
+    const NativeFunction &NF = *ME->Resolved;
     llvm::Value *Self = emitExpr(ME->Base);
     llvm::Value *V;
     if (Compound) {
@@ -216,7 +227,7 @@ void FunctionEmitter::emitAssign(const AssignStmt &S) {
     Builder.CreateCall(CGM.getNativeSetter(NF), {Self, V});
     return;
   }
-  llvm::Value *Addr = getLValueAddress(S.Target);
+  Addr = getLValueAddress(*llvm::cast<NameExpr>(S.Target));
   if (!Compound) {
     emitStore(T, Convert(emitExpr(S.Value)), Addr);
     return;

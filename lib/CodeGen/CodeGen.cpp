@@ -84,6 +84,7 @@ llvm::Type *ModuleEmitter::getValueType(const Type *T) {
     // A pointer to the value's storage (CodeGenImpl.h).
     return llvm::PointerType::getUnqual(Ctx);
   case TypeKind::Error:
+  case TypeKind::Array: // Only indexed (IndexExpr), never a value.
     break;
   }
   llvm_unreachable("the error type never reaches code generation");

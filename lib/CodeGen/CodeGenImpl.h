@@ -142,8 +142,10 @@ private:
   llvm::DINamespace *getNamespace(llvm::StringRef Name,
                                   llvm::DIScope *Parent = nullptr);
   llvm::DIType *getType(const Type *T);
-  /// A registered C++ field's type as C++ declares it (short, double, ...).
+  /// A registered C++ field's type as C++ declares it (short, double,
+  /// float[3][3], ...), and one element of it.
   llvm::DIType *getNativeType(const NativeType &NT);
+  llvm::DIType *getNativeElementType(const NativeType &NT);
   llvm::DIType *getBasicType(llvm::StringRef Name, uint64_t Bits,
                              unsigned Encoding);
   llvm::DIType *getEnumType(const NativeEnum *E);
@@ -412,8 +414,9 @@ private:
   /// a nested func belongs to). Null for a task's parameter in its own body:
   /// there the body reads the argument, which is fresh at every call.
   llvm::Value *getDeclAddress(const Decl *V);
-  /// The address an assignment stores to.
-  llvm::Value *getLValueAddress(const Expr *E);
+  /// The address of the variable an assignment stores to (fields and
+  /// elements: emitAssign).
+  llvm::Value *getLValueAddress(const NameExpr &N);
   /// The pointer held in state.input / state.output: the one place where
   /// the `input` and `output` globals are reached.
   llvm::Value *emitGlobalIOPointer(NameKind K);
@@ -456,6 +459,8 @@ private:
                       llvm::Value *Addr);
   /// The address of a field (`base.f` with a FieldOffset).
   llvm::Value *emitFieldAddress(const MemberExpr &E);
+  /// The address of an element of an array field (`output.wide[k]`).
+  llvm::Value *emitElementAddress(const IndexExpr &E);
   /// The index of the first declared parameter among Fn's arguments.
   unsigned getFirstParamArg() const;
 

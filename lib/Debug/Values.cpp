@@ -141,6 +141,17 @@ std::optional<Difference> debug::findDifference(const Value &Recorded,
       return std::nullopt;
     }
   }
+  if (const llvm::json::Array *R = Recorded.getAsArray()) {
+    // An array field: element by element, named `output.wide[3]`.
+    const llvm::json::Array *G = Got.getAsArray();
+    if (G && G->size() == R->size()) {
+      for (size_t I = 0; I < R->size(); ++I)
+        if (auto D = findDifference((*R)[I], (*G)[I],
+                                    (Path + "[" + llvm::Twine(I) + "]").str()))
+          return D;
+      return std::nullopt;
+    }
+  }
   // Numbers compare as the floats (or ints) they are; a number written as
   // a float's shortest decimal reads back as that float.
   std::optional<double> RN = floatFromJSON(Recorded), GN = floatFromJSON(Got);
@@ -234,7 +245,25 @@ static std::optional<int64_t> enumFromJSON(const NativeEnum *E,
   return std::nullopt;
 }
 
-Value ValueIO::readNative(const NativeType &NT, const void *Addr) {
+/// The bytes between two elements of dimension `Dim` of an array field.
+static uint64_t getStride(const NativeType &NT, size_t Dim) {
+  uint64_t Stride = NT.StorageSize;
+  for (size_t D = Dim + 1; D < NT.Extents.size(); ++D)
+    Stride *= NT.Extents[D];
+  return Stride;
+}
+
+Value ValueIO::readNative(const NativeType &NT, const void *Addr,
+                          size_t Dim) {
+  if (Dim < NT.Extents.size()) {
+    // An array field: a JSON array per dimension.
+    llvm::json::Array A;
+    uint64_t Stride = getStride(NT, Dim);
+    for (uint32_t I = 0; I < NT.Extents[Dim]; ++I)
+      A.push_back(
+          readNative(NT, static_cast<const char *>(Addr) + I * Stride, Dim + 1));
+    return A;
+  }
   unsigned Size = NT.StorageSize;
   switch (NT.TheCode) {
   case NativeType::Void:
@@ -271,6 +300,7 @@ Value ValueIO::read(const Type *T, const void *Addr) {
   switch (T->getKind()) {
   case TypeKind::Error:
   case TypeKind::Void:
+  case TypeKind::Array: // Only fields are arrays: readNative.
     return nullptr;
   case TypeKind::Int:
   case TypeKind::TaskState:
@@ -373,7 +403,23 @@ static const char *describe(const NativeType &NT) {
 }
 
 llvm::Error ValueIO::writeNative(const NativeType &NT, void *Addr,
-                                 const Value &V, llvm::StringRef Path) {
+                                 const Value &V, llvm::StringRef Path,
+                                 size_t Dim) {
+  if (Dim < NT.Extents.size()) {
+    // An array field: every element, so a replay leaves nothing stale.
+    const llvm::json::Array *A = V.getAsArray();
+    uint32_t Extent = NT.Extents[Dim];
+    if (!A || A->size() != Extent)
+      return makeError(Path + " must be an array of " + llvm::Twine(Extent) +
+                       " elements, not " + toJSONString(V));
+    uint64_t Stride = getStride(NT, Dim);
+    for (uint32_t I = 0; I < Extent; ++I)
+      if (llvm::Error E = writeNative(
+              NT, static_cast<char *>(Addr) + I * Stride, (*A)[I],
+              (Path + "[" + llvm::Twine(I) + "]").str(), Dim + 1))
+        return E;
+    return llvm::Error::success();
+  }
   auto Mismatch = [&] {
     return makeError(Path + " must be " + describe(NT) + ", not " +
                      toJSONString(V));
@@ -526,6 +572,7 @@ llvm::Error ValueIO::write(const Type *T, void *Addr, const Value &V,
   switch (T->getKind()) {
   case TypeKind::Error:
   case TypeKind::Void:
+  case TypeKind::Array: // Only fields are arrays: writeNative.
     return Mismatch("a value");
   case TypeKind::Int:
   case TypeKind::TaskState:

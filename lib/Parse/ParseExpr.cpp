@@ -155,9 +155,18 @@ Expr *Parser::parseUnary() {
                     {Operand});
 }
 
-/// postfix ::= primary ('.' identifier | '(' (expr (',' expr)*)? ')')*
+/// postfix ::= primary ('.' identifier | '(' (expr (',' expr)*)? ')'
+///                     | '[' expr ']')*
 Expr *Parser::parsePostfix(Expr *E) {
   while (!InError) {
+    if (consumeIf(tok::l_square)) {
+      Expr *Index = parseExpr();
+      expect(tok::r_square, "']'");
+      E = withHeight(make<IndexExpr>(llvm::SMRange(E->getLoc(), PrevEnd), E,
+                                     Index),
+                     {E, Index});
+      continue;
+    }
     if (consumeIf(tok::period)) {
       if (Tok.isNot(tok::identifier)) {
         diag(Tok.Loc, diag::err_expected_after) << "a member name" << "'.'";

@@ -467,10 +467,19 @@ unsigned Repl::parseCount(llvm::StringRef Cmd, llvm::StringRef Arg,
   return N;
 }
 
-/// The leaves of `New` that differ from `Old`: `output.motion = "kick"`.
+/// The leaves of `New` that differ from `Old`: `output.motion = "kick"`,
+/// `output.wide[3] = 9`.
 static void collectChanges(const llvm::json::Value &Old,
                            const llvm::json::Value &New, std::string Path,
                            std::vector<std::string> &Out) {
+  const llvm::json::Array *NA = New.getAsArray();
+  const llvm::json::Array *OA = Old.getAsArray();
+  if (NA && OA && NA->size() == OA->size()) {
+    for (size_t I = 0; I < NA->size(); ++I)
+      collectChanges((*OA)[I], (*NA)[I], Path + "[" + std::to_string(I) + "]",
+                     Out);
+    return;
+  }
   const llvm::json::Object *NO = New.getAsObject();
   const llvm::json::Object *OO = Old.getAsObject();
   if (NO && OO) {

@@ -76,7 +76,12 @@ bool Sema::resolveMethodCallee(CallExpr *C, MemberExpr *M) {
 
 void Sema::checkMutatingMethodBase(Expr *Base, const NativeFunction &Method) {
   Expr *Cur = Base;
-  while (auto *ME = llvm::dyn_cast<MemberExpr>(Cur)) {
+  while (llvm::isa<MemberExpr, IndexExpr>(Cur)) {
+    if (auto *IE = llvm::dyn_cast<IndexExpr>(Cur)) {
+      Cur = IE->Base;
+      continue;
+    }
+    auto *ME = llvm::cast<MemberExpr>(Cur);
     if (ME->Resolved && ME->Resolved->ReadOnly) {
       diag(ME->Member.Loc, diag::err_read_only_member)
           << ME->Resolved->Name << ME->Base->Ty->getName() << ME->getRange();

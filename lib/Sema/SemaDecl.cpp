@@ -44,6 +44,16 @@ const Type *Sema::resolveType(const QualifiedName &N) {
 }
 
 const Type *Sema::resolveNativeType(const NativeType &T) {
+  const Type *Element = resolveNativeElementType(T);
+  if (Element->isError())
+    return Element;
+  // `float m[3][3]`: an array of 3 arrays of 3 floats.
+  for (uint32_t Extent : llvm::reverse(T.Extents))
+    Element = Types.getArray(Element, Extent);
+  return Element;
+}
+
+const Type *Sema::resolveNativeElementType(const NativeType &T) {
   switch (T.TheCode) {
   case NativeType::Void:
     return Types.getVoid();

@@ -45,6 +45,17 @@ bool Sema::convertImplicitly(Expr *&E, const Type *To) {
 }
 
 const Type *Sema::checkExpr(Expr *E, Access A) {
+  const Type *T = checkExprOrArray(E, A);
+  if (T->isArray()) {
+    // b-script has no array values: an array field is only indexed.
+    diag(E->getLoc(), diag::err_array_not_indexed)
+        << getText(E) << T->getName() << E->getRange();
+    E->Ty = T = Types.getError();
+  }
+  return T;
+}
+
+const Type *Sema::checkExprOrArray(Expr *E, Access A) {
   if (!E) // A part the parser could not build; it reported that.
     return Types.getError();
   const Type *T = checkExprImpl(E, A);
@@ -68,6 +79,8 @@ const Type *Sema::checkExprImpl(Expr *E, Access A) {
     return checkName(llvm::cast<NameExpr>(E), A);
   case NodeKind::MemberExpr:
     return checkMember(llvm::cast<MemberExpr>(E), A);
+  case NodeKind::IndexExpr:
+    return checkIndex(llvm::cast<IndexExpr>(E), A);
   case NodeKind::CallExpr:
     return checkCall(llvm::cast<CallExpr>(E), /*AsStatement=*/false);
   case NodeKind::UnaryExpr:
@@ -257,6 +270,57 @@ const Type *Sema::checkMember(MemberExpr *E, Access A) {
   return resolveNativeType(M->Result);
 }
 
+/// The array field an index expression's base names, or null.
+static const NativeType *getArrayField(const Expr *Base) {
+  if (const auto *I = llvm::dyn_cast<IndexExpr>(Base))
+    return I->Field;
+  if (const auto *M = llvm::dyn_cast<MemberExpr>(Base))
+    return M->Resolved ? &M->Resolved->Result : nullptr;
+  return nullptr;
+}
+
+const Type *Sema::checkIndex(IndexExpr *E, Access A) {
+  // An element is a part of its array, which is a part of its object: the
+  // use passes down to the root, as for members.
+  const Type *BaseTy = checkExprOrArray(E->Base, A);
+  const Type *IndexTy = checkExpr(E->Index);
+  if (BaseTy->isError() || IndexTy->isError())
+    return Types.getError();
+  const NativeType *Field = getArrayField(E->Base);
+  if (!BaseTy->isArray() || !Field) {
+    diag(E->Base->getLoc(), diag::err_index_of_non_array)
+        << getText(E->Base) << BaseTy->getName() << E->Base->getRange();
+    return Types.getError();
+  }
+  if (!IndexTy->isInt()) {
+    diag(E->Index->getLoc(), diag::err_index_type)
+        << IndexTy->getName() << E->Index->getRange();
+    return Types.getError();
+  }
+  E->Field = Field;
+  E->Extent = BaseTy->getExtent();
+  // The dimension this index selects in: the field's outermost one less
+  // the dimensions the base indexed already.
+  size_t Dim = 0;
+  for (const Expr *B = E->Base; llvm::isa<IndexExpr>(B);
+       B = llvm::cast<IndexExpr>(B)->Base)
+    ++Dim;
+  E->Stride = Field->StorageSize;
+  for (size_t D = Dim + 1; D < Field->Extents.size(); ++D)
+    E->Stride *= Field->Extents[D];
+  // A constant index is checked here; any other is clamped at run time
+  // (docs/language.md, "Array fields").
+  if (std::optional<ConstDecl::ValueFields> V = evaluateConstant(E->Index)) {
+    if (V->Int < 0 || uint32_t(V->Int) >= E->Extent) {
+      diag(E->Index->getLoc(), diag::err_index_out_of_bounds)
+          << V->Int << getText(E->Base) << E->Extent << E->Index->getRange();
+      return Types.getError();
+    }
+    E->ConstIndex = V->Int;
+  }
+  return BaseTy->getElement();
+}
+
 //===----------------------------------------------------------------------===//
 // Operators and conversions
 //===----------------------------------------------------------------------===//
@@ -411,6 +475,7 @@ const Type *Sema::checkConversion(ConversionExpr *E) {
   case TypeKind::TaskState:
   case TypeKind::Enum:
   case TypeKind::Class:
+  case TypeKind::Array: // Not a type name.
     break;
   }
   if (!OK) {
@@ -551,7 +616,7 @@ const Type *Sema::checkAssignTarget(Expr *T, Access A) {
     }
     llvm_unreachable("unknown lookup result");
   }
-  if (llvm::isa<MemberExpr>(T))
+  if (llvm::isa<MemberExpr, IndexExpr>(T))
     return checkExpr(T, A);
   // Literals, calls, operators: checked for their own mistakes first.
   if (!checkExpr(T)->isError())

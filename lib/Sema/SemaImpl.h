@@ -124,7 +124,10 @@ public:
 
   //--- SemaDecl.cpp: types, signatures, declarations, bodies ----------------
   const Type *resolveType(const QualifiedName &N);
+  /// The b-script type of a native type (an array field's is an array).
   const Type *resolveNativeType(const NativeType &T);
+  /// ...and of one of its elements (the type itself unless an array).
+  const Type *resolveNativeElementType(const NativeType &T);
   void checkSignature(CallableDecl *C);
   /// Reports a class value of type `T` that `What` would copy ("a
   /// parameter", ...) when the class has neither a copy thunk (nor, if the
@@ -170,6 +173,8 @@ public:
   //--- SemaExpr.cpp ---------------------------------------------------------
   /// Checks `E` (for the given use), sets E->Ty and returns it.
   const Type *checkExpr(Expr *E, Access A = Access::Read);
+  /// checkExpr without refusing an array: for the base of an index.
+  const Type *checkExprOrArray(Expr *E, Access A);
   const Type *checkExprImpl(Expr *E, Access A);
   const Type *checkName(NameExpr *E, Access A);
   const Type *applyLookup(NameExpr *E, const LookupResult &L, Access A);
@@ -182,6 +187,7 @@ public:
   /// Task parameters are read-only; false after reporting.
   bool checkParamAccess(NameExpr *E, ParamDecl *P, Access A);
   const Type *checkMember(MemberExpr *E, Access A);
+  const Type *checkIndex(IndexExpr *E, Access A);
   const Type *checkUnary(UnaryExpr *E);
   const Type *checkBinary(BinaryExpr *E);
   const Type *checkConversion(ConversionExpr *E);

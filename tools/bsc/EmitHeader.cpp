@@ -27,6 +27,7 @@ static llvm::StringRef getCType(const Type *T) {
   case TypeKind::Enum:
   case TypeKind::Error:
   case TypeKind::Class: // Not lowered yet: the driver stops before.
+  case TypeKind::Array: // Not the type of a parameter or result.
     return "int32_t";
   }
   return "int32_t";

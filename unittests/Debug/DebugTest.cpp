@@ -92,6 +92,62 @@ TEST(DebugValuesTest, FieldsByOffset) {
             llvm::toString(std::move(E)));
 }
 
+/// Array fields: `int16_t s[3]` and `double m[2][2]` (a b-script float
+/// each), as nested JSON arrays; a write must give every element.
+TEST(DebugValuesTest, ArrayFieldsAreJSONArrays) {
+  struct Obj {
+    int16_t S[3];
+    double M[2][2];
+  } O = {{-1, 2, 300}, {{0.5, 1}, {2, -4}}};
+  NativeClass C;
+  C.Name = "Obj";
+  C.QualifiedName = "M::Obj";
+  auto Field = [&](const char *Name, NativeType::Code Code, uint64_t Offset,
+                   uint32_t Size, std::vector<uint32_t> Extents) {
+    NativeFunction F;
+    F.Kind = NativeFunction::Field;
+    F.Name = Name;
+    F.FieldOffset = Offset;
+    F.Result.TheCode = Code;
+    F.Result.StorageSize = Size;
+    F.Result.Extents = std::move(Extents);
+    C.Members.push_back(F);
+  };
+  Field("s", NativeType::Int, offsetof(Obj, S), 2, {3});
+  Field("m", NativeType::Float, offsetof(Obj, M), 8, {2, 2});
+  ValueIO IO([](llvm::StringRef) -> void * { return nullptr; });
+  EXPECT_EQ("{\"m\":[[0.5,1],[2,-4]],\"s\":[-1,2,300]}",
+            toJSONString(IO.readClass(C, &O)));
+  llvm::json::Value New = llvm::json::Object{
+      {"s", llvm::json::Array{7, 8, 9}},
+      {"m", llvm::json::Array{llvm::json::Array{1, 2},
+                              llvm::json::Array{3, 0.1}}}};
+  ASSERT_FALSE(bool(IO.writeClass(C, &O, New, "input")));
+  EXPECT_EQ(9, O.S[2]);
+  EXPECT_EQ(3.0, O.M[1][0]);
+  EXPECT_EQ(double(0.1f), O.M[1][1]);
+  llvm::Error E = IO.writeClass(
+      C, &O, llvm::json::Object{{"s", llvm::json::Array{1, 2}}}, "input");
+  EXPECT_EQ("input.s must be an array of 3 elements, not [1,2]",
+            llvm::toString(std::move(E)));
+  E = IO.writeClass(
+      C, &O,
+      llvm::json::Object{{"m", llvm::json::Array{llvm::json::Array{1, 2},
+                                                 llvm::json::Array{3, "x"}}}},
+      "input");
+  EXPECT_EQ("input.m[1][1] must be a number, not \"x\"",
+            llvm::toString(std::move(E)));
+  // A difference names the element.
+  llvm::json::Value Got = IO.readClass(C, &O);
+  llvm::json::Value Recorded = llvm::json::Object{
+      {"s", llvm::json::Array{7, 8, 9}},
+      {"m", llvm::json::Array{llvm::json::Array{1, 2},
+                              llvm::json::Array{3, 0.2}}}};
+  std::optional<Difference> D = findDifference(Recorded, Got, "output");
+  ASSERT_TRUE(D.has_value());
+  EXPECT_EQ("output.m[1][1]", D->Path);
+}
+
 /// walk (0) is called by look (1) and main (2); look and head (3) by main.
 DebugTables makeTables() {
   DebugTables T;

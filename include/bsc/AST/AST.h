@@ -22,6 +22,7 @@
 #include "llvm/Support/StringSaver.h"
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -496,6 +497,28 @@ public:
   const NativeFunction *Resolved = nullptr;
   static bool classof(const Node *N) {
     return N->getKind() == NodeKind::MemberExpr;
+  }
+};
+
+/// `base[index]`: an element of an array field (`output.wide[k]`,
+/// `input.m[1][2]`). The base has an array type; the element is stored as
+/// the field declares it (Sema's ElementStorage), Stride bytes apart.
+class IndexExpr : public Expr {
+public:
+  IndexExpr(llvm::SMRange R, Expr *Base, Expr *Index)
+      : Expr(NodeKind::IndexExpr, R), Base(Base), Index(Index) {}
+  Expr *Base;
+  Expr *Index;
+  /// Sema: the number of elements, and the bytes between two of them.
+  uint32_t Extent = 0;
+  uint64_t Stride = 0;
+  /// Sema: the index when it is a constant (then checked against Extent);
+  /// otherwise generated code clamps it into [0, Extent - 1].
+  std::optional<int32_t> ConstIndex;
+  /// Sema: the array field's native type (element storage and extents).
+  const NativeType *Field = nullptr;
+  static bool classof(const Node *N) {
+    return N->getKind() == NodeKind::IndexExpr;
   }
 };
 

@@ -60,6 +60,12 @@ struct NativeType {
   /// storage narrower than int is zero-extended when read, not
   /// sign-extended (`uint8_t` 250 reads as 250).
   bool Unsigned = false;
+  /// An array field (`float m[3][3]`): its extents, outermost first; the
+  /// rest describes one element (StorageSize is the element's). Only
+  /// fields are arrays.
+  std::vector<uint32_t> Extents;
+
+  bool isArray() const { return !Extents.empty(); }
 };
 
 /// A default argument restated with `.defaults(...)`: scalars and enums

@@ -13,6 +13,7 @@
 #define BSC_AST_TYPE_H
 
 #include "llvm/ADT/StringRef.h"
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -32,6 +33,10 @@ enum class TypeKind {
   TaskState,
   Enum,  ///< A registered enum (getEnum()).
   Class, ///< A registered C++ class, a value type (getClass()).
+  /// An array field of a registered class (`float m[3][3]` is an array of
+  /// 3 arrays of 3 floats): getElement(), getExtent(). Only the base of an
+  /// index expression has this type; b-script has no array values.
+  Array,
 };
 
 class Type {
@@ -41,6 +46,8 @@ public:
   llvm::StringRef getName() const { return Name; }
   const NativeEnum *getEnum() const { return Enum; }
   const NativeClass *getClass() const { return Class; }
+  const Type *getElement() const { return Element; }
+  uint32_t getExtent() const { return Extent; }
 
   bool isError() const { return Kind == TypeKind::Error; }
   bool isVoid() const { return Kind == TypeKind::Void; }
@@ -51,17 +58,23 @@ public:
   bool isTaskState() const { return Kind == TypeKind::TaskState; }
   bool isEnum() const { return Kind == TypeKind::Enum; }
   bool isClass() const { return Kind == TypeKind::Class; }
+  bool isArray() const { return Kind == TypeKind::Array; }
   bool isArithmetic() const { return isInt() || isFloat(); }
 
   Type(TypeKind K, std::string Name, const NativeEnum *E = nullptr,
        const NativeClass *C = nullptr)
       : Kind(K), Name(std::move(Name)), Enum(E), Class(C) {}
+  Type(std::string Name, const Type *Element, uint32_t Extent)
+      : Kind(TypeKind::Array), Name(std::move(Name)), Element(Element),
+        Extent(Extent) {}
 
 private:
   TypeKind Kind;
   std::string Name;
-  const NativeEnum *Enum;
-  const NativeClass *Class;
+  const NativeEnum *Enum = nullptr;
+  const NativeClass *Class = nullptr;
+  const Type *Element = nullptr;
+  uint32_t Extent = 0;
 };
 
 /// Owns and uniques every type of one compilation.
@@ -79,11 +92,14 @@ public:
   const Type *getEnum(const NativeEnum *E, llvm::StringRef QualifiedName);
   /// The type of a registered class (named by its QualifiedName).
   const Type *getClass(const NativeClass *C);
+  /// An array of `Extent` elements (named as C declares it: `float[3][3]`).
+  const Type *getArray(const Type *Element, uint32_t Extent);
 
 private:
   Type ErrorTy, VoidTy, IntTy, FloatTy, BoolTy, StringTy, TaskStateTy;
   std::map<const NativeEnum *, std::unique_ptr<Type>> Enums;
   std::map<const NativeClass *, std::unique_ptr<Type>> Classes;
+  std::map<std::pair<const Type *, uint32_t>, std::unique_ptr<Type>> Arrays;
 };
 
 } // namespace bsc

@@ -64,7 +64,11 @@ struct BoundType {
   std::string Key;
   int Module = -1;
   int Index = -1;
+  /// An array field (`float m[3][3]`): its extents, outermost first; the
+  /// rest of the type describes one element.
+  std::vector<uint32_t> Extents;
 
+  bool isArray() const { return !Extents.empty(); }
   bool isScalar() const { return Code != TypeCode::Enum && Code != TypeCode::Class; }
   /// A non-const scalar reference parameter (int&, float&, bool&): the
   /// argument is a pointer to storage of StorageSize bytes.

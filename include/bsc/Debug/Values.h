@@ -55,9 +55,13 @@ public:
                          const llvm::json::Value &V, llvm::StringRef Path);
 
 private:
-  llvm::json::Value readNative(const NativeType &NT, const void *Addr);
+  /// A field's value; an array field's from dimension `Dim` on (nested
+  /// JSON arrays).
+  llvm::json::Value readNative(const NativeType &NT, const void *Addr,
+                               size_t Dim = 0);
   llvm::Error writeNative(const NativeType &NT, void *Addr,
-                          const llvm::json::Value &V, llvm::StringRef Path);
+                          const llvm::json::Value &V, llvm::StringRef Path,
+                          size_t Dim = 0);
   llvm::json::Value readMember(const NativeClass &C, const NativeFunction &M,
                                const void *Obj);
   llvm::Error writeMember(const NativeClass &C, const NativeFunction &M,

@@ -15,6 +15,11 @@ struct B {
 struct C {
   int w = 0;
 };
+struct G {
+  int grid[2][3] = {};
+  float deep[1][1][1][1][1] = {};
+  int *ptrs[2] = {};
+};
 enum class E { a, b };
 enum class F { x };
 long long wide(long long X) { return X; }
@@ -56,7 +61,12 @@ BS_MODULE(Cases,
   auto e = registerEnum<E>(module, "E");
   registerEnum<F>(module, "F").value("x", F::x);
   e.value("a", E::a);
+#elif CASE == 14 // an array field of five dimensions
+  registerClass<G>(module, "G").var<&G::deep>("deep");
+#elif CASE == 15 // an array of an unsupported element type
+  registerClass<G>(module, "G").var<&G::ptrs>("ptrs");
 #else
   a.var<&A::v>("v").prop<bs::mut(&A::get)>("get");
+  registerClass<G>(module, "G").var<&G::grid>("grid");
 #endif
 )
