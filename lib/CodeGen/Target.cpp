@@ -16,7 +16,6 @@
 #include "llvm/Support/TargetSelect.h"
 #include "llvm/Support/raw_ostream.h"
 #include "llvm/Target/TargetOptions.h"
-#include "llvm/TargetParser/Host.h"
 
 using namespace bsc;
 
@@ -31,16 +30,6 @@ void bsc::initializeTargets() {
     return true;
   }();
   (void)Done;
-}
-
-llvm::Triple bsc::resolveTargetTriple(llvm::StringRef Name) {
-  if (Name.empty())
-    return llvm::Triple(llvm::sys::getDefaultTargetTriple());
-  if (Name == "i586")
-    return llvm::Triple("i586-unknown-linux-gnu");
-  if (Name == "x86_64")
-    return llvm::Triple("x86_64-unknown-linux-gnu");
-  return llvm::Triple(llvm::Triple::normalize(Name));
 }
 
 std::string bsc::getDefaultCPU(const llvm::Triple &T) {
@@ -59,12 +48,6 @@ std::string bsc::getDefaultCPU(const llvm::Triple &T) {
   default:
     return "generic";
   }
-}
-
-bool bsc::hasProgramRuntime(const llvm::Triple &T) {
-  llvm::Triple Host(llvm::sys::getProcessTriple());
-  return (T.getArch() == llvm::Triple::x86 || T.getArch() == Host.getArch()) &&
-         T.isOSLinux() && T.isOSBinFormatELF();
 }
 
 bool bsc::supportsDebugInfo(const llvm::Triple &T) {
@@ -187,8 +170,8 @@ bool bsc::checkMachineCodeSupport(const llvm::Triple &T,
 std::unique_ptr<llvm::TargetMachine>
 bsc::createTargetMachine(const TargetOptions &Opts, DiagnosticEngine &Diags) {
   initializeTargets();
-  llvm::Triple T = resolveTargetTriple(Opts.Target);
-  std::string Spelled = Opts.Target.empty() ? T.str() : Opts.Target;
+  const llvm::Triple &T = Opts.Triple;
+  std::string Spelled = Opts.Spelling.empty() ? T.str() : Opts.Spelling;
   // An unknown architecture normalises to "unknown-..."; LLVM would look up
   // nothing for it anyway, but say so in the user's words.
   if (T.getArch() == llvm::Triple::UnknownArch) {

@@ -160,16 +160,11 @@ static bool isFromStandardModule(llvm::StringRef File,
 bool bsc::readBindingObjects(Compilation &C, const FrontendOptions &Opts) {
   // The standard modules live in the runtime: a missing one is the
   // installation's problem, reported as linking reports it.
-  bool Found = true;
-  for (const std::string &Path : Opts.StandardModules)
-    if (!llvm::sys::fs::exists(Path)) {
-      C.Diags.report(llvm::SMLoc(), diag::err_runtime_missing)
-          << llvm::sys::path::filename(Path)
-          << ("'" + llvm::sys::path::parent_path(Path) + "'").str();
-      Found = false;
-    }
-  if (!Found)
+  if (Opts.MissingRuntime) {
+    C.Diags.report(llvm::SMLoc(), diag::err_runtime_missing)
+        << Opts.MissingRuntime->Archive << Opts.MissingRuntime->SearchedIn;
     return false;
+  }
   // One reading of all objects: a --bind module named like a standard one
   // is then "registered twice", as between two --bind objects.
   std::vector<std::string> Paths = Opts.StandardModules;

@@ -19,6 +19,7 @@
 #include "bsc/Bind/Bind.h"
 #include "bsc/CodeGen/CodeGen.h"
 #include "bsc/CodeGen/Target.h"
+#include "bsc/Driver/ToolChain.h"
 #include "bsc/Frontend/Frontend.h"
 #include "bsc/JIT/JIT.h"
 #include "bsc/Debug/Trace.h"
@@ -126,7 +127,7 @@ cl::opt<std::string> BatchFile(
 cl::opt<std::string> RuntimeDirArg(
     "runtime-dir",
     cl::desc("The folder holding the runtime libraries (default: "
-             "$BSCRIPT_RUNTIME_DIR, else ../lib beside bsc's folder)"),
+             "$BSCRIPT_RUNTIME_DIR, else ../lib/bscript or ../lib beside bsc's folder)"),
     cl::value_desc("dir"), cl::cat(BscCategory), BSC_ALL);
 cl::opt<bool> DepFileFlag(
     "MD", cl::desc("Also write a make-style dependency file: the output "
@@ -292,7 +293,8 @@ bool parseBackendOptions(DiagnosticEngine &Diags, BackendOptions &Out) {
   } else {
     Out.Cycles = Cycles;
   }
-  Out.Target.Target = TargetArg;
+  Out.Target.Triple = resolveTargetTriple(TargetArg);
+  Out.Target.Spelling = TargetArg;
   Out.Target.CPU = CPUArg;
   return OK;
 }
@@ -378,50 +380,23 @@ std::string defaultOutputName(llvm::StringRef Ext) {
   return (Stem + Ext).str();
 }
 
-/// The folder the runtime libraries are in: --runtime-dir, else
-/// $BSCRIPT_RUNTIME_DIR, else `<bsc's folder>/../lib` (the build tree's
-/// layout), so that a copied or installed bsc finds its own.
-std::string getRuntimeDir(const char *Argv0) {
-  if (!RuntimeDirArg.empty())
-    return RuntimeDirArg;
-  if (const char *Env = std::getenv("BSCRIPT_RUNTIME_DIR"); Env && *Env)
-    return Env;
-  std::string Exe =
-      llvm::sys::fs::getMainExecutable(Argv0, (void *)&getRuntimeDir);
-  llvm::SmallString<256> Dir(Exe);
-  llvm::sys::path::remove_filename(Dir); // bin
-  llvm::sys::path::remove_filename(Dir); // build
-  llvm::sys::path::append(Dir, "lib");
-  return std::string(Dir);
-}
-
-/// Whether `T` runs 32-bit x86 code (the robot runtime and `cc -m32`).
-bool isX86_32(const llvm::Triple &T) { return T.getArch() == llvm::Triple::x86; }
-
-/// The runtime archive a program for `T` links: the robot's for 32-bit x86,
-/// else the host's.
-const char *getRuntimeArchiveName(const llvm::Triple &T) {
-  return isX86_32(T) ? "libbscript_rt_i586.a" : "libbscript_rt.a";
-}
-
-/// The objects holding the standard modules (`io`) for `T`: its runtime
-/// archive, for the ELF x86 targets bsc ships a runtime for. Other targets
-/// have none; a program for one passes its own build of
-/// lib/Runtime/io_module.cpp with --bind.
-std::vector<std::string> getStandardModules(const llvm::Triple &T,
-                                            const char *Argv0) {
-  bool HasRuntime = (isX86_32(T) || T.getArch() == llvm::Triple::x86_64) &&
-                    T.isOSBinFormatELF();
-  if (!HasRuntime)
-    return {};
-  llvm::SmallString<256> Path(getRuntimeDir(Argv0));
-  llvm::sys::path::append(Path, getRuntimeArchiveName(T));
-  return {std::string(Path)};
-}
-
 /// The path bsc was started as, for the version printer (which cl calls
 /// without arguments).
 const char *Argv0ForVersion = "bsc";
+
+/// The toolchain of `-target Name` (the host for the empty name), with the
+/// runtime search folders of this bsc: --runtime-dir, else
+/// $BSCRIPT_RUNTIME_DIR, else beside its executable.
+ToolChain getToolChain(llvm::StringRef Name, const char *Argv0) {
+  std::string Override = RuntimeDirArg;
+  if (const char *Env = std::getenv("BSCRIPT_RUNTIME_DIR");
+      Override.empty() && Env)
+    Override = Env;
+  std::string Exe =
+      llvm::sys::fs::getMainExecutable(Argv0, (void *)&getToolChain);
+  return ToolChain(resolveTargetTriple(Name),
+                   getRuntimeSearchDirs(Override, Exe));
+}
 
 /// `bsc --version`: bsc's and LLVM's versions, the default target, and the
 /// runtimes this bsc links programs with (and where it looked).
@@ -429,77 +404,43 @@ void printVersion(llvm::raw_ostream &OS) {
   OS << "bsc " << BSC_VERSION << " (b-script compiler for robot behaviors)\n"
      << "LLVM " << BSC_LLVM_VERSION << "\n"
      << "default target: " << resolveTargetTriple("").str() << "\n";
-  std::string Dir = getRuntimeDir(Argv0ForVersion);
   for (const char *Target : {"x86_64", "i586"}) {
-    llvm::SmallString<256> Path(Dir);
-    llvm::sys::path::append(
-        Path, getRuntimeArchiveName(resolveTargetTriple(Target)));
-    OS << "runtime (" << Target << "): " << Path
-       << (llvm::sys::fs::exists(Path) ? "" : " (missing)") << "\n";
+    ToolChain TC = getToolChain(Target, Argv0ForVersion);
+    OS << "runtime (" << Target << "): ";
+    if (std::optional<std::string> Path = TC.findRuntime())
+      OS << *Path << "\n";
+    else
+      OS << TC.getRuntimeArchiveName() << " missing (looked in "
+         << TC.describeRuntimeSearch() << ")\n";
   }
 }
 
-/// Links `Object` with the runtime shim into the program `Output` with the
-/// system's C compiler driver. Reports and returns false on failure.
-bool linkProgram(Compilation &C, const llvm::Triple &T, llvm::StringRef Object,
-                 llvm::StringRef Output, const char *Argv0,
+/// Links `Object` with the runtime shim into the program `Output`.
+/// Reports and returns false on failure.
+bool linkProgram(Compilation &C, const ToolChain &TC, llvm::StringRef Object,
+                 llvm::StringRef Output,
                  llvm::ArrayRef<std::string> BindObjects) {
-  std::string RuntimeDir = getRuntimeDir(Argv0);
-  std::string RuntimeName = getRuntimeArchiveName(T);
-  llvm::SmallString<256> Runtime(RuntimeDir);
-  llvm::sys::path::append(Runtime, RuntimeName);
-  if (!llvm::sys::fs::exists(Runtime)) {
+  std::optional<std::string> Runtime = TC.findRuntime();
+  if (!Runtime) {
     C.Diags.report(llvm::SMLoc(), diag::err_runtime_missing)
-        << RuntimeName << ("'" + RuntimeDir + "'");
+        << TC.getRuntimeArchiveName() << TC.describeRuntimeSearch();
     return false;
   }
-
-  // `cc` (gcc with gcc-multilib for -m32), else clang-19 with lld.
-  std::vector<std::string> Args;
-  std::string Program;
-  if (auto CC = llvm::sys::findProgramByName("cc")) {
-    Program = *CC;
-    Args = {"cc"};
-    if (isX86_32(T))
-      Args.push_back("-m32");
-  } else if (auto Clang = llvm::sys::findProgramByName("clang-19")) {
-    Program = *Clang;
-    Args = {"clang-19", "--target=" + T.str(), "-fuse-ld=lld"};
-  } else {
+  std::optional<Command> Link =
+      TC.getLinkCommand(Object, BindObjects, *Runtime, Output);
+  if (!Link) {
     C.Diags.report(llvm::SMLoc(), diag::err_no_linker)
-        << T.str() << "neither 'cc' nor 'clang-19' is on PATH";
+        << TC.getTriple().str() << "neither 'cc' nor 'clang-19' is on PATH";
     return false;
   }
-  // The binding objects hold the thunks the object calls; they need the
-  // C++ runtime and libm (the runtime's own io thunks need neither).
-  Args.push_back(Object.str());
-  for (const std::string &Bind : BindObjects) {
-    llvm::file_magic Magic;
-    if (llvm::identify_magic(Bind, Magic) ||
-        Magic != llvm::file_magic::elf_shared_object) {
-      Args.push_back(Bind);
-      continue;
-    }
-    // A shared library: by absolute path, and its directory as the
-    // program's run path, so that the program runs from any directory.
-    llvm::SmallString<256> Abs(Bind);
-    llvm::sys::fs::make_absolute(Abs);
-    llvm::sys::path::remove_dots(Abs, /*remove_dot_dot=*/true);
-    Args.push_back(std::string(Abs));
-    Args.push_back("-Wl,-rpath," +
-                   llvm::sys::path::parent_path(Abs).str());
-  }
-  Args.push_back(Runtime.str().str());
-  if (!BindObjects.empty())
-    Args.insert(Args.end(), {"-lstdc++", "-lm"});
-  Args.insert(Args.end(), {"-o", Output.str()});
-  llvm::SmallVector<llvm::StringRef, 8> ArgRefs(Args.begin(), Args.end());
+  llvm::SmallVector<llvm::StringRef, 8> ArgRefs(Link->Args.begin(),
+                                                Link->Args.end());
   std::string ErrMsg;
-  int RC = llvm::sys::ExecuteAndWait(Program, ArgRefs, std::nullopt, {}, 0, 0,
-                                     &ErrMsg);
+  int RC = llvm::sys::ExecuteAndWait(Link->Program, ArgRefs, std::nullopt, {},
+                                     0, 0, &ErrMsg);
   if (RC != 0) {
     C.Diags.report(llvm::SMLoc(), diag::err_link_failed)
-        << Output << Program << RC;
+        << Output << Link->Program << RC;
     return false;
   }
   return true;
@@ -575,19 +516,18 @@ bool writeDepFile(Compilation &C, llvm::StringRef Output) {
 enum class OutputKind { LLVM, Asm, Obj, Header, Program };
 
 int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
-            const char *Argv0) {
+            const ToolChain &TC) {
   // Back-end errors (and report_fatal_error, which some targets call as
   // early as creating the machine) become diagnostics and exit status 1.
   llvm::LLVMContext Ctx;
   BackendErrorReporter Reporter(
-      Ctx, C.Diags, resolveTargetTriple(BOpts.Target.Target).str(),
+      Ctx, C.Diags, BOpts.Target.Triple.str(),
       [&] { finish(C); });
   std::unique_ptr<llvm::TargetMachine> TM =
       createTargetMachine(BOpts.Target, C.Diags);
   if (!TM)
     return finish(C);
-  if (Kind == OutputKind::Program &&
-      !hasProgramRuntime(TM->getTargetTriple())) {
+  if (Kind == OutputKind::Program && !TC.hasRuntime()) {
     C.Diags.report(llvm::SMLoc(), diag::err_no_runtime_for_target)
         << TM->getTargetTriple().str();
     return finish(C);
@@ -698,8 +638,7 @@ int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
         return finish(C);
     }
     if (!checkBindingImports(C, *M, BindObjects) ||
-        !linkProgram(C, TM->getTargetTriple(), ObjPath, Path, Argv0,
-                     BindObjects))
+        !linkProgram(C, TC, ObjPath, Path, BindObjects))
       llvm::sys::fs::remove(Path);
     else
       writeDepFile(C, Path);
@@ -881,9 +820,17 @@ int main(int argc, char **argv) {
   Opts.Inputs.assign(InputFiles.begin(), InputFiles.end());
   Opts.IncludeDirs.assign(IncludeDirs.begin(), IncludeDirs.end());
   Opts.BindObjects.assign(BindObjects.begin(), BindObjects.end());
-  Opts.Target = RunCmd || ReplCmd ? resolveTargetTriple("")
-                                  : resolveTargetTriple(TargetArg);
-  Opts.StandardModules = getStandardModules(Opts.Target, argv[0]);
+  // `run` and `repl` are for the host's JIT, whatever -target says.
+  ToolChain TC = getToolChain(
+      RunCmd || ReplCmd ? llvm::StringRef() : llvm::StringRef(TargetArg), argv[0]);
+  Opts.Target = TC.getTriple();
+  if (TC.hasRuntime()) {
+    if (std::optional<std::string> Runtime = TC.findRuntime())
+      Opts.StandardModules = {*Runtime};
+    else
+      Opts.MissingRuntime = {TC.getRuntimeArchiveName().str(),
+                             TC.describeRuntimeSearch()};
+  }
 
   if (DumpBindings) {
     if (readBindingObjects(C, Opts))
@@ -933,5 +880,5 @@ int main(int argc, char **argv) {
     Kind = OutputKind::Obj;
   else if (EmitHeaderFlag)
     Kind = OutputKind::Header;
-  return compile(C, BOpts, Kind, argv[0]);
+  return compile(C, BOpts, Kind, TC);
 }

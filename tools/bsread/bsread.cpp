@@ -9,6 +9,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "bsc/Bind/Bind.h"
+#include "bsc/Driver/ToolChain.h"
 #include "llvm/Support/CommandLine.h"
 #include "llvm/Support/InitLLVM.h"
 #include "llvm/Support/WithColor.h"
@@ -20,19 +21,14 @@ using namespace llvm;
 static cl::list<std::string> Inputs(cl::Positional, cl::desc("<object|archive>..."),
                                     cl::OneOrMore);
 static cl::opt<std::string>
-    TargetName("target", cl::desc("i586 (default), x86_64 or a triple"),
+    TargetName("target", cl::desc("i586 (default), x86_64 or a triple, as bsc -target"),
                cl::init("i586"));
 
 int main(int Argc, char **Argv) {
   InitLLVM X(Argc, Argv);
   cl::ParseCommandLineOptions(Argc, Argv, "print what binding objects register\n");
-  std::string T = TargetName;
-  if (T == "i586" || T == "i386" || T == "i686")
-    T += "-unknown-linux-gnu";
-  else if (T == "x86_64" || T == "host")
-    T = "x86_64-unknown-linux-gnu";
   Expected<bsc::bind::BindingModel> Model =
-      bsc::bind::readBindings(Inputs, Triple(T));
+      bsc::bind::readBindings(Inputs, bsc::resolveTargetTriple(TargetName));
   if (!Model) {
     WithColor::error(errs(), "bsread") << toString(Model.takeError()) << "\n";
     return 1;

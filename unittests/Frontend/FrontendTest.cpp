@@ -161,17 +161,15 @@ TEST(FrontendTest, StandardModulesComeFromTheRuntimeArchive) {
 }
 
 TEST(FrontendTest, MissingStandardModulesAreReported) {
-  TempDir Dir;
   Compilation C;
   FrontendOptions O;
-  O.StandardModules = {Dir.path() + "/libbscript_rt.a"};
+  O.MissingRuntime = {"libbscript_rt.a", "'/a/lib/bscript', '/a/lib'"};
   EXPECT_FALSE(readBindingObjects(C, O));
   EXPECT_EQ(messages(C),
             std::vector<std::string>{
-                "runtime library 'libbscript_rt.a' not found (looked in '" +
-                Dir.path() +
-                "'); point --runtime-dir or BSCRIPT_RUNTIME_DIR at the folder "
-                "that holds it"});
+                "runtime library 'libbscript_rt.a' not found (looked in "
+                "'/a/lib/bscript', '/a/lib'); point --runtime-dir or "
+                "BSCRIPT_RUNTIME_DIR at the folder that holds it"});
   EXPECT_EQ(C.Natives.find("io"), nullptr);
 }
 

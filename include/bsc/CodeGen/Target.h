@@ -38,8 +38,10 @@ namespace bsc {
 
 /// What the user asked for on the command line.
 struct TargetOptions {
-  /// `-target`: "i586", "x86_64", any LLVM triple, or empty for the host.
-  std::string Target;
+  /// The target triple (the driver resolves `-target`: ToolChain.h).
+  llvm::Triple Triple;
+  /// `-target` as the user wrote it, for messages; empty for the host.
+  std::string Spelling;
   /// `-mcpu`: empty for the target's default (geode for i586).
   std::string CPU;
   /// `-O0`..`-O3`.
@@ -52,12 +54,6 @@ constexpr unsigned MaxOptLevel = 3;
 /// Registers every back end bsc links (all of Debian's LLVM 19) with LLVM.
 /// Idempotent.
 void initializeTargets();
-
-/// The triple `-target Name` stands for: "i586" is i586-unknown-linux-gnu,
-/// "x86_64" is x86_64-unknown-linux-gnu, the empty string is the host, and
-/// anything else is normalised as an LLVM triple. Does not check that LLVM
-/// supports it (createTargetMachine does).
-llvm::Triple resolveTargetTriple(llvm::StringRef Name);
 
 /// The CPU used when `-mcpu` is not given: "geode" for i586 triples (the
 /// robot), "x86-64" for x86_64, the oldest supported model for back ends
@@ -91,11 +87,6 @@ llvm::Expected<CPUMismatch> findInstructionsCPULacks(const llvm::TargetMachine &
 /// Whether LLVM can write DWARF into machine code for `T` (`-g`): not
 /// into GOFF objects (z/OS), where LLVM 19's writer crashes on it.
 bool supportsDebugInfo(const llvm::Triple &T);
-
-/// Whether bsc ships a runtime shim a program for `T` links with (host
-/// x86_64 and i586 Linux): only those get standalone programs; every other
-/// target gets objects, assembly and IR.
-bool hasProgramRuntime(const llvm::Triple &T);
 
 /// Creates the machine for `Opts`, PIC, with the CPU checked against the
 /// target's list. Refuses the targets bsc's IR generator does not support

@@ -19,6 +19,7 @@
 #include "llvm/Support/SourceMgr.h"
 #include "llvm/TargetParser/Triple.h"
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,13 @@ struct FrontendOptions {
   /// BindObjects and before them, so a --bind module of the same name is
   /// "registered twice". The driver names the runtime archive of Target.
   std::vector<std::string> StandardModules;
+  /// A target with a runtime whose archive the driver did not find: its
+  /// name and the folders it looked in (err_runtime_missing when the
+  /// standard modules are needed).
+  struct Missing {
+    std::string Archive, SearchedIn;
+  };
+  std::optional<Missing> MissingRuntime;
   /// --bind: binding objects or archives (bindings.md), read for Target.
   std::vector<std::string> BindObjects;
   /// The compilation's target: sizes, offsets and the descriptor's pointer
