@@ -1,0 +1,141 @@
+# bscript_add_behavior: compiles a b-script behavior with bsc into a static
+# library that a robot program links (docs/cmake.md).
+#
+#   bscript_add_behavior(TARGET <name>
+#     SOURCES <main.bs> [<more.bs>...]
+#     [BIND <target or file>...]
+#     [TARGET_TRIPLE <i586 | x86_64 | LLVM triple>]
+#     [ENTRIES <Module::name>...]
+#     [INCLUDE_DIRS <dir>...]
+#     [OPTIMIZE <0..3>]
+#     [BEHAVIOR_NAME <identifier>]
+#     [OPTIONS <bsc option>...])
+#
+# <name> is a static library holding the behavior's object. Linking it gives
+# its header `<name>.h` (bsc --emit-header: bs_<name>_state,
+# bs_<name>_init, one bs_<name>_call__<Module>__<entry> per entry), the
+# runtime shim of the target and the BIND targets.
+#
+# - SOURCES: the behavior's files; the first one's module is the main one.
+#   Modules they require are found beside the requiring file and in
+#   INCLUDE_DIRS; bsc's dependency file makes an edit of any of them, or of
+#   a binding object, rebuild the behavior.
+# - BIND: the binding objects that register the robot's C++ for b-script,
+#   built for the same target: an OBJECT library, a static or shared
+#   library target, or a file.
+# - TARGET_TRIPLE: i586 (the robot) by default when the project's compiler
+#   builds 32-bit code (a toolchain file), else the host.
+# - ENTRIES: the funcs and tasks the robot calls (--export); by default the
+#   behavior's roots, which nothing in it calls.
+# - OPTIMIZE: bsc's -O level, 2 by default.
+# - BEHAVIOR_NAME: the prefix of the exported symbols, <name> by default.
+function(bscript_add_behavior)
+  cmake_parse_arguments(PARSE_ARGV 0 BS ""
+    "TARGET;TARGET_TRIPLE;OPTIMIZE;BEHAVIOR_NAME"
+    "SOURCES;BIND;ENTRIES;INCLUDE_DIRS;OPTIONS")
+  if(BS_UNPARSED_ARGUMENTS)
+    list(GET BS_UNPARSED_ARGUMENTS 0 first)
+    message(FATAL_ERROR "bscript_add_behavior(${BS_TARGET}): unexpected "
+      "'${first}'; the keywords are TARGET, SOURCES, BIND, TARGET_TRIPLE, "
+      "ENTRIES, INCLUDE_DIRS, OPTIMIZE, BEHAVIOR_NAME and OPTIONS")
+  endif()
+  if(NOT BS_TARGET)
+    message(FATAL_ERROR "bscript_add_behavior: TARGET <name> is required")
+  endif()
+  if(NOT BS_SOURCES)
+    message(FATAL_ERROR
+      "bscript_add_behavior(${BS_TARGET}): SOURCES needs at least one .bs file")
+  endif()
+  if(NOT DEFINED BS_OPTIMIZE)
+    set(BS_OPTIMIZE 2)
+  endif()
+  if(NOT BS_OPTIMIZE MATCHES "^[0-3]$")
+    message(FATAL_ERROR
+      "bscript_add_behavior(${BS_TARGET}): OPTIMIZE must be 0..3, not '${BS_OPTIMIZE}'")
+  endif()
+  if(NOT BS_BEHAVIOR_NAME)
+    set(BS_BEHAVIOR_NAME ${BS_TARGET})
+  endif()
+  if(NOT DEFINED BS_TARGET_TRIPLE)
+    if(CMAKE_SIZEOF_VOID_P EQUAL 4)
+      set(BS_TARGET_TRIPLE i586)
+    else()
+      set(BS_TARGET_TRIPLE "")
+    endif()
+  endif()
+
+  # The runtime shim of the target: the robot's for 32-bit x86, else the
+  # host's (other targets have none; docs/bindings.md).
+  set(runtime)
+  if(BS_TARGET_TRIPLE MATCHES "^(i[3-6]86|x86)($|-)")
+    set(runtime bscript::runtime_i586)
+  elseif(BS_TARGET_TRIPLE STREQUAL "" OR BS_TARGET_TRIPLE MATCHES "^x86_64($|-)")
+    set(runtime bscript::runtime)
+  endif()
+
+  set(args -O${BS_OPTIMIZE} --behavior-name=${BS_BEHAVIOR_NAME})
+  if(NOT BS_TARGET_TRIPLE STREQUAL "")
+    list(APPEND args -target ${BS_TARGET_TRIPLE})
+  endif()
+  foreach(dir IN LISTS BS_INCLUDE_DIRS)
+    get_filename_component(dir "${dir}" ABSOLUTE)
+    list(APPEND args -I ${dir})
+  endforeach()
+  if(BS_ENTRIES)
+    list(JOIN BS_ENTRIES "," entries)
+    list(APPEND args --export=${entries})
+  endif()
+  list(APPEND args ${BS_OPTIONS})
+
+  set(depends)
+  set(bind_targets)
+  foreach(bind IN LISTS BS_BIND)
+    if(TARGET ${bind})
+      get_target_property(type ${bind} TYPE)
+      if(type STREQUAL "OBJECT_LIBRARY")
+        # One --bind per object file.
+        list(APPEND args
+          "--bind=$<JOIN:$<TARGET_OBJECTS:${bind}>,$<SEMICOLON>--bind=>")
+        list(APPEND depends $<TARGET_OBJECTS:${bind}>)
+      elseif(type MATCHES "^(STATIC|SHARED)_LIBRARY$")
+        list(APPEND args --bind=$<TARGET_FILE:${bind}>)
+        list(APPEND depends $<TARGET_FILE:${bind}>)
+      else()
+        message(FATAL_ERROR "bscript_add_behavior(${BS_TARGET}): BIND "
+          "'${bind}' is not a library (${type}); give the binding objects: "
+          "an OBJECT, STATIC or SHARED library, or a file")
+      endif()
+      list(APPEND depends ${bind})
+      list(APPEND bind_targets ${bind})
+    else()
+      get_filename_component(file "${bind}" ABSOLUTE)
+      list(APPEND args --bind=${file})
+      list(APPEND depends ${file})
+    endif()
+  endforeach()
+
+  set(sources)
+  foreach(src IN LISTS BS_SOURCES)
+    get_filename_component(src "${src}" ABSOLUTE)
+    list(APPEND sources ${src})
+  endforeach()
+
+  set(out ${CMAKE_CURRENT_BINARY_DIR}/${BS_TARGET}.bscript)
+  set(object ${out}/${BS_TARGET}.o)
+  set(header ${out}/include/${BS_TARGET}.h)
+  file(MAKE_DIRECTORY ${out}/include)
+  add_custom_command(OUTPUT ${object} ${header}
+    COMMAND bscript::bsc -c ${args} -MD -MF ${object}.d ${sources} -o ${object}
+    COMMAND bscript::bsc --emit-header ${args} ${sources} -o ${header}
+    DEPENDS ${sources} ${depends} $<TARGET_FILE:bscript::bsc>
+    DEPFILE ${object}.d
+    COMMENT "bsc: behavior ${BS_TARGET}"
+    COMMAND_EXPAND_LISTS VERBATIM)
+  set_source_files_properties(${object} PROPERTIES
+    EXTERNAL_OBJECT TRUE GENERATED TRUE)
+
+  add_library(${BS_TARGET} STATIC ${object} ${header})
+  set_target_properties(${BS_TARGET} PROPERTIES LINKER_LANGUAGE C)
+  target_include_directories(${BS_TARGET} INTERFACE ${out}/include)
+  target_link_libraries(${BS_TARGET} INTERFACE ${runtime} ${bind_targets})
+endfunction()
