@@ -51,6 +51,8 @@ demo() {
 
 run_tests() {
   local status=0
+  # Results of an earlier run must not be counted if this one stops early.
+  rm -f "$BUILD/ctest-results.xml" "$BUILD/lit-results.xml"
   ctest --test-dir "$BUILD" --output-on-failure -j"$(nproc)" \
         --output-junit "$BUILD/ctest-results.xml" || status=$?
   # One closing line with every unit test and every lit test counted.

@@ -11,9 +11,11 @@
 #   %bsc_build    the build folder (bin/bsc, lib/)
 #   %bsc_include  the public headers (bscript/bscript.h for C embeddings)
 #   %run-i586     runs a 32-bit x86 program (natively, else qemu-i386)
-# Features: conformance, shared-bench (../shared present), gdb (installed by
-# dev.sh), i586-native (this kernel runs 32-bit programs itself, so gdb can
-# debug them).
+# The suite needs ../shared (the conformance programs and the bench
+# reference) and gdb (dev.sh installs it): without either it stops rather
+# than report green with less in it. Feature: i586-native (this kernel runs
+# 32-bit programs itself, so gdb can debug them; elsewhere they run in
+# qemu-i386 and the one gdb-on-i586 test is reported unsupported).
 import os
 import shutil
 import subprocess
@@ -40,10 +42,11 @@ config.substitutions.append(("%shared_bench", os.path.join(config.shared_dir, "b
 # FileCheck, not, split-file, count come from LLVM 19.
 config.environment["PATH"] = os.pathsep.join(
     [config.llvm_tools_dir, config.bsc_tools_dir, config.environment.get("PATH", "")])
-if os.path.isdir(os.path.join(config.shared_dir, "conformance")):
-    config.available_features.add("conformance")
-if os.path.isfile(os.path.join(config.shared_dir, "bench", "harness.h")):
-    config.available_features.add("shared-bench")
+for needed in ("conformance/paper/fib.bs", "bench/harness.h"):
+    if not os.path.isfile(os.path.join(config.shared_dir, needed)):
+        lit_config.fatal("%s not found: the suite runs the programs of "
+                         "../shared beside the checkout (README, Quick start)"
+                         % os.path.join(config.shared_dir, needed))
 
 # 32-bit programs run through utils/run-i586: natively where the kernel can,
 # else in qemu-i386 (see the script).
@@ -51,8 +54,9 @@ config.substitutions.append(
     ("%run-i586", config.python_executable + " " +
      os.path.join(config.bsc_src_root, "utils", "run-i586")))
 
-if shutil.which("gdb"):
-    config.available_features.add("gdb")
+if not shutil.which("gdb"):
+    lit_config.fatal("gdb not found: the debug-info tests need it "
+                     "(dev.sh installs it)")
 
 
 def runs_i586_natively():

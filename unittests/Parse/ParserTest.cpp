@@ -195,17 +195,34 @@ TEST(ParserTest, DumpFormat) {
                       "          NameExpr 'a' <3:16>\n");
 }
 
-TEST(ParserTest, GarbageNeverCrashes) {
+/// Random text (a third of it random bytes) never crashes the parser, is
+/// always reported as an error, and every diagnostic points into the text
+/// with its ranges inside it.
+TEST(ParserTest, GarbageIsReportedInsideTheText) {
   uint32_t Seed = 12345;
   for (unsigned Round = 0; Round != 200; ++Round) {
     std::string Src;
     for (unsigned I = 0; I != 300; ++I) {
       Seed = Seed * 1103515245 + 12345;
-      static const char Alphabet[] = "tf(),.:;+-*/%!<>=&|\"\\#\n\n    \t0x9e.ab";
+      static const char Alphabet[] = "tf(),.:;+-*/%!<>=&|[]\"\\#\n\n    \t0x9e.ab";
       Src += (Seed >> 16) % 3 == 0 ? char(Seed >> 8)
                                    : Alphabet[(Seed >> 16) % (sizeof(Alphabet) - 1)];
     }
     Parsed P(Src);
-    (void)P.dump();
+    SCOPED_TRACE("round " + std::to_string(Round));
+    EXPECT_GT(P.Diags.getNumErrors(), 0u);
+    const char *Begin = P.SM.getMemoryBuffer(1)->getBufferStart();
+    const char *End = P.SM.getMemoryBuffer(1)->getBufferEnd();
+    auto Inside = [&](llvm::SMLoc L) {
+      return L.getPointer() >= Begin && L.getPointer() <= End;
+    };
+    for (const Diagnostic &D : P.Diags.getDiagnostics()) {
+      EXPECT_TRUE(Inside(D.Loc)) << D.Message;
+      for (const llvm::SMRange &R : D.Ranges)
+        EXPECT_TRUE(Inside(R.Start) && Inside(R.End) &&
+                    R.Start.getPointer() <= R.End.getPointer())
+            << D.Message;
+    }
+    EXPECT_FALSE(P.dump().empty());
   }
 }
