@@ -15,7 +15,7 @@
 // linker or runtime) becomes a `bsc: error: ...` diagnostic and exit 1.
 //
 //===----------------------------------------------------------------------===//
-#include "EmitHeader.h"
+#include "bsc/CodeGen/EmitHeader.h"
 #include "bsc/Bind/Bind.h"
 #include "bsc/CodeGen/CodeGen.h"
 #include "bsc/CodeGen/Target.h"

@@ -7,8 +7,8 @@
 // property of the target (i586 has 4-byte pointers) and of the program.
 //
 //===----------------------------------------------------------------------===//
-#ifndef BSC_TOOLS_BSC_EMITHEADER_H
-#define BSC_TOOLS_BSC_EMITHEADER_H
+#ifndef BSC_CODEGEN_EMITHEADER_H
+#define BSC_CODEGEN_EMITHEADER_H
 
 #include "bsc/CodeGen/CodeGen.h"
 #include "llvm/Support/raw_ostream.h"

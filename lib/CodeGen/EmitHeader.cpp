@@ -6,7 +6,7 @@
 // would give a state of the wrong size), and one on the state type's size.
 //
 //===----------------------------------------------------------------------===//
-#include "EmitHeader.h"
+#include "bsc/CodeGen/EmitHeader.h"
 #include "llvm/ADT/StringExtras.h"
 
 using namespace bsc;
