@@ -2,7 +2,7 @@
 # so that bsc finds its runtimes relative to itself (ToolChain.h):
 #   P/bin/bsc
 #   P/lib/bscript/libbscript_rt.a, libbscript_rt_i586.a
-#   P/include/bscript/Bind.h, bscript.h
+#   P/include/bscript/Bind.h, bscript.h, descriptor.h
 #   P/lib/cmake/bscript/  the package: find_package(bscript 0.1 REQUIRED)
 #   P/share/doc/bscript/  the user documentation
 include(CMakePackageConfigHelpers)
@@ -14,6 +14,7 @@ install(TARGETS bsc bscript_rt bscript_rt_i586 bscript_bind
   RUNTIME DESTINATION bin
   ARCHIVE DESTINATION lib/bscript)
 install(FILES include/bscript/Bind.h include/bscript/bscript.h
+              include/bscript/descriptor.h
   DESTINATION include/bscript)
 install(FILES README.md docs/language.md docs/bindings.md docs/embedding.md
               docs/repl.md docs/cmake.md

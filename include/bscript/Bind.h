@@ -29,11 +29,9 @@
 //  - Type identity is the symbol name of `bs::TypeKey<T>::id`, identical in
 //    every object and for every compiler.
 //
-// The descriptor layout ("P" is a pointer-sized field; all P fields come
-// first in a record, so a reader can skip them when it hashes the bytes) is
-// spelled out by the structs in bs::detail::rec below and must stay in step
-// with lib/Bind/BindingReader.cpp. Readers step records by the stored record
-// sizes, so later versions may append fields.
+// The descriptor layout is stated once, in bscript/descriptor.h, which bsc's
+// reader and the runtime read it by; the structs in bs::detail::rec below
+// write it, and static assertions pin each of their fields to it.
 //
 // Needs C++20 (lambdas and class-type values as template arguments, constexpr
 // placement of records). No RTTI, no exceptions, no heap.
@@ -46,6 +44,8 @@
 #error "bscript/Bind.h needs C++20: compile the bindings with -std=c++20"
 #endif
 
+#include "descriptor.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <new>
@@ -55,7 +55,7 @@
 namespace bs {
 
 /// The descriptor format version that this header writes.
-inline constexpr std::uint32_t DescriptorVersion = 1;
+inline constexpr std::uint32_t DescriptorVersion = BS_DESCRIPTOR_VERSION;
 
 /// The identity of a registered C++ type: bsc knows a type by the symbol
 /// name of its key. A mutable char, so that identical-code folding cannot
@@ -71,61 +71,62 @@ namespace detail {
 using u32 = std::uint32_t;
 using i32 = std::int32_t;
 
-inline constexpr u32 None = 0xffffffffu;
+inline constexpr u32 None = BS_NO_INDEX;
 
+// The codes and flags as descriptor.h states them.
 /// Type codes of parameters, results and fields.
 enum Code : u32 {
-  CodeVoid = 0,
-  CodeBool = 1,
-  CodeInt = 2,
-  CodeFloat = 3,
-  CodeString = 4, // const char *
-  CodeEnum = 5,
-  CodeClass = 6,
+  CodeVoid = BS_CODE_VOID,
+  CodeBool = BS_CODE_BOOL,
+  CodeInt = BS_CODE_INT,
+  CodeFloat = BS_CODE_FLOAT,
+  CodeString = BS_CODE_STRING,
+  CodeEnum = BS_CODE_ENUM,
+  CodeClass = BS_CODE_CLASS,
 };
 
 /// Flags of a parameter or result type.
 enum TypeFlag : u32 {
-  TypeConst = 1,    // const-qualified (const T&, or a const field)
-  TypeRef = 2,      // declared as a C++ reference
-  TypeUnsigned = 4, // an unsigned integer or an enum with unsigned storage
-  TypePointer = 8,  // travels as a pointer: classes, and int&/float&/bool&
+  TypeConst = BS_TYPE_CONST,
+  TypeRef = BS_TYPE_REF,
+  TypeUnsigned = BS_TYPE_UNSIGNED,
+  TypePointer = BS_TYPE_POINTER,
 };
 
 enum MemberKind : u32 {
-  KindField = 0,
-  KindProperty = 1,
-  KindMethod = 2,
-  KindFunction = 3,
+  KindField = BS_KIND_FIELD,
+  KindProperty = BS_KIND_PROPERTY,
+  KindMethod = BS_KIND_METHOD,
+  KindFunction = BS_KIND_FUNCTION,
 };
 
 /// Flags of a member.
 enum MemberFlag : u32 {
-  MemberConstSelf = 1, // the object is not modified (const method or getter)
-  MemberReadOnly = 2,  // a field or property without setter
-  MemberResultOut = 4, // class result: the thunk's first parameter is `R *out`
+  MemberConstSelf = BS_MEMBER_CONST_SELF,
+  MemberReadOnly = BS_MEMBER_READ_ONLY,
+  MemberResultOut = BS_MEMBER_RESULT_OUT,
 };
 
 /// Flags of a class.
 enum ClassFlag : u32 {
-  ClassTriviallyCopyable = 1,
-  ClassTriviallyDestructible = 2,
-  ClassDefaultConstructible = 4,
-  ClassCopyConstructible = 8,
-  ClassCopyAssignable = 16,
-  ClassStandardLayout = 32,
-  ClassCopyAsBytes = 64, // registration opted in: bsc may copy with memcpy
+  ClassTriviallyCopyable = BS_CLASS_TRIVIALLY_COPYABLE,
+  ClassTriviallyDestructible = BS_CLASS_TRIVIALLY_DESTRUCTIBLE,
+  ClassDefaultConstructible = BS_CLASS_DEFAULT_CONSTRUCTIBLE,
+  ClassCopyConstructible = BS_CLASS_COPY_CONSTRUCTIBLE,
+  ClassCopyAssignable = BS_CLASS_COPY_ASSIGNABLE,
+  ClassStandardLayout = BS_CLASS_STANDARD_LAYOUT,
+  ClassCopyAsBytes = BS_CLASS_COPY_AS_BYTES,
 };
 
 enum EnumFlag : u32 {
-  EnumScoped = 1,
-  EnumSigned = 2,
+  EnumScoped = BS_ENUM_SCOPED,
+  EnumSigned = BS_ENUM_SIGNED,
 };
 
 enum DefaultKind : u32 {
-  DefaultNone = 0,
-  DefaultInt = 1, // int, bool and enum defaults
-  DefaultFloat = 2,
+  DefaultNone = BS_DEFAULT_NONE,
+  DefaultInt = BS_DEFAULT_INT,
+  DefaultFloat = BS_DEFAULT_FLOAT,
 };
 
 namespace rec {
@@ -199,13 +200,78 @@ struct Value {
   i32 value;
 };
 
-static_assert(sizeof(Header) == 112, "descriptor header layout");
-static_assert(sizeof(Class) == 2 * sizeof(void *) + 24, "class record layout");
-static_assert(sizeof(Member) == 4 * sizeof(void *) + 56,
-              "member record layout");
-static_assert(sizeof(Param) == sizeof(void *) + 32, "param record layout");
-static_assert(sizeof(Enum) == sizeof(void *) + 24, "enum record layout");
-static_assert(sizeof(Value) == 8, "value record layout");
+// Every field where descriptor.h says it is: word W of a record with N
+// pointers is at N * sizeof(void *) + 4 * W.
+#define BS_AT_WORD(Rec, Field, Pointers, Word)                                 \
+  static_assert(offsetof(Rec, Field) == (Pointers) * sizeof(void *) + 4 * (Word), \
+                #Rec "::" #Field " is not where descriptor.h puts it")
+#define BS_AT_POINTER(Rec, Field, Index)                                       \
+  static_assert(offsetof(Rec, Field) == (Index) * sizeof(void *),             \
+                #Rec "::" #Field " is not where descriptor.h puts it")
+static_assert(sizeof(Header) == BS_DESCRIPTOR_HEADER_SIZE);
+static_assert(offsetof(Header, version) == BS_HDR_VERSION &&
+              offsetof(Header, headerSize) == BS_HDR_HEADER_SIZE &&
+              offsetof(Header, ptrSize) == BS_HDR_PTR_SIZE &&
+              offsetof(Header, name) == BS_HDR_NAME &&
+              offsetof(Header, totalSize) == BS_HDR_TOTAL_SIZE &&
+              offsetof(Header, flags) == BS_HDR_FLAGS &&
+              offsetof(Header, inputClass) == BS_HDR_INPUT_CLASS &&
+              offsetof(Header, outputClass) == BS_HDR_OUTPUT_CLASS &&
+              offsetof(Header, numClasses) == BS_HDR_TABLE(BS_TABLE_CLASSES) &&
+              offsetof(Header, numMembers) == BS_HDR_TABLE(BS_TABLE_MEMBERS) &&
+              offsetof(Header, numParams) == BS_HDR_TABLE(BS_TABLE_PARAMS) &&
+              offsetof(Header, numEnums) == BS_HDR_TABLE(BS_TABLE_ENUMS) &&
+              offsetof(Header, numValues) == BS_HDR_TABLE(BS_TABLE_VALUES) &&
+              offsetof(Header, stringOffset) == BS_HDR_STRING_OFFSET &&
+              offsetof(Header, stringSize) == BS_HDR_STRING_SIZE,
+              "the header is not as descriptor.h lays it out");
+BS_AT_POINTER(Class, key, BS_CLASS_KEY);
+BS_AT_POINTER(Class, life, BS_CLASS_LIFE);
+BS_AT_WORD(Class, name, BS_CLASS_POINTERS, BS_CLASS_NAME);
+BS_AT_WORD(Class, cppName, BS_CLASS_POINTERS, BS_CLASS_CPP_NAME);
+BS_AT_WORD(Class, size, BS_CLASS_POINTERS, BS_CLASS_SIZE);
+BS_AT_WORD(Class, align, BS_CLASS_POINTERS, BS_CLASS_ALIGN);
+BS_AT_WORD(Class, flags, BS_CLASS_POINTERS, BS_CLASS_FLAGS);
+static_assert(sizeof(Class) == BS_CLASS_POINTERS * sizeof(void *) + 4 * BS_CLASS_WORDS);
+BS_AT_POINTER(Member, thunk, BS_MEMBER_THUNK);
+BS_AT_POINTER(Member, thunk2, BS_MEMBER_SETTER);
+BS_AT_POINTER(Member, memptr, BS_MEMBER_MEMPTR);
+BS_AT_POINTER(Member, resultKey, BS_MEMBER_RESULT_KEY);
+BS_AT_WORD(Member, kind, BS_MEMBER_POINTERS, BS_MEMBER_KIND);
+BS_AT_WORD(Member, owner, BS_MEMBER_POINTERS, BS_MEMBER_OWNER);
+BS_AT_WORD(Member, name, BS_MEMBER_POINTERS, BS_MEMBER_NAME);
+BS_AT_WORD(Member, cppName, BS_MEMBER_POINTERS, BS_MEMBER_CPP_NAME);
+BS_AT_WORD(Member, resultCode, BS_MEMBER_POINTERS, BS_MEMBER_RESULT_CODE);
+BS_AT_WORD(Member, resultFlags, BS_MEMBER_POINTERS, BS_MEMBER_RESULT_FLAGS);
+BS_AT_WORD(Member, resultSize, BS_MEMBER_POINTERS, BS_MEMBER_RESULT_SIZE);
+BS_AT_WORD(Member, flags, BS_MEMBER_POINTERS, BS_MEMBER_FLAGS);
+BS_AT_WORD(Member, firstParam, BS_MEMBER_POINTERS, BS_MEMBER_FIRST_PARAM);
+BS_AT_WORD(Member, numParams, BS_MEMBER_POINTERS, BS_MEMBER_NUM_PARAMS);
+BS_AT_WORD(Member, extent, BS_MEMBER_POINTERS, BS_MEMBER_EXTENT);
+static_assert(sizeof(Member::extent) == 4 * BS_MEMBER_MAX_EXTENTS);
+static_assert(sizeof(Member) == BS_MEMBER_POINTERS * sizeof(void *) + 4 * BS_MEMBER_WORDS);
+BS_AT_POINTER(Param, key, BS_PARAM_KEY);
+BS_AT_WORD(Param, code, BS_PARAM_POINTERS, BS_PARAM_CODE);
+BS_AT_WORD(Param, flags, BS_PARAM_POINTERS, BS_PARAM_FLAGS);
+BS_AT_WORD(Param, size, BS_PARAM_POINTERS, BS_PARAM_SIZE);
+BS_AT_WORD(Param, name, BS_PARAM_POINTERS, BS_PARAM_NAME);
+BS_AT_WORD(Param, defaultKind, BS_PARAM_POINTERS, BS_PARAM_DEFAULT_KIND);
+BS_AT_WORD(Param, defaultInt, BS_PARAM_POINTERS, BS_PARAM_DEFAULT_INT);
+BS_AT_WORD(Param, defaultFloat, BS_PARAM_POINTERS, BS_PARAM_DEFAULT_FLOAT);
+static_assert(sizeof(Param) == BS_PARAM_POINTERS * sizeof(void *) + 4 * BS_PARAM_WORDS);
+BS_AT_POINTER(Enum, key, BS_ENUM_KEY);
+BS_AT_WORD(Enum, name, BS_ENUM_POINTERS, BS_ENUM_NAME);
+BS_AT_WORD(Enum, cppName, BS_ENUM_POINTERS, BS_ENUM_CPP_NAME);
+BS_AT_WORD(Enum, size, BS_ENUM_POINTERS, BS_ENUM_SIZE);
+BS_AT_WORD(Enum, flags, BS_ENUM_POINTERS, BS_ENUM_FLAGS);
+BS_AT_WORD(Enum, firstValue, BS_ENUM_POINTERS, BS_ENUM_FIRST_VALUE);
+BS_AT_WORD(Enum, numValues, BS_ENUM_POINTERS, BS_ENUM_NUM_VALUES);
+static_assert(sizeof(Enum) == BS_ENUM_POINTERS * sizeof(void *) + 4 * BS_ENUM_WORDS);
+BS_AT_WORD(Value, name, BS_VALUE_POINTERS, BS_VALUE_NAME);
+BS_AT_WORD(Value, value, BS_VALUE_POINTERS, BS_VALUE_VALUE);
+static_assert(sizeof(Value) == 4 * BS_VALUE_WORDS);
+#undef BS_AT_WORD
+#undef BS_AT_POINTER
 } // namespace rec
 
 /// The descriptor: the header, then each table, then the strings. A table
@@ -1276,7 +1342,10 @@ template <class Body> constexpr auto buildModule() {
   Body::run(M);
 
   rec::Header &H = D.header;
-  const char Magic[8] = {'B', 'S', 'M', 'O', 'D', 0, 0, 1};
+  const char Magic[8] = {BS_DESCRIPTOR_MAGIC[0], BS_DESCRIPTOR_MAGIC[1],
+                         BS_DESCRIPTOR_MAGIC[2], BS_DESCRIPTOR_MAGIC[3],
+                         BS_DESCRIPTOR_MAGIC[4], BS_DESCRIPTOR_MAGIC[5],
+                         BS_DESCRIPTOR_MAGIC[6], BS_DESCRIPTOR_MAGIC[7]};
   for (int I = 0; I < 8; ++I)
     H.magic[I] = Magic[I];
   H.version = DescriptorVersion;
@@ -1319,49 +1388,29 @@ template <class Body> constexpr auto buildModule() {
 
 } // namespace detail
 
-/// The descriptor hash that bsc records for staleness checks, computed
-/// in-process from a descriptor (e.g. found between __start_bs_modules and
-/// __stop_bs_modules): FNV-1a 64 over the descriptor's bytes up to the end
-/// of its string table with every pointer field read as zero, followed by
-/// each field's offset as 8 little-endian bytes, in member order.
+/// The descriptor hash that bsc records for staleness checks
+/// (bs_descriptor_hash), computed in-process from a descriptor (e.g. found
+/// between __start_bs_modules and __stop_bs_modules).
 inline std::uint64_t moduleHash(const void *Descriptor) {
   using namespace detail;
   const unsigned char *B = static_cast<const unsigned char *>(Descriptor);
-  rec::Header H;
-  __builtin_memcpy(&H, B, sizeof H);
-  std::uint64_t Hash = 0xcbf29ce484222325ull;
-  auto Add = [&](unsigned char C) {
-    Hash ^= C;
-    Hash *= 0x100000001b3ull;
+  // A field's offset: the bytes of the data member pointer its holder holds.
+  auto FieldOffset = [](void *D, std::uint32_t I, std::int64_t *Off) -> int {
+    const unsigned char *Bytes = static_cast<const unsigned char *>(D);
+    std::uint32_t Table = bs_descriptor_u32(Bytes + BS_HDR_TABLE(BS_TABLE_MEMBERS) + 4);
+    std::uint32_t Size = bs_descriptor_u32(Bytes + BS_HDR_TABLE(BS_TABLE_MEMBERS) + 8);
+    const void *Holder;
+    __builtin_memcpy(&Holder,
+                     Bytes + Table + I * Size + BS_MEMBER_MEMPTR * sizeof(void *),
+                     sizeof Holder);
+    if (!Holder)
+      return 0;
+    std::ptrdiff_t P;
+    __builtin_memcpy(&P, Holder, sizeof P);
+    *Off = P;
+    return 1;
   };
-  const u32 End = H.stringOffset + H.stringSize;
-  // Pointer fields: the first k pointers of each record.
-  auto IsPointer = [&](u32 Off) {
-    struct Table {
-      u32 N, Off, Size, Ptrs;
-    } Ts[] = {{H.numClasses, H.classOffset, H.classSize, 2},
-              {H.numMembers, H.memberOffset, H.memberSize, 4},
-              {H.numParams, H.paramOffset, H.paramSize, 1},
-              {H.numEnums, H.enumOffset, H.enumSize, 1}};
-    for (const Table &T : Ts)
-      if (Off >= T.Off && Off < T.Off + T.N * T.Size)
-        return (Off - T.Off) % T.Size < T.Ptrs * H.ptrSize;
-    return false;
-  };
-  for (u32 I = 0; I < End; ++I)
-    Add(IsPointer(I) ? 0 : B[I]);
-  for (u32 I = 0; I < H.numMembers; ++I) {
-    rec::Member M;
-    __builtin_memcpy(&M, B + H.memberOffset + I * H.memberSize, sizeof M);
-    if (!M.memptr)
-      continue;
-    std::ptrdiff_t Off;
-    __builtin_memcpy(&Off, M.memptr, sizeof Off);
-    std::uint64_t V = static_cast<std::uint64_t>(static_cast<std::int64_t>(Off));
-    for (int K = 0; K < 8; ++K)
-      Add(static_cast<unsigned char>(V >> (8 * K)));
-  }
-  return Hash;
+  return bs_descriptor_hash(B, FieldOffset, const_cast<unsigned char *>(B));
 }
 
 } // namespace bs

@@ -30,6 +30,7 @@
 //===----------------------------------------------------------------------===//
 #include "ELFChecks.h"
 #include "bsc/Bind/Bind.h"
+#include "bscript/descriptor.h"
 #include "llvm/ADT/DenseMap.h"
 #include "llvm/ADT/StringExtras.h"
 #include "llvm/ADT/StringMap.h"
@@ -52,35 +53,27 @@ using namespace bsc::bind;
 namespace {
 
 //===----------------------------------------------------------------------===//
-// The descriptor layout (bscript/Bind.h, bs::detail::rec)
+// The descriptor layout (bscript/descriptor.h)
 //===----------------------------------------------------------------------===//
 
-constexpr char Magic[8] = {'B', 'S', 'M', 'O', 'D', 0, 0, 1};
-constexpr uint32_t NoIndex = 0xffffffffu;
-constexpr uint32_t HeaderSize = 112;
+constexpr const char *Magic = BS_DESCRIPTOR_MAGIC;
+constexpr uint32_t NoIndex = BS_NO_INDEX;
+constexpr uint32_t HeaderSize = BS_DESCRIPTOR_HEADER_SIZE;
 
-/// Byte offsets of the u32 fields of the header.
-enum HeaderField : unsigned {
-  H_Version = 8,
-  H_HeaderSize = 12,
-  H_PtrSize = 16,
-  H_Name = 20,
-  H_TotalSize = 24,
-  H_Flags = 28,
-  H_InputClass = 32,
-  H_OutputClass = 36,
-  H_Tables = 40, // 5 x {count, offset, size}: classes, members, params,
-                 // enums, values
-  H_StringOffset = 100,
-  H_StringSize = 104,
+enum Table {
+  T_Class = BS_TABLE_CLASSES,
+  T_Member = BS_TABLE_MEMBERS,
+  T_Param = BS_TABLE_PARAMS,
+  T_Enum = BS_TABLE_ENUMS,
+  T_Value = BS_TABLE_VALUES,
+  NumTables = BS_NUM_TABLES
 };
-
-enum Table { T_Class, T_Member, T_Param, T_Enum, T_Value, NumTables };
 
 /// Number of P fields that start each record, and the u32 fields after
 /// them (the minimum record size is Ptrs * P + 4 * Words).
-constexpr unsigned TablePtrs[NumTables] = {2, 4, 1, 1, 0};
-constexpr unsigned TableWords[NumTables] = {6, 10, 8, 6, 2};
+constexpr unsigned TablePtrs[NumTables] = BS_TABLE_POINTERS;
+constexpr unsigned TableWords[NumTables] = BS_TABLE_MIN_WORDS;
+
 const char *const TableNames[NumTables] = {"class", "member", "param", "enum",
                                            "value"};
 
@@ -686,26 +679,26 @@ void ObjectReader::readDescriptor(StringRef SymName, uint64_t Base,
     return;
   }
   DescriptorView D(Data.substr(Base));
-  if (std::memcmp(D.Bytes.data(), Magic, sizeof Magic) != 0) {
+  if (std::memcmp(D.Bytes.data(), Magic, 8) != 0) {
     Fail("bad descriptor magic: object built for another target, or not "
          "by bscript/Bind.h");
     return;
   }
-  uint32_t Version = D.u32(H_Version);
+  uint32_t Version = D.u32(BS_HDR_VERSION);
   if (Version == 0 || Version > SupportedVersion) {
     Fail("descriptor version " + Twine(Version) + " is not supported (bsc "
          "reads version " + Twine(SupportedVersion) +
          "): object built for another target or with another bscript/Bind.h");
     return;
   }
-  if (D.u32(H_PtrSize) != P) {
-    Fail("descriptor pointer size " + Twine(D.u32(H_PtrSize)) +
+  if (D.u32(BS_HDR_PTR_SIZE) != P) {
+    Fail("descriptor pointer size " + Twine(D.u32(BS_HDR_PTR_SIZE)) +
          " does not match the " + Twine(P * 8) +
          "-bit object: object built for another target");
     return;
   }
-  uint32_t Total = D.u32(H_TotalSize);
-  if (D.u32(H_HeaderSize) < HeaderSize || Total > D.Bytes.size()) {
+  uint32_t Total = D.u32(BS_HDR_TOTAL_SIZE);
+  if (D.u32(BS_HDR_HEADER_SIZE) < HeaderSize || Total > D.Bytes.size()) {
     Fail("descriptor is truncated");
     return;
   }
@@ -714,9 +707,9 @@ void ObjectReader::readDescriptor(StringRef SymName, uint64_t Base,
   // Tables.
   uint32_t Count[NumTables], Offset[NumTables], Size[NumTables];
   for (unsigned T = 0; T < NumTables; ++T) {
-    Count[T] = D.u32(H_Tables + 12 * T);
-    Offset[T] = D.u32(H_Tables + 12 * T + 4);
-    Size[T] = D.u32(H_Tables + 12 * T + 8);
+    Count[T] = D.u32(BS_HDR_TABLE(T));
+    Offset[T] = D.u32(BS_HDR_TABLE(T) + 4);
+    Size[T] = D.u32(BS_HDR_TABLE(T) + 8);
     uint32_t Min = TablePtrs[T] * P + 4 * TableWords[T];
     if (Size[T] < Min || uint64_t(Offset[T]) + uint64_t(Count[T]) * Size[T] >
                              Total) {
@@ -724,7 +717,7 @@ void ObjectReader::readDescriptor(StringRef SymName, uint64_t Base,
       return;
     }
   }
-  uint32_t StrOff = D.u32(H_StringOffset), StrSize = D.u32(H_StringSize);
+  uint32_t StrOff = D.u32(BS_HDR_STRING_OFFSET), StrSize = D.u32(BS_HDR_STRING_SIZE);
   if (uint64_t(StrOff) + StrSize > Total || StrSize == 0) {
     Fail("bad string table in the descriptor");
     return;
@@ -766,7 +759,7 @@ void ObjectReader::readDescriptor(StringRef SymName, uint64_t Base,
   M.File = File;
   M.Symbol = SymName.str();
   M.Version = Version;
-  M.Name = Str(D.u32(H_Name));
+  M.Name = Str(D.u32(BS_HDR_NAME));
   StringRef Want = StringRef(SymName).drop_front(strlen("bs_module_"));
   if (M.Name != Want) {
     Fail("descriptor names module '" + M.Name + "'");
@@ -855,20 +848,20 @@ void ObjectReader::readDescriptor(StringRef SymName, uint64_t Base,
   std::vector<bool> InternalClass;
   for (uint32_t I = 0; I < NumClasses; ++I) {
     BoundClass C;
-    C.Name = Str(Word(T_Class, I, 0));
-    C.CppName = Str(Word(T_Class, I, 1));
+    C.Name = Str(Word(T_Class, I, BS_CLASS_NAME));
+    C.CppName = Str(Word(T_Class, I, BS_CLASS_CPP_NAME));
     std::string Path = M.Name + "::" + C.Name;
-    C.Size = Word(T_Class, I, 2);
-    C.Align = Word(T_Class, I, 3);
-    C.Flags = Word(T_Class, I, 4);
+    C.Size = Word(T_Class, I, BS_CLASS_SIZE);
+    C.Align = Word(T_Class, I, BS_CLASS_ALIGN);
+    C.Flags = Word(T_Class, I, BS_CLASS_FLAGS);
     size_t ErrorsBefore = Errs.Messages.size();
-    std::optional<Pointee> KeyPt = Ptr(T_Class, I, 0, Path);
+    std::optional<Pointee> KeyPt = Ptr(T_Class, I, BS_CLASS_KEY, Path);
     C.Key = Key(KeyPt, Path);
     if (C.Key.empty() && Errs.Messages.size() == ErrorsBefore)
       Errs.add(File, Path, "class without a type key");
     InternalClass.push_back(KeyPt && InternalKey(*KeyPt));
     QuietLinkage = InternalClass.back();
-    if (std::optional<Pointee> Life = Ptr(T_Class, I, 1, Path)) {
+    if (std::optional<Pointee> Life = Ptr(T_Class, I, BS_CLASS_LIFE, Path)) {
       C.Construct = Thunk(Life, 0, Path + " construct");
       C.Copy = Thunk(Life, 1, Path + " copy");
       C.Assign = Thunk(Life, 2, Path + " assign");
@@ -885,10 +878,10 @@ void ObjectReader::readDescriptor(StringRef SymName, uint64_t Base,
   uint32_t NumParams = Count[T_Param];
   for (uint32_t I = 0; I < Count[T_Member]; ++I) {
     BoundMember Mb;
-    uint32_t Kind = Word(T_Member, I, 0);
-    uint32_t Owner = Word(T_Member, I, 1);
-    Mb.Name = Str(Word(T_Member, I, 2));
-    Mb.CppName = Str(Word(T_Member, I, 3));
+    uint32_t Kind = Word(T_Member, I, BS_MEMBER_KIND);
+    uint32_t Owner = Word(T_Member, I, BS_MEMBER_OWNER);
+    Mb.Name = Str(Word(T_Member, I, BS_MEMBER_NAME));
+    Mb.CppName = Str(Word(T_Member, I, BS_MEMBER_CPP_NAME));
     std::string Path = M.Name + "::";
     if (Owner != NoIndex) {
       if (Owner >= NumClasses) {
@@ -907,21 +900,22 @@ void ObjectReader::readDescriptor(StringRef SymName, uint64_t Base,
       Errs.add(File, Path, "a module member must be a function");
       continue;
     }
-    uint32_t RCode = Word(T_Member, I, 4);
+    uint32_t RCode = Word(T_Member, I, BS_MEMBER_RESULT_CODE);
     if (RCode > uint32_t(TypeCode::Class)) {
       Errs.add(File, Path, "unknown type code " + Twine(RCode));
       continue;
     }
     Mb.Result.Code = TypeCode(RCode);
-    Mb.Result.Flags = Word(T_Member, I, 5);
-    Mb.Result.StorageSize = Word(T_Member, I, 6);
-    Mb.Flags = Word(T_Member, I, 7);
+    Mb.Result.Flags = Word(T_Member, I, BS_MEMBER_RESULT_FLAGS);
+    Mb.Result.StorageSize = Word(T_Member, I, BS_MEMBER_RESULT_SIZE);
+    Mb.Flags = Word(T_Member, I, BS_MEMBER_FLAGS);
     QuietLinkage = Owner != NoIndex && InternalClass[Owner];
-    uint32_t First = Word(T_Member, I, 8), N = Word(T_Member, I, 9);
+    uint32_t First = Word(T_Member, I, BS_MEMBER_FIRST_PARAM), N = Word(T_Member, I, BS_MEMBER_NUM_PARAMS);
     // An array field's extents: words appended to the record, so a shorter
     // record (an older Bind.h) has none.
-    for (unsigned W = 10; W < 14 && TablePtrs[T_Member] * P + 4 * (W + 1) <=
-                                        Size[T_Member];
+    for (unsigned W = BS_MEMBER_EXTENT;
+         W < BS_MEMBER_EXTENT + BS_MEMBER_MAX_EXTENTS &&
+         TablePtrs[T_Member] * P + 4 * (W + 1) <= Size[T_Member];
          ++W) {
       uint32_t Extent = Word(T_Member, I, W);
       if (Extent == 0)
@@ -929,10 +923,10 @@ void ObjectReader::readDescriptor(StringRef SymName, uint64_t Base,
       Mb.Result.Extents.push_back(Extent);
     }
     size_t ErrorsBeforeThunk = Errs.Messages.size();
-    Mb.Thunk = Thunk(Ptr(T_Member, I, 0, Path), 0, Path);
-    Mb.Setter = Thunk(Ptr(T_Member, I, 1, Path + " setter"), 0,
+    Mb.Thunk = Thunk(Ptr(T_Member, I, BS_MEMBER_THUNK, Path), 0, Path);
+    Mb.Setter = Thunk(Ptr(T_Member, I, BS_MEMBER_SETTER, Path + " setter"), 0,
                       Path + " setter");
-    if (std::optional<Pointee> MP = Ptr(T_Member, I, 2, Path)) {
+    if (std::optional<Pointee> MP = Ptr(T_Member, I, BS_MEMBER_MEMPTR, Path)) {
       Expected<int64_t> Off = readMemberPointer(*MP);
       if (!Off)
         Errs.add(File, Path, Off.takeError());
@@ -961,7 +955,7 @@ void ObjectReader::readDescriptor(StringRef SymName, uint64_t Base,
       Errs.add(File, Path, "member without a thunk");
     }
     if (Mb.Result.Code == TypeCode::Enum || Mb.Result.Code == TypeCode::Class)
-      Mb.Result.Key = Key(Ptr(T_Member, I, 3, Path), Path);
+      Mb.Result.Key = Key(Ptr(T_Member, I, BS_MEMBER_RESULT_KEY, Path), Path);
     if (uint64_t(First) + N > NumParams) {
       Errs.add(File, Path, "parameters outside the parameter table");
       continue;
@@ -970,24 +964,24 @@ void ObjectReader::readDescriptor(StringRef SymName, uint64_t Base,
       uint32_t PI = First + J;
       std::string PPath = Path + " param " + std::to_string(J);
       BoundParam Pm;
-      uint32_t Code = Word(T_Param, PI, 0);
+      uint32_t Code = Word(T_Param, PI, BS_PARAM_CODE);
       if (Code == 0 || Code > uint32_t(TypeCode::Class)) {
         Errs.add(File, PPath, "unknown type code " + Twine(Code));
         continue;
       }
       Pm.Type.Code = TypeCode(Code);
-      Pm.Type.Flags = Word(T_Param, PI, 1);
-      Pm.Type.StorageSize = Word(T_Param, PI, 2);
-      Pm.Name = Str(Word(T_Param, PI, 3));
-      uint32_t DK = Word(T_Param, PI, 4);
-      Pm.Default = DK == 1   ? DefaultKind::Int
-                   : DK == 2 ? DefaultKind::Float
-                             : DefaultKind::None;
-      Pm.DefaultInt = int32_t(Word(T_Param, PI, 5));
-      uint32_t FBits = Word(T_Param, PI, 6);
+      Pm.Type.Flags = Word(T_Param, PI, BS_PARAM_FLAGS);
+      Pm.Type.StorageSize = Word(T_Param, PI, BS_PARAM_SIZE);
+      Pm.Name = Str(Word(T_Param, PI, BS_PARAM_NAME));
+      uint32_t DK = Word(T_Param, PI, BS_PARAM_DEFAULT_KIND);
+      Pm.Default = DK == BS_DEFAULT_INT     ? DefaultKind::Int
+                   : DK == BS_DEFAULT_FLOAT ? DefaultKind::Float
+                                            : DefaultKind::None;
+      Pm.DefaultInt = int32_t(Word(T_Param, PI, BS_PARAM_DEFAULT_INT));
+      uint32_t FBits = Word(T_Param, PI, BS_PARAM_DEFAULT_FLOAT);
       std::memcpy(&Pm.DefaultFloat, &FBits, 4);
       if (Pm.Type.Code == TypeCode::Enum || Pm.Type.Code == TypeCode::Class)
-        Pm.Type.Key = Key(Ptr(T_Param, PI, 0, PPath), PPath);
+        Pm.Type.Key = Key(Ptr(T_Param, PI, BS_PARAM_KEY, PPath), PPath);
       Mb.Params.push_back(std::move(Pm));
     }
     if (Owner == NoIndex)
@@ -999,26 +993,26 @@ void ObjectReader::readDescriptor(StringRef SymName, uint64_t Base,
   // Enums.
   for (uint32_t I = 0; I < Count[T_Enum]; ++I) {
     BoundEnum E;
-    E.Name = Str(Word(T_Enum, I, 0));
-    E.CppName = Str(Word(T_Enum, I, 1));
+    E.Name = Str(Word(T_Enum, I, BS_ENUM_NAME));
+    E.CppName = Str(Word(T_Enum, I, BS_ENUM_CPP_NAME));
     std::string Path = M.Name + "::" + E.Name;
-    E.Size = Word(T_Enum, I, 2);
-    uint32_t Flags = Word(T_Enum, I, 3);
-    E.Scoped = Flags & 1;
-    E.Signed = Flags & 2;
-    uint32_t First = Word(T_Enum, I, 4), N = Word(T_Enum, I, 5);
-    E.Key = Key(Ptr(T_Enum, I, 0, Path), Path);
+    E.Size = Word(T_Enum, I, BS_ENUM_SIZE);
+    uint32_t Flags = Word(T_Enum, I, BS_ENUM_FLAGS);
+    E.Scoped = Flags & BS_ENUM_SCOPED;
+    E.Signed = Flags & BS_ENUM_SIGNED;
+    uint32_t First = Word(T_Enum, I, BS_ENUM_FIRST_VALUE), N = Word(T_Enum, I, BS_ENUM_NUM_VALUES);
+    E.Key = Key(Ptr(T_Enum, I, BS_ENUM_KEY, Path), Path);
     if (uint64_t(First) + N > Count[T_Value]) {
       Errs.add(File, Path, "values outside the value table");
       continue;
     }
     for (uint32_t J = 0; J < N; ++J)
-      E.Values.push_back({Str(Word(T_Value, First + J, 0)),
-                          int32_t(Word(T_Value, First + J, 1))});
+      E.Values.push_back({Str(Word(T_Value, First + J, BS_VALUE_NAME)),
+                          int32_t(Word(T_Value, First + J, BS_VALUE_VALUE))});
     M.Enums.push_back(std::move(E));
   }
 
-  uint32_t In = D.u32(H_InputClass), OutC = D.u32(H_OutputClass);
+  uint32_t In = D.u32(BS_HDR_INPUT_CLASS), OutC = D.u32(BS_HDR_OUTPUT_CLASS);
   if (In != NoIndex && In >= NumClasses)
     Fail("input class index out of range");
   else if (In != NoIndex)
@@ -1030,38 +1024,35 @@ void ObjectReader::readDescriptor(StringRef SymName, uint64_t Base,
   if (BadString)
     Fail("bad string offset in the descriptor");
 
-  // The hash: bs::moduleHash. FNV-1a 64 over the bytes up to the end of the
-  // string table with the P fields as zero, then each field offset.
-  uint64_t Hash = 0xcbf29ce484222325ull;
-  auto Add = [&](uint8_t C) {
-    Hash ^= C;
-    Hash *= 0x100000001b3ull;
-  };
-  std::string Bytes = D.Bytes.take_front(uint64_t(StrOff) + StrSize).str();
-  for (unsigned T = 0; T < NumTables; ++T)
-    for (uint32_t I = 0; I < Count[T]; ++I)
-      std::memset(&Bytes[Rec(Table(T), I)], 0, TablePtrs[T] * P);
-  for (char C : Bytes)
-    Add(uint8_t(C));
-  for (uint32_t I = 0; I < Count[T_Member]; ++I) {
-    // Field offsets in member order (read again: members of classes and
-    // module functions were split above).
-    Expected<std::optional<Pointee>> MP =
-        pointerAt(Sec, Base + Rec(T_Member, I) + 2 * P);
+  // The hash, as Bind.h and the runtime compute it (bs_descriptor_hash),
+  // with the field offsets from the holders' relocations.
+  struct FieldOffsets {
+    ObjectReader &R;
+    uint64_t Sec, Members;
+    unsigned P;
+    uint32_t RecordSize;
+  } Ctx{*this, Sec, Base + Offset[T_Member], P, Size[T_Member]};
+  auto FieldOffset = [](void *C, uint32_t I, int64_t *Off) -> int {
+    auto &F = *static_cast<FieldOffsets *>(C);
+    Expected<std::optional<Pointee>> MP = F.R.pointerAt(
+        F.Sec, F.Members + uint64_t(I) * F.RecordSize + BS_MEMBER_MEMPTR * F.P);
     if (!MP) {
-      consumeError(MP.takeError());
-      continue;
+      consumeError(MP.takeError()); // Reported with the member above.
+      return 0;
     }
     if (!*MP)
-      continue;
-    Expected<int64_t> Off = readMemberPointer(**MP);
-    if (!Off) {
-      consumeError(Off.takeError());
-      continue;
+      return 0;
+    Expected<int64_t> Offset = F.R.readMemberPointer(**MP);
+    if (!Offset) {
+      consumeError(Offset.takeError());
+      return 0;
     }
-    for (int K = 0; K < 8; ++K)
-      Add(uint8_t(uint64_t(*Off) >> (8 * K)));
-  }
+    *Off = *Offset;
+    return 1;
+  };
+  uint64_t Hash = bs_descriptor_hash(
+      reinterpret_cast<const unsigned char *>(D.Bytes.data()), FieldOffset,
+      &Ctx);
   M.Hash = Hash;
   if (HiddenThunkMessage && HiddenThunks > 1)
     Errs.Messages[*HiddenThunkMessage] +=

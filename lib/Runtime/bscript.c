@@ -11,13 +11,7 @@
  * destructors' thunks.
  *===----------------------------------------------------------------------===*/
 #include "bscript/bscript.h"
-
-/* The little-endian 32-bit word at `p` (descriptors are little-endian and
- * need not be aligned for this reader). */
-static uint32_t bs_read_u32(const unsigned char *p) {
-  return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 |
-         (uint32_t)p[3] << 24;
-}
+#include "bscript/descriptor.h"
 
 /* The pointer stored at `p` (a descriptor's "P" field, relocated). */
 static const unsigned char *bs_read_pointer(const unsigned char *p) {
@@ -27,65 +21,28 @@ static const unsigned char *bs_read_pointer(const unsigned char *p) {
   return (const unsigned char *)value;
 }
 
-/* FNV-1a 64, one byte at a time. */
-static uint64_t bs_fnv(uint64_t hash, unsigned char byte) {
-  return (hash ^ byte) * 0x100000001b3ull;
-}
-
-/* The descriptor header's fields (byte offsets, docs/bindings.md) and the
- * tables whose records start with pointer fields: {count, offset, record
- * size} at these header offsets, and how many pointers each record has. */
-enum { BS_HDR_PTRSIZE = 16, BS_HDR_STRINGS = 100 };
-static const struct {
-  unsigned char header_offset, pointers;
-} bs_pointer_tables[] = {{40, 2} /* classes */, {52, 4} /* members */,
-                         {64, 1} /* params */, {76, 1} /* enums */};
-enum { BS_HDR_MEMBERS = 52, BS_MEMBER_MEMPTR = 2 };
-
-/* Whether byte `i` of the descriptor lies in a pointer field. */
-static int bs_in_pointer(const unsigned char *d, uint32_t i) {
-  uint32_t ptr_size = bs_read_u32(d + BS_HDR_PTRSIZE);
-  for (unsigned t = 0; t < sizeof bs_pointer_tables / sizeof *bs_pointer_tables;
-       ++t) {
-    const unsigned char *h = d + bs_pointer_tables[t].header_offset;
-    uint32_t count = bs_read_u32(h), offset = bs_read_u32(h + 4),
-             size = bs_read_u32(h + 8);
-    if (i >= offset && i - offset < count * size)
-      return (i - offset) % size < bs_pointer_tables[t].pointers * ptr_size;
-  }
-  return 0;
+/* A field's offset for bs_descriptor_hash: the bytes of the Itanium data
+ * member pointer that member `index`'s holder holds, a ptrdiff_t. */
+static int bs_field_offset(void *descriptor, uint32_t index, int64_t *offset) {
+  const unsigned char *d = (const unsigned char *)descriptor;
+  const unsigned char *h = d + BS_HDR_TABLE(BS_TABLE_MEMBERS);
+  const unsigned char *holder = bs_read_pointer(
+      d + bs_descriptor_u32(h + 4) + index * bs_descriptor_u32(h + 8) +
+      BS_MEMBER_MEMPTR * sizeof(void *));
+  if (!holder)
+    return 0;
+  uint64_t raw = 0;
+  for (unsigned k = 0; k < sizeof(ptrdiff_t); ++k)
+    raw |= (uint64_t)holder[k] << (8 * k);
+  /* Sign-extend a 32-bit ptrdiff_t. */
+  unsigned unused = 64 - 8 * (unsigned)sizeof(ptrdiff_t);
+  *offset = (int64_t)(raw << unused) >> unused;
+  return 1;
 }
 
 uint64_t bs_binding_hash(const void *descriptor) {
-  const unsigned char *d = (const unsigned char *)descriptor;
-  uint64_t hash = 0xcbf29ce484222325ull;
-  /* The bytes up to the end of the string table, pointer fields as zero
-   * (they hold addresses, which differ from program to program)... */
-  uint32_t end = bs_read_u32(d + BS_HDR_STRINGS) +
-                 bs_read_u32(d + BS_HDR_STRINGS + 4);
-  for (uint32_t i = 0; i < end; ++i)
-    hash = bs_fnv(hash, bs_in_pointer(d, i) ? 0 : d[i]);
-  /* ...then the offset of every field (the bytes of the Itanium data member
-   * pointer its holder holds), as 8 little-endian bytes in member order. */
-  uint32_t ptr_size = bs_read_u32(d + BS_HDR_PTRSIZE);
-  uint32_t count = bs_read_u32(d + BS_HDR_MEMBERS),
-           offset = bs_read_u32(d + BS_HDR_MEMBERS + 4),
-           size = bs_read_u32(d + BS_HDR_MEMBERS + 8);
-  for (uint32_t m = 0; m < count; ++m) {
-    const unsigned char *holder = bs_read_pointer(
-        d + offset + m * size + BS_MEMBER_MEMPTR * ptr_size);
-    if (!holder)
-      continue;
-    uint64_t raw = 0;
-    for (unsigned k = 0; k < sizeof(ptrdiff_t); ++k)
-      raw |= (uint64_t)holder[k] << (8 * k);
-    /* Sign-extend a 32-bit ptrdiff_t, as the C++ hash does. */
-    unsigned unused = 64 - 8 * (unsigned)sizeof(ptrdiff_t);
-    uint64_t field_offset = (uint64_t)((int64_t)(raw << unused) >> unused);
-    for (unsigned k = 0; k < 8; ++k)
-      hash = bs_fnv(hash, (unsigned char)(field_offset >> (8 * k)));
-  }
-  return hash;
+  return bs_descriptor_hash((const unsigned char *)descriptor, bs_field_offset,
+                            (void *)descriptor);
 }
 
 const char *bs_check_bindings(const bs_behavior_info *info) {

@@ -19,6 +19,7 @@
 #ifndef BSC_BIND_BIND_H
 #define BSC_BIND_BIND_H
 
+#include "bscript/descriptor.h"
 #include "llvm/ADT/ArrayRef.h"
 #include "llvm/ADT/StringRef.h"
 #include "llvm/Support/Error.h"
@@ -39,19 +40,28 @@ struct NativeModule;
 
 namespace bind {
 
-/// The descriptor version this reader understands (bs::DescriptorVersion).
-constexpr uint32_t SupportedVersion = 1;
+/// The descriptor version this reader understands (bscript/descriptor.h).
+constexpr uint32_t SupportedVersion = BS_DESCRIPTOR_VERSION;
 
 /// How a value travels through a thunk (bindings.md "Thunks"): Bool, Int and
 /// Enum as i32, Float as float, String as `const char *`, Class as a pointer.
-enum class TypeCode : uint8_t { Void, Bool, Int, Float, String, Enum, Class };
+/// The values are the descriptor's codes (bs_type_code).
+enum class TypeCode : uint8_t {
+  Void = BS_CODE_VOID,
+  Bool = BS_CODE_BOOL,
+  Int = BS_CODE_INT,
+  Float = BS_CODE_FLOAT,
+  String = BS_CODE_STRING,
+  Enum = BS_CODE_ENUM,
+  Class = BS_CODE_CLASS
+};
 
 /// Flags of a BoundType (bs::detail::TypeFlag).
 enum TypeFlags : unsigned {
-  TF_Const = 1,    ///< const-qualified (const T&, or a const field)
-  TF_Ref = 2,      ///< declared as a C++ reference
-  TF_Unsigned = 4, ///< unsigned integer, or enum with unsigned storage
-  TF_Pointer = 8,  ///< travels as a pointer: classes; int&/float&/bool& out
+  TF_Const = BS_TYPE_CONST,       ///< const-qualified (const T&, or a const field)
+  TF_Ref = BS_TYPE_REF,           ///< declared as a C++ reference
+  TF_Unsigned = BS_TYPE_UNSIGNED, ///< unsigned integer, or enum with unsigned storage
+  TF_Pointer = BS_TYPE_POINTER,   ///< travels as a pointer: classes; int&/float&/bool& out
 };
 
 /// A parameter, result or field type.
@@ -87,13 +97,18 @@ struct BoundParam {
   float DefaultFloat = 0;
 };
 
-enum class MemberKind : uint8_t { Field, Property, Method, Function };
+enum class MemberKind : uint8_t {
+  Field = BS_KIND_FIELD,
+  Property = BS_KIND_PROPERTY,
+  Method = BS_KIND_METHOD,
+  Function = BS_KIND_FUNCTION
+};
 
 /// Flags of a BoundMember (bs::detail::MemberFlag).
 enum MemberFlags : unsigned {
-  MF_ConstSelf = 1, ///< Does not modify the object.
-  MF_ReadOnly = 2,  ///< Field or property without setter.
-  MF_ResultOut = 4, ///< Class result: the thunk's first parameter is `R *out`.
+  MF_ConstSelf = BS_MEMBER_CONST_SELF, ///< Does not modify the object.
+  MF_ReadOnly = BS_MEMBER_READ_ONLY,   ///< Field or property without setter.
+  MF_ResultOut = BS_MEMBER_RESULT_OUT, ///< Class result: the thunk's first parameter is `R *out`.
 };
 
 /// A field, property, method or function. The thunk shapes:
@@ -124,13 +139,13 @@ struct BoundMember {
 
 /// Flags of a BoundClass (bs::detail::ClassFlag).
 enum ClassFlags : unsigned {
-  CF_TriviallyCopyable = 1,
-  CF_TriviallyDestructible = 2,
-  CF_DefaultConstructible = 4,
-  CF_CopyConstructible = 8,
-  CF_CopyAssignable = 16,
-  CF_StandardLayout = 32,
-  CF_CopyAsBytes = 64, ///< The registration allows memcpy copies.
+  CF_TriviallyCopyable = BS_CLASS_TRIVIALLY_COPYABLE,
+  CF_TriviallyDestructible = BS_CLASS_TRIVIALLY_DESTRUCTIBLE,
+  CF_DefaultConstructible = BS_CLASS_DEFAULT_CONSTRUCTIBLE,
+  CF_CopyConstructible = BS_CLASS_COPY_CONSTRUCTIBLE,
+  CF_CopyAssignable = BS_CLASS_COPY_ASSIGNABLE,
+  CF_StandardLayout = BS_CLASS_STANDARD_LAYOUT,
+  CF_CopyAsBytes = BS_CLASS_COPY_AS_BYTES, ///< The registration allows memcpy copies.
 };
 
 struct BoundClass {
