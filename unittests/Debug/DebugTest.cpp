@@ -53,6 +53,20 @@ TEST(DebugValuesTest, DifferencesNameThePathAndCompareAsFloats) {
                               llvm::json::Object{{"n", "NaN"}, {"m", 1}}, "o"));
 }
 
+/// Adds a field `Name` at `Offset` to `C`: an array of `Extents` if given.
+void addField(NativeClass &C, const char *Name, NativeType::Code Code,
+              uint64_t Offset, uint32_t Size,
+              std::vector<uint32_t> Extents = {}) {
+  NativeFunction F;
+  F.Kind = NativeFunction::Field;
+  F.Name = Name;
+  F.FieldOffset = Offset;
+  F.Result.TheCode = Code;
+  F.Result.StorageSize = Size;
+  F.Result.Extents = std::move(Extents);
+  C.Members.push_back(F);
+}
+
 /// A class {int32 i; double d (a b-script float); bool b} read and written
 /// at its offsets, as the JIT's values are.
 TEST(DebugValuesTest, FieldsByOffset) {
@@ -64,19 +78,9 @@ TEST(DebugValuesTest, FieldsByOffset) {
   NativeClass C;
   C.Name = "Obj";
   C.QualifiedName = "M::Obj";
-  auto Field = [&](const char *Name, NativeType::Code Code, uint64_t Offset,
-                   uint32_t Size) {
-    NativeFunction F;
-    F.Kind = NativeFunction::Field;
-    F.Name = Name;
-    F.FieldOffset = Offset;
-    F.Result.TheCode = Code;
-    F.Result.StorageSize = Size;
-    C.Members.push_back(F);
-  };
-  Field("i", NativeType::Int, offsetof(Obj, I), 4);
-  Field("d", NativeType::Float, offsetof(Obj, D), 8);
-  Field("b", NativeType::Bool, offsetof(Obj, B), 1);
+  addField(C, "i", NativeType::Int, offsetof(Obj, I), 4);
+  addField(C, "d", NativeType::Float, offsetof(Obj, D), 8);
+  addField(C, "b", NativeType::Bool, offsetof(Obj, B), 1);
   ValueIO IO([](llvm::StringRef) -> void * { return nullptr; });
   EXPECT_EQ("{\"b\":true,\"d\":0.5,\"i\":7}", toJSONString(IO.readClass(C, &O)));
   llvm::Error E = IO.writeClass(
@@ -102,19 +106,8 @@ TEST(DebugValuesTest, ArrayFieldsAreJSONArrays) {
   NativeClass C;
   C.Name = "Obj";
   C.QualifiedName = "M::Obj";
-  auto Field = [&](const char *Name, NativeType::Code Code, uint64_t Offset,
-                   uint32_t Size, std::vector<uint32_t> Extents) {
-    NativeFunction F;
-    F.Kind = NativeFunction::Field;
-    F.Name = Name;
-    F.FieldOffset = Offset;
-    F.Result.TheCode = Code;
-    F.Result.StorageSize = Size;
-    F.Result.Extents = std::move(Extents);
-    C.Members.push_back(F);
-  };
-  Field("s", NativeType::Int, offsetof(Obj, S), 2, {3});
-  Field("m", NativeType::Float, offsetof(Obj, M), 8, {2, 2});
+  addField(C, "s", NativeType::Int, offsetof(Obj, S), 2, {3});
+  addField(C, "m", NativeType::Float, offsetof(Obj, M), 8, {2, 2});
   ValueIO IO([](llvm::StringRef) -> void * { return nullptr; });
   EXPECT_EQ("{\"m\":[[0.5,1],[2,-4]],\"s\":[-1,2,300]}",
             toJSONString(IO.readClass(C, &O)));
