@@ -16,6 +16,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "ELFChecks.h"
+#include "ObjectReader.h"
 #include "llvm/ADT/STLExtras.h"
 #include "llvm/BinaryFormat/ELF.h"
 #include "llvm/Object/ELF.h"
@@ -331,8 +332,6 @@ Error bsc::bind::checkSectionHeaders(const ELFObjectFileBase &Obj) {
   if (!E)
     return E;
   StringRef What =
-      Obj.getEType() == ELF::ET_DYN ? "damaged shared library: "
-                                    : "damaged object: ";
-  return createStringError(inconvertibleErrorCode(),
-                           What + toString(std::move(E)));
+      Obj.getEType() == ELF::ET_DYN ? "shared library" : "object";
+  return problem(diag::err_bind_damaged, {What.str(), toString(std::move(E))});
 }

@@ -23,9 +23,8 @@ namespace bsc {
 namespace bind {
 
 /// The first problem with the section or program headers of `Obj` that
-/// would make ELFObjectFile's walks fault, abort or spin, as "damaged object: ..."
-/// or "damaged shared library: ..." (lower case, no final period), or
-/// success.
+/// would make ELFObjectFile's walks fault, abort or spin, as a ProblemError
+/// of kind err_bind_damaged, or success.
 llvm::Error checkSectionHeaders(const llvm::object::ELFObjectFileBase &Obj);
 
 } // namespace bind

@@ -176,13 +176,12 @@ bool bsc::readBindingObjects(Compilation &C, const FrontendOptions &Opts) {
     Target = llvm::Triple(llvm::sys::getProcessTriple());
   llvm::Expected<bind::BindingModel> Model = bind::readBindings(Paths, Target);
   if (!Model) {
-    // The reader joins its messages with newlines: one diagnostic each.
-    llvm::handleAllErrors(Model.takeError(), [&](const llvm::ErrorInfoBase &E) {
-      std::string Msg = E.message();
-      llvm::SmallVector<llvm::StringRef, 4> Lines;
-      llvm::StringRef(Msg).split(Lines, '\n', -1, false);
-      for (llvm::StringRef L : Lines)
-        C.Diags.report(llvm::SMLoc(), diag::err_bind_read) << L;
+    llvm::handleAllErrors(Model.takeError(), [&](const bind::BindingError &E) {
+      for (const bind::BindProblem &P : E.Problems) {
+        DiagnosticBuilder D = C.Diags.report(llvm::SMLoc(), P.Kind);
+        for (const std::string &Arg : P.Args)
+          D << Arg;
+      }
     });
     return false;
   }

@@ -535,6 +535,36 @@ TEST(BindTest, Errors) {
   Has(Both, "bad_magic.o");
 }
 
+/// The problems come as diagnostic kinds with the place as the first
+/// argument, in the order of the files, so that the driver reports each
+/// with its own kind (DiagnosticKinds.def).
+TEST(BindTest, ErrorsAreDiagnosticKinds) {
+  Expected<BindingModel> M = readBindings(
+      {obj("bad_version.o"), std::string(BIND_OBJ_DIR) + "/no-such.o",
+       obj("bad_reloc.o")},
+      I586);
+  ASSERT_FALSE(bool(M));
+  std::vector<BindProblem> Problems;
+  handleAllErrors(M.takeError(), [&](const BindingError &E) {
+    Problems = E.Problems;
+  });
+  ASSERT_EQ(Problems.size(), 3u);
+  EXPECT_EQ(Problems[0].Kind, diag::err_bind_bad_version);
+  EXPECT_EQ(Problems[0].Args,
+            (std::vector<std::string>{obj("bad_version.o") + ": bs_module_Bad",
+                                      "9", "1"}));
+  EXPECT_EQ(Problems[1].Kind, diag::err_bind_cannot_open);
+  EXPECT_EQ(Problems[1].Args.size(), 2u);
+  EXPECT_EQ(Problems[2].Kind, diag::err_bind_unexpected_relocation);
+  EXPECT_EQ(Problems[2].Args,
+            (std::vector<std::string>{obj("bad_reloc.o") + ": Bad::K",
+                                      "R_386_PC32", "R_386_32", "object"}));
+  EXPECT_EQ(Problems[2].format(),
+            obj("bad_reloc.o") +
+                ": Bad::K: unexpected relocation type R_386_PC32 (expected "
+                "R_386_32); was the object built with Bind.h?");
+}
+
 //===----------------------------------------------------------------------===//
 // In process: the descriptor linked into this test
 //===----------------------------------------------------------------------===//

@@ -19,6 +19,7 @@
 #ifndef BSC_BIND_BIND_H
 #define BSC_BIND_BIND_H
 
+#include "bsc/Basic/Diagnostic.h"
 #include "bscript/descriptor.h"
 #include "llvm/ADT/ArrayRef.h"
 #include "llvm/ADT/StringRef.h"
@@ -213,10 +214,34 @@ struct BindingModel {
   std::string getQualifiedName(const BoundType &T) const;
 };
 
+/// One problem with the binding objects: a kind of DiagnosticKinds.def and
+/// its arguments, the first of which is the place (`file: Module::Class.m`).
+struct BindProblem {
+  diag::Kind Kind;
+  std::vector<std::string> Args;
+  /// The message, formatted from the diagnostics table.
+  std::string format() const;
+};
+
+/// Every problem one readBindings call found, in the order of the files.
+class BindingError : public llvm::ErrorInfo<BindingError> {
+public:
+  static char ID;
+  explicit BindingError(std::vector<BindProblem> Problems)
+      : Problems(std::move(Problems)) {}
+  std::vector<BindProblem> Problems;
+  /// One formatted message per line.
+  void log(llvm::raw_ostream &OS) const override;
+  std::error_code convertToErrorCode() const override {
+    return llvm::inconvertibleErrorCode();
+  }
+};
+
 /// Reads the binding objects or archives that will be linked into the
 /// program for `Target` (bindings.md "How bsc finds modules") and resolves
-/// every type across them. Errors name the file and the member path
-/// (`Vector2f.dot param 0`); all of them are reported, joined.
+/// every type across them. The error is a BindingError holding every
+/// problem, each naming the file and the member path
+/// (`Vector2f.dot param 0`).
 llvm::Expected<BindingModel> readBindings(llvm::ArrayRef<std::string> Paths,
                                           const llvm::Triple &Target);
 

@@ -80,7 +80,7 @@ std::string moduleNameForPath(llvm::StringRef Path);
 /// Reads Opts.StandardModules and Opts.BindObjects for Opts.Target into
 /// C.Bindings and adds their modules to C.Natives. A missing standard module
 /// file is err_runtime_missing; each reader error becomes one
-/// `bsc: error: ...` diagnostic (err_bind_read). Returns false if there was
+/// `bsc: error: ...` diagnostic of its kind (err_bind_*). Returns false if there was
 /// an error.
 bool readBindingObjects(Compilation &C, const FrontendOptions &Opts);
 
