@@ -77,6 +77,17 @@ void ObjectReader::readDescriptor(StringRef SymName, uint64_t Base,
   auto ErrorAt = [&](const Twine &Path, Error E) {
     Errs.add(File, Path.str(), std::move(E), what());
   };
+  // A result's or parameter's type code (void only for results).
+  auto CodeOf = [&](uint32_t Code, bool AllowVoid,
+                    const Twine &Path) -> std::optional<TypeCode> {
+    if ((Code == uint32_t(TypeCode::Void) && !AllowVoid) ||
+        Code > uint32_t(TypeCode::Class)) {
+      ReportAt(Path, diag::err_bind_damaged_descriptor,
+               {"unknown type code " + std::to_string(Code)});
+      return std::nullopt;
+    }
+    return TypeCode(Code);
+  };
   if (Base + HeaderSize > Data.size()) {
     Damaged("the descriptor is truncated");
     return;
@@ -284,13 +295,11 @@ void ObjectReader::readDescriptor(StringRef SymName, uint64_t Base,
       ReportAt(Path, diag::err_bind_module_member_not_function);
       continue;
     }
-    uint32_t RCode = Word(T_Member, I, BS_MEMBER_RESULT_CODE);
-    if (RCode > uint32_t(TypeCode::Class)) {
-      ReportAt(Path, diag::err_bind_damaged_descriptor,
-               {"unknown type code " + std::to_string(RCode)});
+    std::optional<TypeCode> RCode = CodeOf(
+        Word(T_Member, I, BS_MEMBER_RESULT_CODE), /*AllowVoid=*/true, Path);
+    if (!RCode)
       continue;
-    }
-    Mb.Result.Code = TypeCode(RCode);
+    Mb.Result.Code = *RCode;
     Mb.Result.Flags = Word(T_Member, I, BS_MEMBER_RESULT_FLAGS);
     Mb.Result.StorageSize = Word(T_Member, I, BS_MEMBER_RESULT_SIZE);
     Mb.Flags = Word(T_Member, I, BS_MEMBER_FLAGS);
@@ -350,13 +359,11 @@ void ObjectReader::readDescriptor(StringRef SymName, uint64_t Base,
       uint32_t PI = First + J;
       std::string PPath = Path + " param " + std::to_string(J);
       BoundParam Pm;
-      uint32_t Code = Word(T_Param, PI, BS_PARAM_CODE);
-      if (Code == 0 || Code > uint32_t(TypeCode::Class)) {
-        ReportAt(PPath, diag::err_bind_damaged_descriptor,
-                 {"unknown type code " + std::to_string(Code)});
+      std::optional<TypeCode> Code =
+          CodeOf(Word(T_Param, PI, BS_PARAM_CODE), /*AllowVoid=*/false, PPath);
+      if (!Code)
         continue;
-      }
-      Pm.Type.Code = TypeCode(Code);
+      Pm.Type.Code = *Code;
       Pm.Type.Flags = Word(T_Param, PI, BS_PARAM_FLAGS);
       Pm.Type.StorageSize = Word(T_Param, PI, BS_PARAM_SIZE);
       Pm.Name = Str(Word(T_Param, PI, BS_PARAM_NAME));
