@@ -98,6 +98,8 @@ void Dumper::dumpModule(const ModuleAST &M) {
     line() << "Requires '" << R.Name << "'";
     loc(R.Range.Start);
   }
+  for (const EnumDecl *D : M.Enums)
+    dumpDecl(D);
   for (const ConstDecl *D : M.Consts)
     dumpDecl(D);
   for (const CallableDecl *D : M.Decls)
@@ -134,6 +136,25 @@ void Dumper::dumpDecl(const Decl *D) {
     loc(D->getLoc());
     if (V->Init)
       child(V->Init);
+    return;
+  }
+  case NodeKind::EnumDecl: {
+    auto *E = llvm::cast<EnumDecl>(D);
+    if (E->IsTaskState)
+      OS << " : TaskState";
+    loc(D->getLoc());
+    ++Indent;
+    for (size_t I = 0; I != E->Enumerators.size(); ++I) {
+      const Enumerator &En = E->Enumerators[I];
+      line() << "Enumerator '" << En.Name.Name << "'";
+      // After Sema the number it got, before it the one written.
+      if (I < E->Values.Values.size())
+        OS << " = " << E->Values.Values[I].Number;
+      else if (En.Explicit)
+        OS << " = " << *En.Explicit;
+      loc(En.Name.Loc);
+    }
+    --Indent;
     return;
   }
   case NodeKind::ConstDecl: {

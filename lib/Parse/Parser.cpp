@@ -132,6 +132,10 @@ ModuleAST *Parser::parseModule(llvm::StringRef Name) {
       SeenDecl = true;
       if (ConstDecl *D = parseConst())
         Module->Consts.push_back(D);
+    } else if (Tok.is(tok::kw_enum)) {
+      SeenDecl = true;
+      if (EnumDecl *D = parseEnum())
+        Module->Enums.push_back(D);
     } else if (Tok.is(tok::indent)) {
       diag(Tok.Loc, diag::err_unexpected_indent);
       skipBlock();
@@ -177,6 +181,83 @@ ConstDecl *Parser::parseConst() {
   auto *D = make<ConstDecl>(rangeFrom(Start), Name, std::move(TypeName), Init);
   D->Module = Module;
   return D;
+}
+
+/// enum-decl  ::= 'enum' identifier (':' 'TaskState')? NEWLINE
+///                INDENT enumerator+ DEDENT
+/// enumerator ::= identifier ('=' '-'? int-literal)? NEWLINE
+EnumDecl *Parser::parseEnum() {
+  llvm::SMLoc Start = Tok.Loc;
+  consume();
+  if (Tok.isNot(tok::identifier)) {
+    diag(Tok.Loc, diag::err_expected_after) << "a name" << "'enum'";
+    skipLineAndBlock();
+    return nullptr;
+  }
+  Ident Name{Tok.Text, Tok.Loc};
+  consume();
+  bool IsTaskState = false;
+  if (consumeIf(tok::colon)) {
+    if (Tok.isNot(tok::identifier) || Tok.Text != "TaskState") {
+      diag(Tok.Loc, diag::err_enum_base_not_task_state) << Name.Name;
+      skipLineAndBlock();
+      return nullptr;
+    }
+    IsTaskState = true;
+    consume();
+  }
+  auto *D = make<EnumDecl>(rangeFrom(Start), Name, IsTaskState);
+  D->Module = Module;
+  if (Tok.isNot(tok::newline)) {
+    diag(Tok.Loc, diag::err_expected_block) << "'enum'";
+    skipToLineEnd();
+  }
+  llvm::SMLoc LineEnd = Tok.Loc;
+  consumeIf(tok::newline);
+  if (Tok.isNot(tok::indent)) {
+    diag(LineEnd, diag::err_expected_block) << "'enum'";
+    return D;
+  }
+  consume();
+  while (Tok.isNot(tok::dedent) && Tok.isNot(tok::eof)) {
+    const char *Before = Tok.Loc.getPointer();
+    parseEnumerator(*D);
+    if (Tok.Loc.getPointer() == Before)
+      consume();
+  }
+  consumeIf(tok::dedent);
+  return D;
+}
+
+void Parser::parseEnumerator(EnumDecl &D) {
+  InError = false; // Each line is a declaration of its own.
+  if (Tok.isNot(tok::identifier)) {
+    diag(Tok.Loc, diag::err_expected_enumerator) << D.getName().Name;
+    skipLineAndBlock();
+    return;
+  }
+  Enumerator E{{Tok.Text, Tok.Loc}, std::nullopt, {}};
+  consume();
+  if (Tok.is(tok::equal)) {
+    llvm::SMLoc ValueStart = Tok.Loc;
+    consume();
+    bool Negative = consumeIf(tok::minus);
+    if (Tok.isNot(tok::int_literal)) {
+      diag(Tok.Loc, diag::err_expected_after) << "an integer" << "'='";
+      skipLineAndBlock();
+      return;
+    }
+    E.Explicit = Negative ? -int64_t(Tok.IntValue) : int64_t(Tok.IntValue);
+    consume();
+    E.ValueRange = rangeFrom(ValueStart);
+  }
+  if (Tok.isNot(tok::newline)) {
+    diag(Tok.Loc, diag::err_expected) << "end of line";
+    skipLineAndBlock();
+  } else {
+    consume();
+  }
+  D.Enumerators.push_back(E);
 }
 
 /// requires ::= 'requires' string-literal NEWLINE

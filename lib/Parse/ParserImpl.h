@@ -58,6 +58,8 @@ private:
 
   void parseRequires(bool AfterDecl);
   ConstDecl *parseConst();
+  EnumDecl *parseEnum();
+  void parseEnumerator(EnumDecl &D);
   CallableDecl *parseCallable(TaskDecl *Enclosing);
   void parseParams(CallableDecl *D);
   bool parseQualifiedName(QualifiedName &QN);

@@ -151,15 +151,25 @@ void Sema::buildModuleTables(llvm::ArrayRef<ModuleAST *> Modules) {
       }
     }
 
+    // Enums, constants, funcs and tasks share the module's namespace.
+    for (EnumDecl *E : M->Enums) {
+      auto [It, Inserted] = Info->Enums.try_emplace(E->getName().Name, E);
+      if (!Inserted)
+        reportRedefinition(*E, *It->second);
+      checkEnum(E);
+    }
     for (ConstDecl *C : M->Consts) {
+      if (EnumDecl *E = Info->Enums.lookup(C->getName().Name))
+        reportRedefinition(*C, *E);
       auto [It, Inserted] = Info->Consts.try_emplace(C->getName().Name, C);
       if (!Inserted)
         reportRedefinition(*C, *It->second);
     }
     for (CallableDecl *C : M->Decls) {
-      // Funcs, tasks and constants share the module's namespace.
       if (ConstDecl *Const = Info->Consts.lookup(C->getName().Name))
         reportRedefinition(*C, *Const);
+      if (EnumDecl *E = Info->Enums.lookup(C->getName().Name))
+        reportRedefinition(*C, *E);
       auto [It, Inserted] = Info->Decls.try_emplace(C->getName().Name, C);
       if (!Inserted)
         reportRedefinition(*C, *It->second);
@@ -174,6 +184,41 @@ void Sema::buildModuleTables(llvm::ArrayRef<ModuleAST *> Modules) {
           reportRedefinition(*F, *NIt->second);
       }
     }
+  }
+}
+
+void Sema::checkEnum(EnumDecl *E) {
+  E->Values.Name = E->getName().Name.str();
+  E->Ty = E->IsTaskState
+              ? Types.getTaskState()
+              : Types.getEnum(&E->Values, E->Module->Name + "::" +
+                                              E->getName().Name.str());
+  // Named task states count from 1 (the first running state after
+  // TaskState::done); other enums from 0, as in C.
+  int64_t Next = E->IsTaskState ? 1 : 0;
+  llvm::StringMap<const Enumerator *> Seen;
+  for (const Enumerator &En : E->Enumerators) {
+    int64_t Value = En.Explicit ? *En.Explicit : Next;
+    Next = Value + 1;
+    llvm::SMLoc Loc = En.Explicit ? En.ValueRange.Start : En.Name.Loc;
+    if (Value < INT32_MIN || Value > INT32_MAX) {
+      diag(Loc, diag::err_enumerator_out_of_range)
+          << En.Name.Name << std::to_string(Value);
+      continue;
+    }
+    if (E->IsTaskState && Value == 0) {
+      diag(Loc, diag::err_task_state_enumerator_zero)
+          << E->getName().Name << En.Name.Name;
+      continue;
+    }
+    auto [It, Inserted] = Seen.try_emplace(En.Name.Name, &En);
+    if (!Inserted) {
+      diag(En.Name.Loc, diag::err_duplicate_enumerator)
+          << En.Name.Name << E->getName().Name << En.Name.getRange();
+      diag(It->second->Name.Loc, diag::note_previous_definition);
+      continue;
+    }
+    E->Values.Values.push_back({En.Name.Name.str(), int32_t(Value)});
   }
 }
 
@@ -248,6 +293,13 @@ LookupResult Sema::findUnqualified(llvm::StringRef Name, LookupMode Mode) {
     return R;
   }
 
+  // An enum before the module's other names: a func or constant of the
+  // same name is a redefinition, reported once, and types stay usable.
+  if (EnumDecl *E = CurModule->Enums.lookup(Name)) {
+    R.Kind = LookupKind::TypeName;
+    R.Ty = E->Ty;
+    return R;
+  }
   if (CurTask)
     for (FuncDecl *F : CurTask->NestedFuncs)
       if (F->getName().Name == Name) {
@@ -342,6 +394,8 @@ std::optional<std::string> Sema::findNearValueName(llvm::StringRef Name) {
     Consider(Entry.getKey());
   for (const auto &Entry : CurModule->Consts)
     Consider(Entry.getKey());
+  for (const auto &Entry : CurModule->Enums)
+    Consider(Entry.getKey());
   for (const auto &Entry : CurModule->Requires)
     Consider(Entry.getKey());
   // `True`, `FALSE`: Python's and C's spellings of the literals.
@@ -355,10 +409,13 @@ std::optional<std::string> Sema::findNearValueName(llvm::StringRef Name) {
   return Near.get();
 }
 
-LookupResult Sema::lookupEnumValue(const Type *EnumTy, llvm::StringRef EnumName,
+LookupResult Sema::lookupEnumValue(const Type *ValueTy,
+                                   const NativeEnum *Values,
+                                   llvm::StringRef EnumName,
                                    const Ident &Value) {
   LookupResult R;
-  if (EnumTy->isTaskState()) {
+  const Type *EnumTy = ValueTy;
+  if (!Values) {
     int32_t V = 0;
     bool Found = true;
     if (Value.Name == "done")
@@ -376,7 +433,7 @@ LookupResult Sema::lookupEnumValue(const Type *EnumTy, llvm::StringRef EnumName,
       return R;
     }
   } else {
-    for (const NativeEnum::Value &NV : EnumTy->getEnum()->Values)
+    for (const NativeEnum::Value &NV : Values->Values)
       if (NV.Name == Value.Name) {
         R.Kind = LookupKind::EnumValue;
         R.Ty = EnumTy;
@@ -387,10 +444,10 @@ LookupResult Sema::lookupEnumValue(const Type *EnumTy, llvm::StringRef EnumName,
   diag(Value.Loc, diag::err_no_enum_value) << EnumName << Value.Name
                                            << Value.getRange();
   llvm::SmallVector<llvm::StringRef, 8> Names;
-  if (EnumTy->isTaskState())
+  if (!Values)
     Names = {"done", "running", "failure"};
   else
-    for (const NativeEnum::Value &NV : EnumTy->getEnum()->Values)
+    for (const NativeEnum::Value &NV : Values->Values)
       Names.push_back(NV.Name);
   suggestNearest(Value, Names);
   return R;
@@ -449,6 +506,13 @@ LookupResult Sema::lookupQualified(const QualifiedName &N) {
   case QualifierModule::Poison:
     return R;
   case QualifierModule::Script: {
+    if (EnumDecl *E = InfoOf[QM.ScriptModule]->Enums.lookup(Second.Name)) {
+      if (N.Parts.size() == 3)
+        return lookupEnumValue(E->Ty, &E->Values, Join(2), N.Parts[2]);
+      R.Kind = LookupKind::TypeName;
+      R.Ty = E->Ty;
+      return R;
+    }
     if (ConstDecl *C = InfoOf[QM.ScriptModule]->Consts.lookup(Second.Name)) {
       if (N.Parts.size() == 3) {
         diag(Q.Loc, diag::err_unknown_qualifier) << Join(2);
@@ -466,6 +530,8 @@ LookupResult Sema::lookupQualified(const QualifiedName &N) {
       for (const auto &Entry : InfoOf[QM.ScriptModule]->Decls)
         Names.push_back(Entry.getKey());
       for (const auto &Entry : InfoOf[QM.ScriptModule]->Consts)
+        Names.push_back(Entry.getKey());
+      for (const auto &Entry : InfoOf[QM.ScriptModule]->Enums)
         Names.push_back(Entry.getKey());
       suggestNearest(Second, Names);
       return R;
@@ -530,7 +596,15 @@ LookupResult Sema::lookupQualified(const QualifiedName &N) {
     break;
   }
 
-  // Not a module: TaskState or an enum of a required native module.
+  // Not a module: an enum of this module, TaskState, or an enum of a
+  // required native module.
+  if (EnumDecl *E = CurModule->Enums.lookup(Q.Name)) {
+    if (N.Parts.size() == 3) {
+      diag(Q.Loc, diag::err_unknown_qualifier) << Join(2);
+      return R;
+    }
+    return lookupEnumValue(E->Ty, &E->Values, Q.Name, Second);
+  }
   const Type *EnumTy = Q.Name == "TaskState" ? Types.getTaskState()
                                               : findRequiredEnum(Q.Name);
   if (EnumTy) {

@@ -77,8 +77,10 @@ struct ModuleInfo {
   ModuleAST *AST = nullptr;
   /// The module's namespace: its top-level funcs and tasks...
   llvm::StringMap<CallableDecl *> Decls;
-  /// ...and its constants.
+  /// ...its constants...
   llvm::StringMap<ConstDecl *> Consts;
+  /// ...and its enums.
+  llvm::StringMap<EnumDecl *> Enums;
   /// The modules it requires, by name (resolved or poison).
   llvm::StringMap<const RequireDecl *> Requires;
 };
@@ -112,8 +114,19 @@ public:
   /// (NearestName's rule), if one is near enough.
   void suggestNearest(const Ident &Id,
                       llvm::ArrayRef<llvm::StringRef> Candidates);
+  /// The value `Value` of the enum `EnumName` whose values are `Values`
+  /// (null: TaskState's own done, running, failure) and of type `ValueTy`.
+  LookupResult lookupEnumValue(const Type *ValueTy, const NativeEnum *Values,
+                               llvm::StringRef EnumName, const Ident &Value);
+  /// The same for an enum type (TaskState, a registered enum).
   LookupResult lookupEnumValue(const Type *EnumTy, llvm::StringRef EnumName,
-                               const Ident &Value);
+                               const Ident &Value) {
+    return lookupEnumValue(EnumTy, EnumTy->isTaskState() ? nullptr
+                                                          : EnumTy->getEnum(),
+                           EnumName, Value);
+  }
+  /// Numbers the enumerators of a script enum and gives it its type.
+  void checkEnum(EnumDecl *E);
   /// The type of a registered enum (`M::E`).
   const Type *getEnumType(const NativeModule &M, const NativeEnum &E);
   /// The enum named `E` of a native module the current module requires,

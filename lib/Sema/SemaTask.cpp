@@ -26,7 +26,10 @@ void Sema::checkYield(YieldStmt *S) {
     diag(S->getLoc(), diag::err_yield_outside_task);
   if (S->Value) {
     const Type *T = checkExpr(S->Value);
-    if (!T->isError() && !T->isInt() && !T->isTaskState())
+    if (T->isEnum())
+      diag(S->Value->getLoc(), diag::err_yield_plain_enum)
+          << T->getName() << S->Value->getRange();
+    else if (!T->isError() && !T->isInt() && !T->isTaskState())
       diag(S->Value->getLoc(), diag::err_yield_value_type)
           << T->getName() << S->Value->getRange();
   }

@@ -111,7 +111,7 @@ public:
   const Ident &getName() const { return Name; }
   static bool classof(const Node *N) {
     return N->getKind() >= NodeKind::FuncDecl &&
-           N->getKind() <= NodeKind::ConstDecl;
+           N->getKind() <= NodeKind::EnumDecl;
   }
 
 protected:
@@ -192,6 +192,36 @@ public:
       CheckState::Unchecked;
   static bool classof(const Node *N) {
     return N->getKind() == NodeKind::ConstDecl;
+  }
+};
+
+/// One enumerator of a script enum: `kick = 7`.
+struct Enumerator {
+  Ident Name;
+  /// The `= INT` written (the parser folds a leading `-`), if any.
+  std::optional<int64_t> Explicit;
+  llvm::SMRange ValueRange; ///< Of the `= INT`, for diagnostics.
+};
+
+/// `enum Phase` at module scope, one enumerator per line below it: a type of
+/// its module whose values are `Phase::align` (qualified by the module in
+/// the modules that require it). `enum Button : TaskState` declares named
+/// task states instead: its values are of type TaskState, and the name
+/// `Button` is TaskState as a type.
+class EnumDecl : public Decl {
+public:
+  EnumDecl(llvm::SMRange R, Ident Name, bool IsTaskState)
+      : Decl(NodeKind::EnumDecl, R, Name), IsTaskState(IsTaskState) {}
+  std::vector<Enumerator> Enumerators;
+  bool IsTaskState;
+  ModuleAST *Module = nullptr; ///< Set by the parser.
+  /// Sema: the numbered values in the form a registered enum has, so that
+  /// lookup, CodeGen and the debugger treat both alike (Module stays null).
+  NativeEnum Values;
+  /// Sema: the enum's type (TaskState for named task states).
+  const Type *Ty = nullptr;
+  static bool classof(const Node *N) {
+    return N->getKind() == NodeKind::EnumDecl;
   }
 };
 
@@ -653,6 +683,8 @@ public:
   std::vector<CallableDecl *> Decls;
   /// The constants, in source order.
   std::vector<ConstDecl *> Consts;
+  /// The enums, in source order.
+  std::vector<EnumDecl *> Enums;
 };
 
 /// Owns every node, module and type of one compilation.
