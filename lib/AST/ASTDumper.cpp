@@ -127,6 +127,8 @@ void Dumper::dumpDecl(const Decl *D) {
     OS << " '" << P->TypeName.str() << "'";
     type(P->Ty);
     loc(D->getLoc());
+    if (P->Default)
+      child(P->Default);
     return;
   }
   case NodeKind::VarDecl: {

@@ -325,7 +325,7 @@ CallableDecl *Parser::parseCallable(TaskDecl *Enclosing) {
 }
 
 /// params ::= '(' (param (',' param)*)? ')'
-/// param  ::= qualified-name identifier
+/// param  ::= qualified-name identifier ('=' expr)?
 void Parser::parseParams(CallableDecl *D) {
   if (Tok.isNot(tok::l_paren)) {
     diag(Tok.Loc, diag::err_expected_after)
@@ -350,6 +350,10 @@ void Parser::parseParams(CallableDecl *D) {
     P->Owner = D;
     P->Index = D->Params.size();
     D->Params.push_back(P);
+    if (consumeIf(tok::equal)) {
+      P->Default = parseExpr();
+      P->setRange(rangeFrom(Start));
+    }
     if (consumeIf(tok::comma))
       continue;
     expect(tok::r_paren, "')'");

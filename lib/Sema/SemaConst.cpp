@@ -118,6 +118,46 @@ void Sema::checkConst(ConstDecl *C) {
   C->State = ConstDecl::CheckState::Done;
 }
 
+void Sema::checkDefaultArg(ParamDecl *P) {
+  if (!P->Default)
+    return;
+  llvm::StringRef Name = P->getName().Name;
+  if (!hasConstantShape(P->Default)) {
+    diag(P->Default->getLoc(), diag::err_default_not_constant)
+        << Name << P->Default->getRange();
+    return;
+  }
+  const Type *DefaultTy = checkExpr(P->Default);
+  if (P->Ty->isError() || DefaultTy->isError())
+    return;
+  if (!convertImplicitly(P->Default, P->Ty)) {
+    diag(P->Default->getLoc(), diag::err_default_type)
+        << Name << P->Ty->getName() << DefaultTy->getName()
+        << P->Default->getRange();
+    return;
+  }
+  P->DefaultValue = evaluateConstant(P->Default);
+  if (!P->DefaultValue)
+    diag(P->Default->getLoc(), diag::err_default_not_constant)
+        << Name << P->Default->getRange();
+}
+
+Expr *Sema::makeConstantExpr(const ConstantValue &V, const Type *Ty,
+                             llvm::SMLoc Loc) {
+  llvm::SMRange R(Loc, Loc);
+  Expr *E;
+  if (Ty->isFloat())
+    E = Ctx.create<FloatLiteralExpr>(R, V.Float);
+  else if (Ty->isBool())
+    E = Ctx.create<BoolLiteralExpr>(R, V.Bool);
+  else if (Ty->isString())
+    E = Ctx.create<StringLiteralExpr>(R, V.String);
+  else // int, an enum or a task state: the number, typed as such.
+    E = Ctx.create<IntLiteralExpr>(R, V.Int);
+  E->Ty = Ty;
+  return E;
+}
+
 std::optional<ConstDecl::ValueFields>
 Sema::evaluateConstant(const Expr *E) {
   using Value = ConstDecl::ValueFields;

@@ -123,6 +123,7 @@ static constexpr llvm::StringLiteral TaskConstructsAtStart =
 void Sema::checkSignature(CallableDecl *C) {
   // Every call copies its arguments into the parameters: a func's own
   // copies (copy-constructed), a task's in its frame (assigned).
+  const ParamDecl *FirstDefaulted = nullptr;
   for (ParamDecl *P : C->Params) {
     P->Ty = resolveType(P->TypeName);
     checkCopyable(P->Ty, P->TypeName.getRange(), "a parameter",
@@ -130,6 +131,14 @@ void Sema::checkSignature(CallableDecl *C) {
     if (llvm::isa<TaskDecl>(C))
       checkDefaultConstructible(P->Ty, P->TypeName.getRange(),
                                 TaskConstructsAtStart);
+    checkDefaultArg(P);
+    // Defaults are trailing: a call leaves out a tail of the arguments.
+    if (P->Default && !FirstDefaulted)
+      FirstDefaulted = P;
+    else if (!P->Default && FirstDefaulted)
+      diag(P->getName().Loc, diag::err_default_not_trailing)
+          << P->getName().Name << FirstDefaulted->getName().Name
+          << P->getName().getRange();
   }
   if (auto *F = llvm::dyn_cast<FuncDecl>(C))
     F->ResultTy = F->ResultTypeName.empty() ? Types.getVoid()

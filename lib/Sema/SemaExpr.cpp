@@ -529,8 +529,12 @@ const Type *Sema::checkCall(CallExpr *C, bool AsStatement) {
           << getText(C->Callee) << C->Callee->getRange();
   }
 
-  // A native callee (module function or method): its registered signature.
+  // A script callee: the parameters before the first with a default.
   size_t MinArgs = ParamTys.size();
+  if (C->Target)
+    MinArgs = llvm::count_if(C->Target->Params,
+                             [](const ParamDecl *P) { return !P->Default; });
+  // A native callee (module function or method): its registered signature.
   const NativeFunction *NF = C->NativeFn;
   if (NF) {
     for (const NativeType &P : NF->Params)
@@ -557,10 +561,22 @@ const Type *Sema::checkCall(CallExpr *C, bool AsStatement) {
       diag(C->getLoc(), diag::err_call_arity_range)
           << Name << MinArgs << ParamTys.size() << NumArgs << C->getRange();
   } else {
-    // Missing trailing arguments come from the binding's `.defaults(...)`.
+    // Missing trailing arguments come from the script parameters' defaults
+    // or the binding's `.defaults(...)`.
     for (size_t I = NumArgs; I != ParamTys.size(); ++I) {
-      C->Args.push_back(makeDefaultArg(NF->Defaults[I - MinArgs], ParamTys[I],
-                                       C->getRange().End));
+      llvm::SMLoc End = C->getRange().End;
+      Expr *Arg;
+      if (NF) {
+        Arg = makeDefaultArg(NF->Defaults[I - MinArgs], ParamTys[I], End);
+      } else {
+        const ParamDecl *P = C->Target->Params[I];
+        // A default that was refused is poison: reported at the parameter.
+        Arg = P->DefaultValue ? makeConstantExpr(*P->DefaultValue, P->Ty, End)
+                              : Ctx.create<ErrorExpr>(llvm::SMRange(End, End));
+        if (!P->DefaultValue)
+          Arg->Ty = Types.getError();
+      }
+      C->Args.push_back(Arg);
       ++C->NumDefaultArgs;
     }
     for (size_t I = 0, E = C->Args.size(); I != E; ++I) {

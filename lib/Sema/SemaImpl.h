@@ -167,6 +167,11 @@ public:
   /// SemaConst.cpp: checks and evaluates a module constant (and, first,
   /// the constants its value uses, in any module).
   void checkConst(ConstDecl *C);
+  /// Checks a parameter's default: a constant expression of its type.
+  void checkDefaultArg(ParamDecl *P);
+  /// A literal of type `Ty` with the value `V` (a default argument).
+  Expr *makeConstantExpr(const ConstantValue &V, const Type *Ty,
+                         llvm::SMLoc Loc);
   /// The value of a constant expression already checked, or nothing if
   /// it is not one.
   std::optional<ConstDecl::ValueFields> evaluateConstant(const Expr *E);

@@ -123,6 +123,15 @@ private:
 
 class CallableDecl;
 
+/// A value computed at compile time, in the member its type selects (int,
+/// enums and task states: Int).
+struct ConstantValue {
+  int32_t Int = 0;
+  float Float = 0;
+  bool Bool = false;
+  std::string String;
+};
+
 /// A parameter of a func or task: `Math::Vector2f target`.
 class ParamDecl : public Decl {
 public:
@@ -131,7 +140,12 @@ public:
   QualifiedName TypeName;
   CallableDecl *Owner = nullptr; ///< Set by the parser.
   unsigned Index = 0;            ///< Position in the parameter list.
+  /// `float tilt = 0.38`: the default a call that leaves the argument out
+  /// passes (a constant expression), or null.
+  Expr *Default = nullptr;
   const Type *Ty = nullptr;      ///< Sema.
+  /// Sema: the value of Default, as Ty.
+  std::optional<ConstantValue> DefaultValue;
   /// Sema: a func nested in the owning task reads it, so the task keeps a
   /// copy in its frame (the task's own body reads the argument).
   bool ReadByNestedFunc = false;
@@ -181,12 +195,8 @@ public:
   ModuleAST *Module = nullptr; ///< Set by the parser.
   const Type *Ty = nullptr;    ///< Sema.
   /// Sema: the value, in the member Ty selects (int and enums: Int).
-  struct ValueFields {
-    int32_t Int = 0;
-    float Float = 0;
-    bool Bool = false;
-    std::string String;
-  } Value;
+  using ValueFields = ConstantValue;
+  ValueFields Value;
   /// Sema's progress: constants may use constants of other modules.
   enum class CheckState { Unchecked, Checking, Done } State =
       CheckState::Unchecked;
@@ -573,7 +583,8 @@ public:
   /// Sema, for NativeFunction and Method: the registered member.
   const NativeFunction *NativeFn = nullptr;
   /// Sema: how many of the trailing Args Sema appended from the callee's
-  /// `.defaults(...)` (literals typed as the parameters); the source wrote
+  /// defaults (a binding's `.defaults(...)`, a script parameter's `=
+  /// value`), as literals typed as the parameters; the source wrote
   /// Args.size() - NumDefaultArgs of them.
   unsigned NumDefaultArgs = 0;
   static bool classof(const Node *N) {
