@@ -478,6 +478,11 @@ llvm::Value *FunctionEmitter::emitBinary(const BinaryExpr &E) {
   }
   llvm::Value *L = emitExpr(E.LHS);
   llvm::Value *R = emitExpr(E.RHS);
+  if (E.LHS->Ty->isString()) {
+    // Contents, not pointers: equal literals need not share one global.
+    llvm::Value *Eq = Builder.CreateCall(CGM.getStringEquals(), {L, R}, "str.eq");
+    return E.Op == BinaryOp::Eq ? Eq : Builder.CreateNot(Eq, "str.ne");
+  }
   if (E.StateTest != BinaryExpr::StateKindTest::None) {
     // The kind of a state (docs/language.md, Tasks): the other side's.
     llvm::Value *State = E.NamedStateOnLeft ? R : L;

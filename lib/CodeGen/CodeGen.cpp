@@ -230,6 +230,46 @@ llvm::Constant *ModuleEmitter::getString(llvm::StringRef S) {
   return GV;
 }
 
+llvm::Function *ModuleEmitter::getStringEquals() {
+  if (StringEquals)
+    return StringEquals;
+  llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
+  llvm::Type *I8 = llvm::Type::getInt8Ty(Ctx);
+  StringEquals = llvm::Function::Create(
+      llvm::FunctionType::get(llvm::Type::getInt1Ty(Ctx), {Ptr, Ptr}, false),
+      llvm::GlobalValue::InternalLinkage, "bs.string.eq", M);
+  addCommonAttributes(StringEquals);
+  StringEquals->setOnlyReadsMemory();
+  llvm::Argument *A = StringEquals->getArg(0), *B = StringEquals->getArg(1);
+  A->setName("a");
+  B->setName("b");
+  auto *Entry = llvm::BasicBlock::Create(Ctx, "entry", StringEquals);
+  auto *Loop = llvm::BasicBlock::Create(Ctx, "loop", StringEquals);
+  auto *Next = llvm::BasicBlock::Create(Ctx, "next", StringEquals);
+  auto *Same = llvm::BasicBlock::Create(Ctx, "same", StringEquals);
+  auto *Differ = llvm::BasicBlock::Create(Ctx, "differ", StringEquals);
+  llvm::IRBuilder<> IRB(Entry);
+  // A null string (a binding may return one) reads as "".
+  llvm::Constant *Empty = getString("");
+  llvm::Value *SA = IRB.CreateSelect(IRB.CreateIsNull(A), Empty, A, "a.str");
+  llvm::Value *SB = IRB.CreateSelect(IRB.CreateIsNull(B), Empty, B, "b.str");
+  IRB.CreateCondBr(IRB.CreateICmpEQ(SA, SB, "same.ptr"), Same, Loop);
+  IRB.SetInsertPoint(Loop);
+  llvm::PHINode *I = IRB.CreatePHI(IRB.getInt32Ty(), 2, "i");
+  I->addIncoming(IRB.getInt32(0), Entry);
+  llvm::Value *CA = IRB.CreateLoad(I8, IRB.CreateGEP(I8, SA, I), "ca");
+  llvm::Value *CB = IRB.CreateLoad(I8, IRB.CreateGEP(I8, SB, I), "cb");
+  IRB.CreateCondBr(IRB.CreateICmpEQ(CA, CB), Next, Differ);
+  IRB.SetInsertPoint(Next);
+  I->addIncoming(IRB.CreateAdd(I, IRB.getInt32(1), "i.next"), Next);
+  IRB.CreateCondBr(IRB.CreateIsNull(CA, "end"), Same, Loop);
+  IRB.SetInsertPoint(Same);
+  IRB.CreateRet(IRB.getTrue());
+  IRB.SetInsertPoint(Differ);
+  IRB.CreateRet(IRB.getFalse());
+  return StringEquals;
+}
+
 void ModuleEmitter::addCommonAttributes(llvm::Function *F) {
   F->addFnAttr(llvm::Attribute::NoUnwind);
   F->addFnAttr("no-builtins");

@@ -211,6 +211,10 @@ public:
   llvm::FunctionCallee getNative(const NativeFunction &NF);
   /// A private NUL-terminated constant; equal strings share one global.
   llvm::Constant *getString(llvm::StringRef S);
+  /// `bs.string.eq(ptr a, ptr b) -> i1`: whether two strings have the same
+  /// contents (a null pointer reads as ""), defined in this module on
+  /// first use, so that the object needs no strcmp from a libc.
+  llvm::Function *getStringEquals();
   /// The C ABI type of a native parameter or result (class values travel
   /// as pointers).
   llvm::Type *getNativeType(const NativeType &NT);
@@ -311,6 +315,7 @@ private:
   llvm::DenseMap<const CallableDecl *, llvm::Function *> Functions;
   llvm::DenseMap<const NativeFunction *, llvm::FunctionCallee> Natives;
   llvm::StringMap<llvm::Constant *> Strings;
+  llvm::Function *StringEquals = nullptr;
   llvm::GlobalVariable *Info = nullptr;
   llvm::Function *BehaviorDestroy = nullptr; ///< Null: nothing to destroy.
   llvm::MDNode *StateAccessTag = nullptr;

@@ -278,7 +278,7 @@ Sema::evaluateConstant(const Expr *E) {
     default:
       break;
     }
-    // Comparisons: numbers, bools, enums and task states by value.
+    // Comparisons: numbers, bools, enums, task states and strings by value.
     auto Compare = [&](auto A, auto C) {
       switch (B->Op) {
       case BinaryOp::Lt:
@@ -307,8 +307,8 @@ Sema::evaluateConstant(const Expr *E) {
       V.Bool = Compare(L->Float, R->Float);
     else if (OpTy->isBool())
       V.Bool = Compare(L->Bool, R->Bool);
-    else if (OpTy->isString())
-      return std::nullopt;
+    else if (OpTy->isString()) // == and != compare contents.
+      V.Bool = Compare(llvm::StringRef(L->String), llvm::StringRef(R->String));
     else
       V.Bool = Compare(L->Int, R->Int);
     return V;

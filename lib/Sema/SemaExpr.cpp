@@ -436,7 +436,8 @@ const Type *Sema::checkBinary(BinaryExpr *E) {
     }
     if (L->isTaskState() && R->isTaskState())
       markStateKindTest(E);
-    if (L == R && (L->isBool() || L->isEnum() || L->isTaskState()))
+    if (L == R && (L->isBool() || L->isEnum() || L->isTaskState() ||
+                   L->isString()))
       return Types.getBool();
     break;
   case BinaryOp::And:
