@@ -52,6 +52,27 @@ unsigned bsc::addSourceFile(Compilation &C, llvm::StringRef Path) {
   return C.SM.AddNewSourceBuffer(std::move(*BufOrErr), llvm::SMLoc());
 }
 
+/// `<Name>.bs` in the requiring file's folder, then in the -I folders.
+/// Returns "" if there is none; `Searched` lists the folders tried.
+static std::string findScriptModule(const ModuleAST &From, llvm::StringRef Name,
+                                    llvm::ArrayRef<std::string> IncludeDirs,
+                                    std::string &Searched) {
+  llvm::SmallVector<std::string, 4> Dirs;
+  llvm::StringRef Parent = llvm::sys::path::parent_path(From.Path);
+  Dirs.push_back(Parent.empty() ? "." : Parent.str());
+  Dirs.append(IncludeDirs.begin(), IncludeDirs.end());
+  for (const std::string &Dir : Dirs) {
+    llvm::SmallString<128> Candidate(Dir);
+    llvm::sys::path::append(Candidate, Name + ".bs");
+    if (llvm::sys::fs::is_regular_file(Candidate))
+      return std::string(Candidate);
+    if (!Searched.empty())
+      Searched += ", ";
+    Searched += "'" + Dir + "'";
+  }
+  return "";
+}
+
 namespace {
 /// Loads modules by name, breadth first from the inputs.
 class ModuleLoader {
@@ -106,7 +127,7 @@ private:
         continue;
       }
       std::string Searched;
-      if (std::string Path = findScriptModule(M, R.Name, Searched);
+      if (std::string Path = findScriptModule(M, R.Name, Opts.IncludeDirs, Searched);
           !Path.empty()) {
         R.Script = loadFile(Path);
         continue;
@@ -120,26 +141,6 @@ private:
         C.Diags.report(R.Range.Start, diag::note_no_standard_module)
             << R.Name << Opts.Target.str();
     }
-  }
-
-  /// `<Name>.bs` in the requiring file's folder, then in the -I folders.
-  /// Returns "" if there is none; `Searched` lists the folders tried.
-  std::string findScriptModule(const ModuleAST &From, llvm::StringRef Name,
-                               std::string &Searched) {
-    llvm::SmallVector<std::string, 4> Dirs;
-    llvm::StringRef Parent = llvm::sys::path::parent_path(From.Path);
-    Dirs.push_back(Parent.empty() ? "." : Parent.str());
-    Dirs.append(Opts.IncludeDirs.begin(), Opts.IncludeDirs.end());
-    for (const std::string &Dir : Dirs) {
-      llvm::SmallString<128> Candidate(Dir);
-      llvm::sys::path::append(Candidate, Name + ".bs");
-      if (llvm::sys::fs::is_regular_file(Candidate))
-        return std::string(Candidate);
-      if (!Searched.empty())
-        Searched += ", ";
-      Searched += "'" + Dir + "'";
-    }
-    return "";
   }
 
   Compilation &C;
@@ -212,8 +213,12 @@ bool bsc::runFrontend(Compilation &C, const FrontendOptions &Opts) {
     return false;
   // Sema runs even after parse errors (they left error nodes, which are
   // poison) so that one run reports as many independent mistakes as it can.
-  bool Checked =
-      checkBehavior(C.Modules, C.Ctx, C.Diags, C.Checked, &C.Natives);
+  auto FindModuleFile = [&](const ModuleAST &From, llvm::StringRef Name) {
+    std::string Searched;
+    return !findScriptModule(From, Name, Opts.IncludeDirs, Searched).empty();
+  };
+  bool Checked = checkBehavior(C.Modules, C.Ctx, C.Diags, C.Checked,
+                               &C.Natives, FindModuleFile);
   C.Diags.sortBySource(C.SM);
   return Loaded && Checked;
 }

@@ -188,6 +188,8 @@ void Sema::buildModuleTables(llvm::ArrayRef<ModuleAST *> Modules) {
 }
 
 void Sema::checkEnum(EnumDecl *E) {
+  // The REPL builds the tables of a checked behavior again.
+  E->Values.Values.clear();
   E->Values.Name = E->getName().Name.str();
   E->Ty = E->IsTaskState
               ? Types.getTaskState()
@@ -336,6 +338,13 @@ LookupResult Sema::findUnqualified(llvm::StringRef Name, LookupMode Mode) {
     R.Ty = C;
     return R;
   }
+  // The world module's functions, like its classes and enums.
+  if (World && Mode == LookupMode::Value)
+    if (const NativeFunction *F = World->findFunction(Name)) {
+      R.Kind = LookupKind::NativeFn;
+      R.NativeFn = F;
+      return R;
+    }
   if (Mode == LookupMode::Value && Name == "TaskState") {
     R.Kind = LookupKind::TypeName;
     R.Ty = Types.getTaskState();
@@ -371,14 +380,16 @@ private:
 };
 } // namespace
 
-void Sema::suggestNearest(const Ident &Id,
+bool Sema::suggestNearest(const Ident &Id,
                           llvm::ArrayRef<llvm::StringRef> Candidates) {
   NearestName Near(Id.Name);
   for (llvm::StringRef C : Candidates)
     Near.consider(C);
-  if (Near.get())
-    diag(Id.Loc, diag::note_did_you_mean)
-        << *Near.get() << llvm::SMFixIt(Id.getRange(), *Near.get());
+  if (!Near.get())
+    return false;
+  diag(Id.Loc, diag::note_did_you_mean)
+      << *Near.get() << llvm::SMFixIt(Id.getRange(), *Near.get());
+  return true;
 }
 
 std::optional<std::string> Sema::findNearValueName(llvm::StringRef Name) {
@@ -406,6 +417,9 @@ std::optional<std::string> Sema::findNearValueName(llvm::StringRef Name) {
     Consider("input");
     Consider("output");
   }
+  if (World)
+    for (const NativeFunction &F : World->Functions)
+      Consider(F.Name);
   return Near.get();
 }
 
@@ -614,7 +628,9 @@ LookupResult Sema::lookupQualified(const QualifiedName &N) {
     }
     return lookupEnumValue(EnumTy, Q.Name, Second);
   }
-  if (KnownModules.count(Q.Name)) {
+  // A module loaded for another file, or a file the loader would find.
+  if (KnownModules.count(Q.Name) ||
+      (FindModuleFile && FindModuleFile(*CurModule->AST, Q.Name))) {
     diag(Q.Loc, diag::err_module_not_required) << Q.Name << Q.getRange();
     return R;
   }
@@ -622,8 +638,8 @@ LookupResult Sema::lookupQualified(const QualifiedName &N) {
   if (!ReportedQualifiers.insert(Q.Name).second)
     return R;
   diag(Q.Loc, diag::err_unknown_qualifier) << Q.Name << Q.getRange();
-  // Without any binding object, the likeliest cause is a missing --bind,
-  // not a typo.
+  // Without any native module from a file, the likeliest cause is a
+  // missing --bind, not a typo.
   if (!hasBindingModules()) {
     if (!NotedUnbound)
       diag(Q.Loc, diag::note_maybe_unbound) << Q.Name;
@@ -633,6 +649,8 @@ LookupResult Sema::lookupQualified(const QualifiedName &N) {
   // What a qualifier may name here: modules, TaskState, enums.
   llvm::SmallVector<llvm::StringRef, 16> Names = {CurModule->AST->Name,
                                                   "TaskState"};
+  for (const auto &Entry : CurModule->Enums)
+    Names.push_back(Entry.getKey());
   for (const auto &Entry : CurModule->Requires)
     Names.push_back(Entry.getKey());
   for (const RequireDecl &Req : CurModule->AST->Requires)
@@ -654,14 +672,18 @@ void Sema::reportRedefinition(const Decl &New, const Decl &Prev) {
 }
 
 bool Sema::hasBindingModules() const {
-  return llvm::any_of(AllNatives,
-                      [](const NativeModule *M) { return !M->File.empty(); });
+  // The required native modules and the world module (which may be the
+  // only one given).
+  auto FromFile = [](const NativeModule *M) { return !M->File.empty(); };
+  return llvm::any_of(AllNatives, FromFile) || (World && FromFile(World));
 }
 
 bool bsc::checkBehavior(llvm::ArrayRef<ModuleAST *> Modules, ASTContext &Ctx,
                         DiagnosticEngine &Diags, Behavior &Out,
-                        const NativeRegistry *Natives) {
+                        const NativeRegistry *Natives,
+                        ModuleFileFinder FindModuleFile) {
   Sema S(Ctx, Diags, Out, Natives);
+  S.FindModuleFile = FindModuleFile;
   return S.run(Modules);
 }
 

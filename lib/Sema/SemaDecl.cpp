@@ -40,6 +40,16 @@ const Type *Sema::resolveType(const QualifiedName &N) {
     break;
   }
   diag(N.getLoc(), diag::err_not_a_type) << N.str() << N.getRange();
+  // `task Activity(Activity a)`: the task hides the world's enum.
+  if (!N.isQualified()) {
+    const Type *Hidden = findRequiredEnum(N.Parts[0].Name);
+    if (!Hidden)
+      Hidden = findWorldClass(N.Parts[0].Name);
+    if (Hidden)
+      diag(N.getLoc(), diag::note_type_hidden)
+          << N.str() << Hidden->getName()
+          << llvm::SMFixIt(N.getRange(), Hidden->getName().str());
+  }
   return Types.getError();
 }
 

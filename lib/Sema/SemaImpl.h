@@ -111,8 +111,8 @@ public:
   /// close enough to suggest (`did you mean`).
   std::optional<std::string> findNearValueName(llvm::StringRef Name);
   /// Adds note_did_you_mean at `Id` for the candidate nearest to its name
-  /// (NearestName's rule), if one is near enough.
-  void suggestNearest(const Ident &Id,
+  /// (NearestName's rule), if one is near enough; returns whether it did.
+  bool suggestNearest(const Ident &Id,
                       llvm::ArrayRef<llvm::StringRef> Candidates);
   /// The value `Value` of the enum `EnumName` whose values are `Values`
   /// (null: TaskState's own done, running, failure) and of type `ValueTy`.
@@ -255,6 +255,8 @@ public:
   /// Checking a REPL line (ReplChecker): `input` is writable and `output`
   /// readable.
   bool Repl = false;
+  /// checkBehavior's: whether a module file could be required (or null).
+  ModuleFileFinder FindModuleFile = nullptr;
 
   std::vector<std::unique_ptr<ModuleInfo>> ModuleInfos;
   llvm::DenseMap<const ModuleAST *, ModuleInfo *> InfoOf;

@@ -203,11 +203,14 @@ TEST_F(SemaTest, TaskStateAndIntDoNotMix) {
             Msgs{"invalid operands to binary '==' ('TaskState' and 'int')"});
 }
 
-TEST_F(SemaTest, StringsAreNeverCompared) {
-  func("f", "", {var("bool", "b", bin(BinaryOp::Eq, str("a"), str("a")))});
+TEST_F(SemaTest, StringsCompareOnlyForEquality) {
+  BinaryExpr *Eq = bin(BinaryOp::Ne, str("a"), str("b"));
+  func("f", "", {var("bool", "b", Eq),
+                 var("bool", "c", bin(BinaryOp::Lt, str("a"), str("a")))});
   EXPECT_FALSE(check());
+  EXPECT_TRUE(Eq->Ty->isBool());
   EXPECT_EQ(messages(),
-            Msgs{"invalid operands to binary '==' ('string' and 'string')"});
+            Msgs{"invalid operands to binary '<' ('string' and 'string')"});
 }
 
 TEST_F(SemaTest, ErrorTypeIsPoison) {

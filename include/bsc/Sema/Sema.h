@@ -4,6 +4,7 @@
 
 #include "bsc/AST/AST.h"
 #include "bsc/Basic/Diagnostic.h"
+#include "llvm/ADT/STLFunctionalExtras.h"
 #include <memory>
 #include <optional>
 
@@ -58,9 +59,16 @@ struct Behavior {
 /// enums are visible unqualified in every module and whose name works as a
 /// qualifier without `requires`. Other native modules are reached through
 /// the `requires` the loader resolved.
+///
+/// `FindModuleFile` tells whether `requires "Name"` in a module would find
+/// a file (the module loader's search): a qualifier naming such a module
+/// without the `requires` is then err_module_not_required.
+using ModuleFileFinder =
+    llvm::function_ref<bool(const ModuleAST &From, llvm::StringRef Name)>;
 bool checkBehavior(llvm::ArrayRef<ModuleAST *> Modules, ASTContext &Ctx,
                    DiagnosticEngine &Diags, Behavior &Out,
-                   const NativeRegistry *Natives = nullptr);
+                   const NativeRegistry *Natives = nullptr,
+                   ModuleFileFinder FindModuleFile = nullptr);
 
 /// Whether C can call a func or task as an entry of the compiled object:
 /// every parameter is int, float or bool, and the result is not a class
