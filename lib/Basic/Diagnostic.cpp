@@ -24,6 +24,7 @@ const struct {
     {"yield-loop", diag::warn_yield_loop},
     {"yield-loop", diag::warn_endless_loop_in_func},
     {"unreachable-code", diag::warn_unreachable_code},
+    {"double-yield", diag::warn_double_yield},
     {"duplicate-require", diag::warn_duplicate_require},
 };
 } // namespace

@@ -106,6 +106,15 @@ void Sema::warnIfEndless(const ForStmt *S) {
 
 void Sema::checkFor(ForStmt *S) {
   warnIfEndless(S);
+  // `for(;; yield)` whose body also yields on every pass: two steps per
+  // iteration, which a CABSL port rarely means.
+  if (S->Step && llvm::isa<YieldStmt>(S->Step) && S->Body)
+    for (Stmt *B : S->Body->Stmts)
+      if (auto *Y = llvm::dyn_cast<YieldStmt>(B)) {
+        diag(Y->getLoc(), diag::warn_double_yield);
+        diag(S->Step->getLoc(), diag::note_step_yield);
+        break;
+      }
   pushScope(); // The head's scope: `for(int i = 0; ...)`.
   if (S->Init)
     checkStmt(S->Init);
