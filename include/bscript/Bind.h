@@ -98,6 +98,8 @@ enum MemberKind : u32 {
   KindProperty = BS_KIND_PROPERTY,
   KindMethod = BS_KIND_METHOD,
   KindFunction = BS_KIND_FUNCTION,
+  KindConstructor = BS_KIND_CONSTRUCTOR,
+  KindConstant = BS_KIND_CONSTANT,
 };
 
 /// Flags of a member.
@@ -176,6 +178,9 @@ struct Member {
   u32 firstParam, numParams;
   // Appended in descriptor version 1 (readers of shorter records read 0):
   u32 extent[4]; // an array field: its extents, outermost first, then 0s
+  // Appended in descriptor version 2:
+  u32 value; // a constant: its i32 value, or the bits of its float
+  u32 reserved;
 };
 
 struct Param {
@@ -249,6 +254,7 @@ BS_AT_WORD(Member, firstParam, BS_MEMBER_POINTERS, BS_MEMBER_FIRST_PARAM);
 BS_AT_WORD(Member, numParams, BS_MEMBER_POINTERS, BS_MEMBER_NUM_PARAMS);
 BS_AT_WORD(Member, extent, BS_MEMBER_POINTERS, BS_MEMBER_EXTENT);
 static_assert(sizeof(Member::extent) == 4 * BS_MEMBER_MAX_EXTENTS);
+BS_AT_WORD(Member, value, BS_MEMBER_POINTERS, BS_MEMBER_VALUE);
 static_assert(sizeof(Member) == BS_MEMBER_POINTERS * sizeof(void *) + 4 * BS_MEMBER_WORDS);
 BS_AT_POINTER(Param, key, BS_PARAM_KEY);
 BS_AT_WORD(Param, code, BS_PARAM_POINTERS, BS_PARAM_CODE);
@@ -325,6 +331,7 @@ inline void defaults_without_a_preceding_func() {}
 inline void default_value_does_not_match_the_parameter_type() {}
 inline void enum_values_must_directly_follow_their_registerEnum() {}
 inline void empty_name() {}
+inline void constant_value_does_not_fit_in_an_int() {}
 } // namespace error
 
 //===----------------------------------------------------------------------===//
@@ -1042,6 +1049,13 @@ constexpr u32 addCallable(Module &Mod, u32 Owner, const char *Name,
   return I;
 }
 
+/// The constructor T(A...) as a function returning T: the thunk of a
+/// `.ctor<A...>()` (a template with external linkage, so generated code
+/// calls it by name like any other thunk).
+template <class T, class... A> T construct(A... Args) {
+  return T(Args...);
+}
+
 template <class X> constexpr void setDefault(rec::Param &P, const X &V) {
   static_assert(std::is_arithmetic_v<X> || std::is_enum_v<X>,
                 "bs: .defaults(...) takes scalar values only (bool, int, "
@@ -1183,8 +1197,23 @@ public:
     return var<Ptr>(Name, CppName);
   }
 
+  /// A constructor T(A...): the script writes `Module::T(a, ...)`, and the
+  /// constructors of one class are told apart by their parameters.
+  template <class... A> constexpr ClassBuilder &ctor() {
+    static_assert(std::is_constructible_v<T, A...>,
+                  "bs: .ctor<A...>() needs a constructor T(A...)");
+    static_assert(std::is_move_constructible_v<T> ||
+                      std::is_copy_constructible_v<T>,
+                  "bs: .ctor<A...>() returns T by value");
+    detail::u32 I = detail::addCallable<void, &detail::construct<T, A...>>(
+        *M, Index, "_ctor_", nullptr);
+    if (detail::rec::Member *R = M->member(I))
+      R->kind = detail::KindConstructor;
+    return *this;
+  }
+
   /// Restates the C++ default arguments of the trailing parameters of the
-  /// preceding .func (templates cannot see default arguments).
+  /// preceding .func or .ctor (templates cannot see default arguments).
   template <class... D> constexpr ClassBuilder &defaults(const D &...Ds) {
     M->setDefaults(Ds...);
     return *this;
@@ -1279,6 +1308,35 @@ constexpr FunctionBuilder registerFunction(Module &M, const char *Name,
   return registerFunction<F>(M, Name, CppName);
 }
 
+/// Registers a constant of the module: `registerConstant(module, "off",
+/// 10000)` is `Module::off` in scripts. An int, float, bool or registered
+/// enum value; computed here at compile time, so the script's constant
+/// folds like its own.
+template <class X>
+constexpr void registerConstant(Module &M, const char *Name, const X &V,
+                                const char *CppName = nullptr) {
+  static_assert(std::is_arithmetic_v<X> || std::is_enum_v<X>,
+                "bs: registerConstant takes an int, float, bool or enum "
+                "value");
+  using namespace detail;
+  u32 I = M.addMember(KindConstant, None, Name, CppName);
+  rec::Member *R = M.member(I);
+  if (!R)
+    return;
+  setResult<X>(R);
+  R->flags |= MemberReadOnly;
+  if constexpr (std::is_floating_point_v<X>) {
+    R->value = __builtin_bit_cast(u32, static_cast<float>(V));
+  } else if constexpr (std::is_same_v<X, bool>) {
+    R->value = V ? 1 : 0;
+  } else {
+    auto N = static_cast<long long>(V);
+    if (N < -2147483647LL - 1 || N > 2147483647LL)
+      error::constant_value_does_not_fit_in_an_int();
+    R->value = static_cast<u32>(static_cast<i32>(N));
+  }
+}
+
 /// Registers enum E as `Name`; add its values with .value("a", E::a).
 template <class E>
 constexpr EnumBuilder<E> registerEnum(Module &M, const char *Name,
@@ -1318,6 +1376,7 @@ template <class T> constexpr void registerOutput(Module &M) {
 } // namespace registration
 
 using registration::registerClass;
+using registration::registerConstant;
 using registration::registerEnum;
 using registration::registerFunction;
 using registration::registerInput;

@@ -23,7 +23,7 @@
 #include <stdint.h>
 
 /* The format version a writer stores and a reader accepts up to. */
-#define BS_DESCRIPTOR_VERSION 1u
+#define BS_DESCRIPTOR_VERSION 2u
 /* "BSMOD\0\0\1": the first eight bytes. */
 #define BS_DESCRIPTOR_MAGIC "BSMOD\0\0\1"
 #define BS_DESCRIPTOR_HEADER_SIZE 112u
@@ -95,7 +95,11 @@ enum bs_member_field {
    * A record that ends before them (an older Bind.h) has no extents. */
   BS_MEMBER_EXTENT = 10,
   BS_MEMBER_MAX_EXTENTS = 4,
-  BS_MEMBER_WORDS = 14,
+  /* Appended in version 2: a constant's value (i32, or the f32 bits). A
+   * record that ends before it (version 1) is not a constant. */
+  BS_MEMBER_VALUE = 14,
+  BS_MEMBER_RESERVED = 15, /* keeps records a multiple of 8 bytes */
+  BS_MEMBER_WORDS = 16,
   BS_MEMBER_WORDS_WITHOUT_EXTENTS = 10
 };
 
@@ -162,7 +166,10 @@ enum bs_member_kind {
   BS_KIND_FIELD = 0,
   BS_KIND_PROPERTY = 1,
   BS_KIND_METHOD = 2,
-  BS_KIND_FUNCTION = 3
+  BS_KIND_FUNCTION = 3,
+  /* Version 2: */
+  BS_KIND_CONSTRUCTOR = 4, /* owner: the class; result: the class */
+  BS_KIND_CONSTANT = 5     /* owner: none; no thunk; the value in VALUE */
 };
 enum bs_member_flag {
   BS_MEMBER_CONST_SELF = 1, /* does not modify the object */

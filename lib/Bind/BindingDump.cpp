@@ -8,6 +8,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "bsc/Bind/Bind.h"
+#include <cstring>
 #include "llvm/Support/Format.h"
 #include "llvm/Support/raw_ostream.h"
 
@@ -66,6 +67,10 @@ const char *kindName(MemberKind K) {
     return "method";
   case MemberKind::Function:
     return "function";
+  case MemberKind::Constructor:
+    return "constructor";
+  case MemberKind::Constant:
+    return "constant";
   }
   return "?";
 }
@@ -75,7 +80,16 @@ void dumpMember(const BindingModel &Model, const BoundMember &M,
   std::string Unusable = getUnusableReason(M);
   OS << "    " << (Unusable.empty() ? "" : "skipped ") << kindName(M.Kind)
      << " " << M.Name;
-  if (M.Kind == MemberKind::Field || M.Kind == MemberKind::Property) {
+  if (M.Kind == MemberKind::Constant) {
+    OS << " : " << typeName(Model, M.Result) << " = ";
+    if (M.Result.Code == TypeCode::Float) {
+      float F;
+      std::memcpy(&F, &M.Value, 4);
+      OS << format("%g", double(F));
+    } else {
+      OS << int32_t(M.Value);
+    }
+  } else if (M.Kind == MemberKind::Field || M.Kind == MemberKind::Property) {
     OS << " : " << typeName(Model, M.Result);
     if (M.FieldOffset)
       OS << " offset " << *M.FieldOffset;
@@ -182,12 +196,12 @@ void bind::dumpBindings(const BindingModel &Model, raw_ostream &OS) {
         OS << " " << V.Name << "=" << V.Number;
       OS << "\n      key " << E.Key << "\n";
     }
-    for (const BoundMember &F : M.Functions) {
-      OS << "  ";
-      std::string S;
-      raw_string_ostream SS(S);
-      dumpMember(Model, F, SS);
-      OS << StringRef(S).drop_front(4);
-    }
+    for (const auto *List : {&M.Functions, &M.Constants})
+      for (const BoundMember &F : *List) {
+        std::string S;
+        raw_string_ostream SS(S);
+        dumpMember(Model, F, SS);
+        OS << "  " << StringRef(S).drop_front(4);
+      }
   }
 }

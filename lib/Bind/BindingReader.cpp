@@ -328,6 +328,8 @@ void Reader::resolve(BindingModel &Model) {
         ResolveMember(M, Mb, M.Name + "::" + C.Name + "." + Mb.Name);
     for (BoundMember &Mb : M.Functions)
       ResolveMember(M, Mb, M.Name + "::" + Mb.Name);
+    for (BoundMember &Mb : M.Constants)
+      ResolveMember(M, Mb, M.Name + "::" + Mb.Name);
   }
 }
 

@@ -285,14 +285,25 @@ void ObjectReader::readDescriptor(StringRef SymName, uint64_t Base,
       Path += M.Classes[Owner].Name + ".";
     }
     Path += Mb.Name;
-    if (Kind > uint32_t(MemberKind::Function)) {
+    if (Kind > uint32_t(MemberKind::Constant)) {
       ReportAt(Path, diag::err_bind_damaged_descriptor,
                {"unknown member kind " + std::to_string(Kind)});
       continue;
     }
     Mb.Kind = MemberKind(Kind);
-    if (Owner == NoIndex && Mb.Kind != MemberKind::Function) {
+    if (Owner == NoIndex && Mb.Kind != MemberKind::Function &&
+        Mb.Kind != MemberKind::Constant) {
       ReportAt(Path, diag::err_bind_module_member_not_function);
+      continue;
+    }
+    if (Owner != NoIndex && Mb.Kind == MemberKind::Constant) {
+      ReportAt(Path, diag::err_bind_damaged_descriptor,
+               {"a constant that belongs to a class"});
+      continue;
+    }
+    if (Owner == NoIndex && Mb.Kind == MemberKind::Constructor) {
+      ReportAt(Path, diag::err_bind_damaged_descriptor,
+               {"a constructor of no class"});
       continue;
     }
     std::optional<TypeCode> RCode = CodeOf(
@@ -315,6 +326,26 @@ void ObjectReader::readDescriptor(StringRef SymName, uint64_t Base,
       if (Extent == 0)
         break;
       Mb.Result.Extents.push_back(Extent);
+    }
+    if (Mb.Kind == MemberKind::Constant) {
+      // Version 2 records carry the value; a constant is nothing else.
+      if (TablePtrs[T_Member] * P + 4 * (BS_MEMBER_VALUE + 1) >
+          Size[T_Member]) {
+        ReportAt(Path, diag::err_bind_damaged_descriptor,
+                 {"a constant without a value"});
+        continue;
+      }
+      Mb.Value = Word(T_Member, I, BS_MEMBER_VALUE);
+      if (Mb.Result.Code == TypeCode::Void ||
+          Mb.Result.Code == TypeCode::String ||
+          Mb.Result.Code == TypeCode::Class) {
+        ReportAt(Path, diag::err_bind_damaged_descriptor,
+                 {"a constant that is not an int, float, bool or enum"});
+        continue;
+      }
+      Mb.Result.Key = Key(Ptr(T_Member, I, BS_MEMBER_RESULT_KEY, Path), Path);
+      M.Constants.push_back(std::move(Mb));
+      continue;
     }
     size_t ErrorsBeforeThunk = Errs.size();
     Mb.Thunk = Thunk(Ptr(T_Member, I, BS_MEMBER_THUNK, Path), 0, Path);

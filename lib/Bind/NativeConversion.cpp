@@ -17,6 +17,7 @@
 //===----------------------------------------------------------------------===//
 #include "bsc/AST/Native.h"
 #include "bsc/Bind/Bind.h"
+#include <cstring>
 
 using namespace bsc;
 using namespace bsc::bind;
@@ -83,12 +84,24 @@ private:
       else
         skip(M.Name + "::" + F.Name, F, NM.Unusable);
     }
+    for (const BoundMember &B : M.Constants) {
+      NativeConstant NC;
+      NC.Name = B.Name;
+      if (!convertType(B.Result, NC.Type))
+        continue; // An enum of no loaded module: the reader reported it.
+      NC.Int = int32_t(B.Value);
+      std::memcpy(&NC.Float, &B.Value, 4);
+      NM.Constants.push_back(std::move(NC));
+    }
     for (size_t I = 0; I != M.Classes.size(); ++I) {
       NativeClass &NC = NM.Classes[I];
       for (const BoundMember &Mb : M.Classes[I].Members) {
         NativeFunction NF;
-        if (convertMember(Mb, &NC, NF))
-          NC.Members.push_back(std::move(NF));
+        bool Ok = convertMember(Mb, &NC, NF);
+        std::vector<NativeFunction> &Into =
+            Mb.Kind == MemberKind::Constructor ? NC.Constructors : NC.Members;
+        if (Ok)
+          Into.push_back(std::move(NF));
         else
           skip(NC.QualifiedName + "." + Mb.Name, Mb, NC.Unusable);
       }
@@ -158,8 +171,11 @@ private:
       NF.Kind = NativeFunction::Method;
       break;
     case MemberKind::Function:
+    case MemberKind::Constructor:
       NF.Kind = NativeFunction::Function;
       break;
+    case MemberKind::Constant:
+      return false; // Not a member: NativeModule::Constants.
     }
     NF.Name = B.Name;
     NF.Symbol = B.Thunk;

@@ -239,6 +239,22 @@ const Type *Sema::findRequiredEnum(llvm::StringRef Name) {
   return nullptr;
 }
 
+ConstDecl *Sema::getNativeConstant(const NativeConstant &C) {
+  ConstDecl *&D = NativeConstants[&C];
+  if (D)
+    return D;
+  D = Ctx.create<ConstDecl>(llvm::SMRange(), Ident{Ctx.saveString(C.Name), {}},
+                            QualifiedName(), nullptr);
+  D->Ty = resolveNativeType(C.Type);
+  D->Value.Int = C.Int;
+  D->Value.Float = C.Float;
+  D->Value.Bool = C.Int != 0;
+  D->State = ConstDecl::CheckState::Done;
+  if (D->Ty->isError())
+    D->Ty = nullptr; // Poison: an enum of a module not loaded.
+  return D;
+}
+
 const Type *Sema::findWorldClass(llvm::StringRef Name) {
   if (World)
     if (const NativeClass *C = World->findClass(Name))
@@ -338,13 +354,20 @@ LookupResult Sema::findUnqualified(llvm::StringRef Name, LookupMode Mode) {
     R.Ty = C;
     return R;
   }
-  // The world module's functions, like its classes and enums.
-  if (World && Mode == LookupMode::Value)
+  // The world module's functions and constants, like its classes and
+  // enums.
+  if (World && Mode == LookupMode::Value) {
     if (const NativeFunction *F = World->findFunction(Name)) {
       R.Kind = LookupKind::NativeFn;
       R.NativeFn = F;
       return R;
     }
+    if (const NativeConstant *C = World->findConstant(Name)) {
+      R.Kind = LookupKind::Constant;
+      R.Const = getNativeConstant(*C);
+      return R;
+    }
+  }
   if (Mode == LookupMode::Value && Name == "TaskState") {
     R.Kind = LookupKind::TypeName;
     R.Ty = Types.getTaskState();
@@ -417,9 +440,12 @@ std::optional<std::string> Sema::findNearValueName(llvm::StringRef Name) {
     Consider("input");
     Consider("output");
   }
-  if (World)
+  if (World) {
     for (const NativeFunction &F : World->Functions)
       Consider(F.Name);
+    for (const NativeConstant &C : World->Constants)
+      Consider(C.Name);
+  }
   return Near.get();
 }
 
@@ -577,6 +603,15 @@ LookupResult Sema::lookupQualified(const QualifiedName &N) {
       R.Ty = Ty;
       return R;
     }
+    if (const NativeConstant *C = QM.NativeMod->findConstant(Member)) {
+      if (N.Parts.size() == 3) {
+        diag(Q.Loc, diag::err_unknown_qualifier) << Join(2);
+        return R;
+      }
+      R.Kind = LookupKind::Constant;
+      R.Const = getNativeConstant(*C);
+      return R;
+    }
     const NativeFunction *F = QM.NativeMod->findFunction(Member);
     if (!F)
       if (const UnusableMember *U =
@@ -591,6 +626,8 @@ LookupResult Sema::lookupQualified(const QualifiedName &N) {
       llvm::SmallVector<llvm::StringRef, 16> Names;
       for (const NativeFunction &NF : QM.NativeMod->Functions)
         Names.push_back(NF.Name);
+      for (const NativeConstant &NC : QM.NativeMod->Constants)
+        Names.push_back(NC.Name);
       for (const NativeEnum &NE : QM.NativeMod->Enums)
         Names.push_back(NE.Name);
       for (const NativeClass &NC : QM.NativeMod->Classes)

@@ -496,6 +496,7 @@ const Type *Sema::checkCall(CallExpr *C, bool AsStatement) {
   std::string Name;
   llvm::SmallVector<const Type *, 4> ParamTys;
   const Type *ResultTy = nullptr;
+  bool ArgsChecked = false;
   if (auto *N = llvm::dyn_cast_or_null<NameExpr>(C->Callee)) {
     Name = N->Name.str();
     LookupResult L = lookup(N->Name, LookupMode::Value);
@@ -515,6 +516,12 @@ const Type *Sema::checkCall(CallExpr *C, bool AsStatement) {
       N->NativeFn = L.NativeFn;
       C->Kind = CallKind::NativeFunction;
       C->NativeFn = L.NativeFn;
+    } else if (L.Kind == LookupKind::TypeName && L.Ty->isClass()) {
+      // `Math::Pose2f(1.0, 2.0, 0.5)`: the arguments choose a constructor.
+      for (Expr *Arg : C->Args)
+        checkExpr(Arg);
+      ArgsChecked = true;
+      resolveConstructor(C, N, L.Ty);
     } else if (L.Kind != LookupKind::Error) {
       diag(N->getLoc(), diag::err_not_callable) << Name << N->getRange();
     }
@@ -545,7 +552,7 @@ const Type *Sema::checkCall(CallExpr *C, bool AsStatement) {
     C->Callee->Ty = ResultTy;
   }
 
-  for (size_t I = 0, E = C->Args.size(); I != E; ++I) {
+  for (size_t I = 0, E = C->Args.size(); I != E && !ArgsChecked; ++I) {
     // An argument for a non-const `T&` parameter may be modified.
     bool Modified = NF && I < NF->Params.size() && NF->Params[I].MutableRef;
     checkExpr(C->Args[I], Modified ? Access::Modify : Access::Read);
@@ -603,6 +610,64 @@ const Type *Sema::checkCall(CallExpr *C, bool AsStatement) {
     return Types.getError();
   }
   return ResultTy;
+}
+
+bool Sema::resolveConstructor(CallExpr *C, NameExpr *Callee, const Type *T) {
+  const NativeClass *Cls = T->getClass();
+  auto Signature = [&](const NativeFunction &Ctor) {
+    std::string S = Cls->Name + "(";
+    for (size_t I = 0; I != Ctor.Params.size(); ++I)
+      S += (I ? ", " : "") + resolveNativeType(Ctor.Params[I])->getName().str();
+    return S + ")";
+  };
+  if (Cls->Constructors.empty()) {
+    diag(Callee->getLoc(), diag::err_no_constructor)
+        << T->getName() << Callee->getRange();
+    return false;
+  }
+  // The viable constructor that needs the fewest int-to-float conversions;
+  // the other b-script conversions are explicit.
+  const NativeFunction *Best = nullptr;
+  unsigned BestConversions = ~0u;
+  bool Ambiguous = false;
+  for (const NativeFunction &Ctor : Cls->Constructors) {
+    if (C->Args.size() < Ctor.getMinArgs() ||
+        C->Args.size() > Ctor.Params.size())
+      continue;
+    unsigned Conversions = 0;
+    bool Viable = true;
+    for (size_t I = 0; I != C->Args.size() && Viable; ++I) {
+      const Type *Arg = C->Args[I]->Ty;
+      const Type *Param = resolveNativeType(Ctor.Params[I]);
+      if (Arg->isError() || Param->isError() || Arg == Param)
+        continue;
+      if (Arg->isInt() && Param->isFloat())
+        ++Conversions;
+      else
+        Viable = false;
+    }
+    if (!Viable || Conversions > BestConversions)
+      continue;
+    Ambiguous = Conversions == BestConversions;
+    Best = &Ctor;
+    BestConversions = Conversions;
+  }
+  if (!Best || Ambiguous) {
+    std::string Args;
+    for (size_t I = 0; I != C->Args.size(); ++I)
+      Args += (I ? ", " : "") + C->Args[I]->Ty->getName().str();
+    diag(C->getLoc(), Best ? diag::err_ambiguous_constructor
+                           : diag::err_no_matching_constructor)
+        << T->getName() << Args << C->getRange();
+    for (const NativeFunction &Ctor : Cls->Constructors)
+      diag(C->getLoc(), diag::note_constructor_candidate) << Signature(Ctor);
+    return false;
+  }
+  Callee->Kind = NameKind::NativeFunction;
+  Callee->NativeFn = Best;
+  C->Kind = CallKind::NativeFunction;
+  C->NativeFn = Best;
+  return true;
 }
 
 //===----------------------------------------------------------------------===//

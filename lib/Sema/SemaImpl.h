@@ -134,6 +134,12 @@ public:
   const Type *findRequiredEnum(llvm::StringRef E);
   /// The class named `C` of the world module (visible unqualified).
   const Type *findWorldClass(llvm::StringRef C);
+  /// A registered constant as a checked module constant (made once), so
+  /// that it folds and generates like the script's own.
+  ConstDecl *getNativeConstant(const NativeConstant &C);
+  /// Picks the constructor of class `T` for the (checked) arguments of
+  /// `C` and makes `C` a call of it; false after reporting.
+  bool resolveConstructor(CallExpr *C, NameExpr *Callee, const Type *T);
 
   //--- SemaDecl.cpp: types, signatures, declarations, bodies ----------------
   const Type *resolveType(const QualifiedName &N);
@@ -255,6 +261,7 @@ public:
   /// Checking a REPL line (ReplChecker): `input` is writable and `output`
   /// readable.
   bool Repl = false;
+  llvm::DenseMap<const NativeConstant *, ConstDecl *> NativeConstants;
   /// checkBehavior's: whether a module file could be required (or null).
   ModuleFileFinder FindModuleFile = nullptr;
 

@@ -108,7 +108,7 @@ TEST(DiagnosticTest, WarningGroupsSilenceTheirWarningsAndNotes) {
   EXPECT_EQ(D.getDiagnostics()[0].Kind, diag::warn_unreachable_code);
   EXPECT_EQ(D.getNumWarnings(), 1u);
   EXPECT_EQ(DiagnosticEngine::getWarningGroupList(),
-            "'yield-loop', 'unreachable-code', 'duplicate-require'");
+            "'yield-loop', 'unreachable-code', 'double-yield', 'duplicate-require'");
 }
 
 } // namespace

@@ -552,7 +552,7 @@ TEST(BindTest, ErrorsAreDiagnosticKinds) {
   EXPECT_EQ(Problems[0].Kind, diag::err_bind_bad_version);
   EXPECT_EQ(Problems[0].Args,
             (std::vector<std::string>{obj("bad_version.o") + ": bs_module_Bad",
-                                      "9", "1"}));
+                                      "9", "2"}));
   EXPECT_EQ(Problems[1].Kind, diag::err_bind_cannot_open);
   EXPECT_EQ(Problems[1].Args.size(), 2u);
   EXPECT_EQ(Problems[2].Kind, diag::err_bind_unexpected_relocation);

@@ -142,6 +142,9 @@ struct NativeClass {
   /// assign(T *dst, const T *src), destroy(T *).
   std::string Construct, Copy, Assign, Destroy;
   std::vector<NativeFunction> Members;
+  /// `.ctor<A...>()`: functions (Kind Function, Owner this class) that
+  /// return a value of this class.
+  std::vector<NativeFunction> Constructors;
   std::vector<UnusableMember> Unusable;
 
   const NativeFunction *findMember(llvm::StringRef N) const {
@@ -162,9 +165,19 @@ struct NativeEnum {
   const NativeModule *Module = nullptr; ///< Set for binding modules.
 };
 
+/// `registerConstant(module, "off", 10000)`: a value known when bsc reads
+/// the binding, used as a script's own constants are.
+struct NativeConstant {
+  std::string Name;
+  NativeType Type; ///< Int, Float, Bool or Enum.
+  int32_t Int = 0; ///< Int, Bool (0/1) and Enum.
+  float Float = 0;
+};
+
 struct NativeModule {
   std::string Name;
   std::vector<NativeFunction> Functions;
+  std::vector<NativeConstant> Constants;
   std::vector<NativeEnum> Enums;
   std::vector<NativeClass> Classes;
   /// Module functions b-script cannot call.
@@ -180,6 +193,12 @@ struct NativeModule {
   /// thunks among the --bind objects.
   bool Standard = false;
 
+  const NativeConstant *findConstant(llvm::StringRef N) const {
+    for (const NativeConstant &C : Constants)
+      if (C.Name == N)
+        return &C;
+    return nullptr;
+  }
   const NativeFunction *findFunction(llvm::StringRef N) const {
     for (const NativeFunction &F : Functions)
       if (F.Name == N)

@@ -102,7 +102,10 @@ enum class MemberKind : uint8_t {
   Field = BS_KIND_FIELD,
   Property = BS_KIND_PROPERTY,
   Method = BS_KIND_METHOD,
-  Function = BS_KIND_FUNCTION
+  Function = BS_KIND_FUNCTION,
+  Constructor = BS_KIND_CONSTRUCTOR, ///< `.ctor<A...>()`: a Function of the
+                                     ///< class's scope returning the class.
+  Constant = BS_KIND_CONSTANT        ///< registerConstant: Value, no thunk.
 };
 
 /// Flags of a BoundMember (bs::detail::MemberFlag).
@@ -128,13 +131,17 @@ struct BoundMember {
   BoundType Result;                    ///< Fields/properties: their type.
   unsigned Flags = 0;
   std::vector<BoundParam> Params;
+  /// Constants: the value (an int, enum or bool; a float's bits).
+  uint32_t Value = 0;
 
   bool isConstSelf() const { return Flags & MF_ConstSelf; }
   bool isReadOnly() const { return Flags & MF_ReadOnly; }
   bool resultViaOut() const { return Flags & MF_ResultOut; }
-  /// Methods, fields and properties take the object; functions do not.
+  /// Methods, fields and properties take the object; functions,
+  /// constructors and constants do not.
   bool hasSelf() const {
-    return Kind != MemberKind::Function;
+    return Kind == MemberKind::Field || Kind == MemberKind::Property ||
+           Kind == MemberKind::Method;
   }
 };
 
@@ -187,6 +194,7 @@ struct BoundModule {
   uint32_t Version = 0;
   std::vector<BoundClass> Classes;
   std::vector<BoundMember> Functions; ///< Module-level functions.
+  std::vector<BoundMember> Constants; ///< registerConstant.
   std::vector<BoundEnum> Enums;
   int InputClass = -1;  ///< Index in Classes of the type of `input`.
   int OutputClass = -1; ///< Index in Classes of the type of `output`.
