@@ -44,6 +44,7 @@
 #error "bscript/Bind.h needs C++20: compile the bindings with -std=c++20"
 #endif
 
+#include "bscript.h"
 #include "descriptor.h"
 
 #include <cstddef>
@@ -83,6 +84,7 @@ enum Code : u32 {
   CodeString = BS_CODE_STRING,
   CodeEnum = BS_CODE_ENUM,
   CodeClass = BS_CODE_CLASS,
+  CodeContext = BS_CODE_CONTEXT,
 };
 
 /// Flags of a parameter or result type.
@@ -334,6 +336,33 @@ inline void empty_name() {}
 inline void constant_value_does_not_fit_in_an_int() {}
 } // namespace error
 
+/// The running behavior, for registered C++ that needs to know which robot
+/// calls it: a function or method whose first C++ parameter is
+/// `bs::Context &` gets it from generated code, and the script does not
+/// pass it (docs/bindings.md "Per-robot context"). It is the state's
+/// header (bs_state_header); nothing to construct or copy.
+class Context {
+public:
+  Context() = delete;
+  Context(const Context &) = delete;
+  Context &operator=(const Context &) = delete;
+  /// What the embedding attached with bs_state_set_user (null if nothing).
+  void *user() const noexcept { return Header.user; }
+  template <class T> T *user() const noexcept {
+    return static_cast<T *>(Header.user);
+  }
+  /// This cycle's `input` and `output` objects.
+  const void *input() const noexcept { return Header.input; }
+  void *output() const noexcept { return Header.output; }
+  /// The behavior's cycle number (the first cycle is 1).
+  std::uint32_t cycle() const noexcept { return Header.cycle; }
+
+private:
+  bs_state_header Header;
+};
+static_assert(sizeof(Context) == sizeof(bs_state_header) &&
+              std::is_standard_layout_v<Context>);
+
 //===----------------------------------------------------------------------===//
 // Overload selection and evaluating operators
 //===----------------------------------------------------------------------===//
@@ -389,7 +418,9 @@ namespace detail {
 //===----------------------------------------------------------------------===//
 
 template <class T> constexpr const void *keyOf() {
-  if constexpr (std::is_enum_v<T> || std::is_class_v<T>)
+  if constexpr (std::is_same_v<T, Context>)
+    return nullptr; // Not a registered type: the state.
+  else if constexpr (std::is_enum_v<T> || std::is_class_v<T>)
     return &TypeKey<T>::id;
   else
     return nullptr;
@@ -492,6 +523,26 @@ template <class A> struct ParamWire {
       return sizeof(D);
   }
 };
+
+/// `bs::Context &`: the state pointer generated code passes.
+template <> struct ParamWire<Context &> {
+  using D = Context;
+  static constexpr u32 C = CodeContext;
+  static constexpr bool ByPointer = true;
+  using W = Context *;
+  static constexpr Context &from(W V) noexcept { return *V; }
+  static constexpr u32 flags() { return TypeRef | TypePointer; }
+  static constexpr u32 size() { return sizeof(void *); }
+};
+
+/// Whether `bs::Context &` appears anywhere but first in A...
+template <class... A> consteval bool contextNotFirst() {
+  bool Seen[] = {false, std::is_same_v<std::remove_cvref_t<A>, Context>...};
+  for (std::size_t I = 2; I < sizeof(Seen); ++I)
+    if (Seen[I])
+      return true;
+  return false;
+}
 
 /// How a result of C++ type R travels: scalars as W, classes through an
 /// out pointer to raw storage (Out).
@@ -865,6 +916,9 @@ template <auto Fn> constexpr const void *holder() {
 template <class L> struct ParamsOf;
 template <class... A> struct ParamsOf<List<A...>> {
   static constexpr u32 Count = sizeof...(A);
+  static_assert(!contextNotFirst<A...>(),
+                "bs: bs::Context & must be the first parameter (after the "
+                "object of a method)");
   template <class Emit> static constexpr void each(Emit &&E) {
     (E(keyOf<std::remove_cvref_t<A>>(), ParamWire<A>::C, ParamWire<A>::flags(),
        ParamWire<A>::size()),

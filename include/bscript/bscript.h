@@ -36,7 +36,7 @@ extern "C" {
 #endif
 
 /** Bumped whenever the layout below changes; bs_behavior_info carries it. */
-#define BS_ABI_VERSION 5
+#define BS_ABI_VERSION 6
 
 /** Task states (language.md): > 0 running, 0 done, < 0 failure. */
 #define BS_TASK_DONE 0
@@ -49,6 +49,10 @@ typedef struct bs_state_header {
   uint32_t reserved;  /**< Zero. */
   const void *input;  /**< The `input` global of this cycle. */
   void *output;       /**< The `output` global of this cycle. */
+  /** The embedding's per-robot pointer (bs_state_set_user), which
+   *  registered C++ reads through bs::Context::user(); NULL after
+   *  bs_state_init. */
+  void *user;
 } bs_state_header;
 
 /** The bit of bs_frame_header.last_call that marks an ending call. */
@@ -166,6 +170,20 @@ static inline void bs_begin_cycle_inline(void *state, const void *input,
   header->cycle += 1;
   header->input = input;
   header->output = output;
+}
+
+/** Attaches the embedding's per-robot data (a blackboard, the robot's
+ *  world) to a state, after bs_state_init: registered functions and
+ *  methods whose first C++ parameter is `bs::Context &` read it with
+ *  `user()` (docs/bindings.md "Per-robot context"). Two robots in one
+ *  process are two states with two user pointers. */
+static inline void bs_state_set_user(void *state, void *user) {
+  ((bs_state_header *)state)->user = user;
+}
+
+/** The pointer bs_state_set_user attached (NULL if none). */
+static inline void *bs_state_user(const void *state) {
+  return ((const bs_state_header *)state)->user;
 }
 
 /** The state that task `name` ("Module::task") left at its most recent call

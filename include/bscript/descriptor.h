@@ -153,7 +153,11 @@ enum bs_type_code {
   BS_CODE_FLOAT = 3,
   BS_CODE_STRING = 4, /* const char * */
   BS_CODE_ENUM = 5,
-  BS_CODE_CLASS = 6
+  BS_CODE_CLASS = 6,
+  /* Parameters only, the first: `bs::Context &`, the running behavior's
+   * state (bscript.h's bs_state_header), which generated code passes and
+   * the script does not write. */
+  BS_CODE_CONTEXT = 7
 };
 /* Flags of a result or parameter type. */
 enum bs_type_flag {

@@ -23,6 +23,8 @@ std::string typeName(const BindingModel &Model, const BoundType &T) {
   switch (T.Code) {
   case TypeCode::Void:
     return "void";
+  case TypeCode::Context:
+    return "bs::Context&";
   case TypeCode::Bool:
     S = "bool";
     break;

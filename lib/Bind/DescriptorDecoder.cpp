@@ -390,8 +390,11 @@ void ObjectReader::readDescriptor(StringRef SymName, uint64_t Base,
       uint32_t PI = First + J;
       std::string PPath = Path + " param " + std::to_string(J);
       BoundParam Pm;
+      uint32_t RawCode = Word(T_Param, PI, BS_PARAM_CODE);
       std::optional<TypeCode> Code =
-          CodeOf(Word(T_Param, PI, BS_PARAM_CODE), /*AllowVoid=*/false, PPath);
+          RawCode == BS_CODE_CONTEXT && J == 0
+              ? std::optional<TypeCode>(TypeCode::Context)
+              : CodeOf(RawCode, /*AllowVoid=*/false, PPath);
       if (!Code)
         continue;
       Pm.Type.Code = *Code;

@@ -146,6 +146,8 @@ private:
         return false;
       Out.TheEnum = &Mods[T.Module]->Enums[T.Index];
       return !T.isOutPointer();
+    case TypeCode::Context:
+      return false; // Only as the first parameter (convertMember).
     case TypeCode::Class:
       Out.TheCode = NativeType::Class;
       Out.Name = Model.getQualifiedName(T);
@@ -187,6 +189,10 @@ private:
     NF.ResultViaOut = B.resultViaOut();
     bool Ok = convertType(B.Result, NF.Result);
     for (const BoundParam &P : B.Params) {
+      if (P.Type.Code == TypeCode::Context) {
+        NF.TakesContext = true; // Generated code passes it; scripts do not.
+        continue;
+      }
       NativeType T;
       Ok = convertType(P.Type, T) && Ok;
       NF.Params.push_back(std::move(T));

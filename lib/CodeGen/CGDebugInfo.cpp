@@ -302,7 +302,9 @@ llvm::DIType *DebugInfoEmitter::getStatePointerType() {
       Member(State, "input", PtrBits, SL->getElementOffset(StateInput),
              WorldPtr(World ? World->Input : nullptr)),
       Member(State, "output", PtrBits, SL->getElementOffset(StateOutput),
-             WorldPtr(World ? World->Output : nullptr))};
+             WorldPtr(World ? World->Output : nullptr)),
+      Member(State, "user", PtrBits, SL->getElementOffset(StateUser),
+             VoidPtr)};
 
   // The frames, a structure per module holding its tasks' frames (tasks
   // are laid out module by module), each with the frame header and the

@@ -269,6 +269,9 @@ llvm::Value *FunctionEmitter::emitNativeCallWithValues(
     assert(Self && "a member call needs its object");
     Args.push_back(Self);
   }
+  // bs::Context & is the state, whose header bs::Context is.
+  if (NF.TakesContext)
+    Args.push_back(StatePtr);
   for (llvm::Value *V : Values) {
     llvm::Type *PTy = FTy->getParamType(Args.size());
     // The C ABI: bool is an int32 0/1; ints promote to float parameters;

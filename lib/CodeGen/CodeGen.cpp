@@ -12,6 +12,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "CodeGenImpl.h"
+#include "bscript/bscript.h"
 #include "llvm/ADT/DenseSet.h"
 #include "llvm/IR/Constants.h"
 #include "llvm/IR/DerivedTypes.h"
@@ -25,8 +26,8 @@
 using namespace bsc;
 using namespace bsc::codegen;
 
-/// The ABI version written into bs_behavior_info (BS_ABI_VERSION).
-static constexpr uint32_t ABIVersion = 5;
+/// The ABI version written into bs_behavior_info: the runtime's.
+static constexpr uint32_t ABIVersion = BS_ABI_VERSION;
 
 std::string bsc::getEntrySymbol(llvm::StringRef BehaviorName,
                                 const CallableDecl &D) {
@@ -175,12 +176,15 @@ llvm::FunctionCallee ModuleEmitter::getNative(const NativeFunction &NF) {
   llvm::FunctionCallee &Slot = Natives[&NF];
   if (Slot)
     return Slot;
-  // wire(R) f([T *self,] wire(A)...) or void f(R *out, [T *self,] ...).
+  // wire(R) f([T *self,] [bs::Context *,] wire(A)...) or void f(R *out,
+  // [T *self,] ...).
   llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
   llvm::SmallVector<llvm::Type *, 4> Params;
   if (NF.ResultViaOut)
     Params.push_back(Ptr);
   if (NF.hasSelf())
+    Params.push_back(Ptr);
+  if (NF.TakesContext)
     Params.push_back(Ptr);
   for (const NativeType &P : NF.Params)
     Params.push_back(getNativeType(P));
@@ -299,8 +303,8 @@ bool ModuleEmitter::keepsInFrame(const Decl *D) const {
 void ModuleEmitter::layoutState() {
   llvm::Type *I32 = llvm::Type::getInt32Ty(Ctx);
   llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
-  // bs_state_header: cycle, reserved, input, output.
-  llvm::SmallVector<llvm::Type *, 8> StateFields = {I32, I32, Ptr, Ptr};
+  // bs_state_header: cycle, reserved, input, output, user.
+  llvm::SmallVector<llvm::Type *, 8> StateFields = {I32, I32, Ptr, Ptr, Ptr};
   for (const TaskDecl *T : B.Tasks) {
     FrameInfo &FI = Frames[T];
     // bs_frame_header: resume, state, last_call; then params, then locals.

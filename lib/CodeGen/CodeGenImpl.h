@@ -41,7 +41,8 @@ enum StateField : unsigned {
   StateReserved = 1,
   StateInput = 2,
   StateOutput = 3,
-  FirstFrameField = 4,
+  StateUser = 4,
+  FirstFrameField = 5,
 };
 
 /// Field numbers of a `%bs.frame.*` (bs_frame_header in bscript.h); the

@@ -335,8 +335,10 @@ BehaviorSession::start(BehaviorJIT &JIT, llvm::StringRef InfoSymbol,
 
 BehaviorSession::~BehaviorSession() {
   if (Started) {
-    // As a robot program ends: the class values running tasks hold, then
-    // the input and output objects.
+    // As a robot program ends: the world, the class values running tasks
+    // hold, then the input and output objects.
+    if (World.Exit)
+      runGuardedBody([&] { World.Exit(WorldUser); }, 0);
     bs_state_destroy(State, Info);
     llvm::consumeError(callThunk(InputSpec.Destroy, Input));
     llvm::consumeError(callThunk(OutputSpec.Destroy, Output));
@@ -355,11 +357,34 @@ uint32_t BehaviorSession::getCycle() const {
 
 BehaviorSession::Outcome BehaviorSession::runCycle(unsigned LimitMs) {
   bs_begin_cycle(State, Input, Output);
-  return runGuarded(Entry, LimitMs);
+  if (!World.Begin)
+    return runGuarded(Entry, LimitMs);
+  // The world's hooks run in the cycle: under its guard and time limit.
+  uint32_t Cycle = getCycle();
+  return runGuardedBody(
+      [&] {
+        World.Begin(WorldUser, Input, Output, Cycle);
+        Entry(State);
+        if (World.End)
+          World.End(WorldUser, Input, Output, Cycle);
+      },
+      LimitMs);
 }
 
-BehaviorSession::Outcome BehaviorSession::runGuarded(void (*Fn)(void *),
-                                                     unsigned LimitMs) {
+BehaviorSession::Outcome BehaviorSession::attachWorld(const WorldHooks &Hooks,
+                                                      unsigned LimitMs) {
+  World = Hooks;
+  return runGuardedBody(
+      [&] {
+        WorldUser = World.Init(Input, Output);
+        bs_state_set_user(State, WorldUser);
+      },
+      LimitMs);
+}
+
+BehaviorSession::Outcome
+BehaviorSession::runGuardedBody(llvm::function_ref<void()> Body,
+                                unsigned LimitMs) {
   Outcome Result;
   if (LoopProbe)
     *LoopProbe = 0;
@@ -369,7 +394,7 @@ BehaviorSession::Outcome BehaviorSession::runGuarded(void (*Fn)(void *),
     InCycle = 1;
     if (LimitMs)
       setTimer(LimitMs);
-    Fn(State);
+    Body();
     InCycle = 0;
     if (LimitMs)
       setTimer(0);

@@ -250,9 +250,12 @@ bool Repl::load(std::unique_ptr<Compilation> NewC) {
   std::unique_ptr<BehaviorSession> NewS = std::move(*Session);
   auto NewValues = std::make_unique<debug::ValueIO>(
       [J = NewL->JIT.get()](llvm::StringRef Sym) { return J->lookup(Sym); });
+  bool FirstLoad = !S;
 
   if (S) {
-    // :reload. The frames that still fit, the cycle, input and output.
+    // :reload. The world, the frames that still fit, the cycle, input and
+    // output.
+    NewS->takeWorldFrom(*S);
     OS.flush();
     auto *OldBytes = static_cast<unsigned char *>(S->getState());
     auto *NewBytes = static_cast<unsigned char *>(NewS->getState());
@@ -312,6 +315,11 @@ bool Repl::load(std::unique_ptr<Compilation> NewC) {
   for (const BehaviorLayout::Task &T : L->Layout.Tasks)
     if (T.Decl == L->Entry)
       EntryFrame = T.FrameOffset;
+  if (FirstLoad && !Opts.WorldLibrary.empty() &&
+      !attachWorldLibrary(*C, *L, *S, Opts.WorldLibrary, Opts.CycleLimitMs)) {
+    printDiagnostics(C->SM, C->Diags.getDiagnostics(), llvm::errs());
+    return false;
+  }
   return true;
 }
 

@@ -14,6 +14,7 @@
 #include "llvm/ADT/StringExtras.h"
 #include "llvm/ADT/StringSet.h"
 #include "llvm/Demangle/Demangle.h"
+#include "llvm/Support/DynamicLibrary.h"
 #include "llvm/Support/FileSystem.h"
 #include "llvm/Support/MemoryBuffer.h"
 #include "llvm/Support/ToolOutputFile.h"
@@ -113,6 +114,34 @@ bsc::startSession(Compilation &C, LoadedBehavior &L) {
   if (E)
     return E;
   return nullptr;
+}
+
+bool bsc::attachWorldLibrary(Compilation &C, const LoadedBehavior &L,
+                             BehaviorSession &S, llvm::StringRef Path,
+                             unsigned LimitMs) {
+  std::string Err;
+  llvm::sys::DynamicLibrary Lib =
+      llvm::sys::DynamicLibrary::getPermanentLibrary(Path.str().c_str(), &Err);
+  if (!Lib.isValid()) {
+    C.Diags.report(llvm::SMLoc(), diag::err_world_load) << Path << Err;
+    return false;
+  }
+  WorldHooks H;
+  auto Find = [&](const char *Name, auto &Slot, bool Required) {
+    Slot = reinterpret_cast<std::remove_reference_t<decltype(Slot)>>(
+        Lib.getAddressOfSymbol(Name));
+    if (!Slot && Required)
+      C.Diags.report(llvm::SMLoc(), diag::err_world_missing_hook)
+          << Path << Name;
+    return Slot || !Required;
+  };
+  bool OK = Find("bs_world_init", H.Init, true);
+  OK &= Find("bs_world_begin", H.Begin, true);
+  Find("bs_world_end", H.End, false);
+  Find("bs_world_exit", H.Exit, false);
+  if (!OK)
+    return false;
+  return reportOutcome(C, L, S.attachWorld(H, LimitMs), 0, LimitMs);
 }
 
 /// "SIGSEGV (segmentation fault)".

@@ -117,6 +117,12 @@ cl::opt<std::string> CycleLimitArg(
              "default 3000, 0: no limit)"),
     cl::value_desc("ms"), cl::init("3000"), cl::cat(BscCategory),
     cl::sub(RunCmd), cl::sub(ReplCmd));
+cl::opt<std::string> WorldLibrary(
+    "world",
+    cl::desc("A shared library that feeds input and reads output around "
+             "every cycle (bs_world_init/begin/end/exit, docs/repl.md)"),
+    cl::value_desc("lib.so"), cl::cat(BscCategory), cl::sub(RunCmd),
+    cl::sub(ReplCmd));
 cl::opt<std::string> BatchFile(
     "batch",
     cl::desc("Read the REPL's lines from this file, without a prompt (also "
@@ -676,10 +682,18 @@ int runJIT(Compilation &C, const FrontendOptions &FOpts) {
     return finishWithInternalError(C, Loaded.takeError());
   if (!*Loaded)
     return finish(C);
+  if (!WorldLibrary.empty() && !ReplayFile.empty()) {
+    // A replay feeds the recorded input; the world would overwrite it.
+    C.Diags.report(llvm::SMLoc(), diag::err_conflicting_options)
+        << "--world" << "--replay";
+    return finish(C);
+  }
   auto Session = startSession(C, **Loaded);
   if (!Session)
     return finishWithInternalError(C, Session.takeError());
-  if (*Session)
+  if (*Session && (WorldLibrary.empty() ||
+                   attachWorldLibrary(C, **Loaded, **Session, WorldLibrary,
+                                      ROpts.CycleLimitMs)))
     runBehavior(C, **Loaded, **Session, ROpts, llvm::outs());
   return finish(C);
 }
@@ -704,6 +718,7 @@ int runReplCommand(Compilation &C, const FrontendOptions &FOpts) {
   Opts.Load.DebugInfo = DebugInfo;
   Opts.EntryName = EntryName;
   Opts.BatchFile = BatchFile;
+  Opts.WorldLibrary = WorldLibrary;
   return runRepl(Opts, llvm::outs());
 }
 

@@ -102,6 +102,9 @@ struct NativeFunction {
   bool ConstSelf = false;    ///< The method does not modify its object.
   bool ReadOnly = false;     ///< A field or property without setter.
   bool ResultViaOut = false; ///< Class result through `R *out`.
+  /// The thunk's first argument after the object is the state
+  /// (`bs::Context &`): generated code passes it, the script does not.
+  bool TakesContext = false;
 
   /// Methods, fields and properties take the object; functions do not.
   bool hasSelf() const { return Kind != Function; }

@@ -54,7 +54,8 @@ enum class TypeCode : uint8_t {
   Float = BS_CODE_FLOAT,
   String = BS_CODE_STRING,
   Enum = BS_CODE_ENUM,
-  Class = BS_CODE_CLASS
+  Class = BS_CODE_CLASS,
+  Context = BS_CODE_CONTEXT ///< The first parameter only: the state.
 };
 
 /// Flags of a BoundType (bs::detail::TypeFlag).
@@ -80,7 +81,10 @@ struct BoundType {
   std::vector<uint32_t> Extents;
 
   bool isArray() const { return !Extents.empty(); }
-  bool isScalar() const { return Code != TypeCode::Enum && Code != TypeCode::Class; }
+  bool isScalar() const {
+    return Code != TypeCode::Enum && Code != TypeCode::Class &&
+           Code != TypeCode::Context;
+  }
   /// A non-const scalar reference parameter (int&, float&, bool&): the
   /// argument is a pointer to storage of StorageSize bytes.
   bool isOutPointer() const {

@@ -15,6 +15,7 @@
 #include "llvm/IR/DataLayout.h"
 #include "llvm/IR/LLVMContext.h"
 #include "llvm/IR/Module.h"
+#include "llvm/ADT/STLFunctionalExtras.h"
 #include "llvm/Support/Error.h"
 #include "llvm/TargetParser/Triple.h"
 #include "bscript/bscript.h"
@@ -124,6 +125,19 @@ private:
 /// Either leaves the state as it was at that moment; the driver reports it
 /// and stops. The guard uses SIGALRM and the fault signals while the session
 /// lives, and puts the previous handlers back at its end.
+/// The hooks of a world library (`bsc run --world LIB.so`, docs/repl.md
+/// "A closed loop"): C functions the library exports. Init's result
+/// becomes the state's user pointer (bs_state_set_user); Begin runs before
+/// each cycle's entry, End after it (Cycle: the behavior's cycle number,
+/// the first is 1); Exit, if any, when the session ends.
+struct WorldHooks {
+  void *(*Init)(void *Input, void *Output) = nullptr;
+  void (*Begin)(void *User, void *Input, void *Output, uint32_t Cycle) = nullptr;
+  void (*End)(void *User, const void *Input, void *Output,
+              uint32_t Cycle) = nullptr;
+  void (*Exit)(void *User) = nullptr;
+};
+
 class BehaviorSession {
 public:
   /// Initialises a state for the behavior whose info struct is `InfoSymbol`
@@ -147,7 +161,23 @@ public:
   /// `LimitMs` milliseconds (0: no limit) is stopped.
   Outcome runCycle(unsigned LimitMs);
   /// Calls `Fn(state)` under the same guard, between cycles (a REPL line).
-  Outcome runGuarded(void (*Fn)(void *), unsigned LimitMs);
+  Outcome runGuarded(void (*Fn)(void *), unsigned LimitMs) {
+    return runGuardedBody([&] { Fn(State); }, LimitMs);
+  }
+  /// Runs `Body` under the guard.
+  Outcome runGuardedBody(llvm::function_ref<void()> Body, unsigned LimitMs);
+  /// Drives the session's input and output from a world library from now
+  /// on: calls its Init (under the guard) and attaches the result to the
+  /// state as its user pointer.
+  Outcome attachWorld(const WorldHooks &Hooks, unsigned LimitMs);
+  /// :reload: the new session goes on with the old one's world (its user
+  /// pointer included), which the old one then no longer ends.
+  void takeWorldFrom(BehaviorSession &Old) {
+    World = Old.World;
+    WorldUser = Old.WorldUser;
+    bs_state_set_user(State, WorldUser);
+    Old.World = WorldHooks();
+  }
 
   void *getState() const { return State; }
   void *getInput() const { return Input; }
@@ -167,6 +197,8 @@ private:
   BehaviorJIT::GlobalObject InputSpec, OutputSpec;
   volatile uint32_t *LoopProbe = nullptr, *NativeProbe = nullptr;
   bool Started = false; ///< bs_state_init succeeded.
+  WorldHooks World;
+  void *WorldUser = nullptr;
 };
 
 } // namespace bsc

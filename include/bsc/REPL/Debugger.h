@@ -82,6 +82,14 @@ struct RunOptions {
   std::function<bool()> StopAfterCycle;
 };
 
+/// `--world LIB.so`: loads the library, finds its hooks (JIT.h's
+/// WorldHooks) and attaches it to the session. Returns false after
+/// reporting a library that cannot be loaded, lacks bs_world_init or
+/// bs_world_begin, or whose init crashed.
+bool attachWorldLibrary(Compilation &C, const LoadedBehavior &L,
+                        BehaviorSession &S, llvm::StringRef Path,
+                        unsigned LimitMs);
+
 /// The default --cycle-limit: long enough for any real cycle (a robot's is
 /// 10 to 33 ms), short enough that a runaway loop is noticed at once.
 constexpr unsigned DefaultCycleLimitMs = 3000;

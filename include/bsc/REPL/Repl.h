@@ -17,6 +17,7 @@ struct ReplOptions {
   LoadOptions Load;
   std::string EntryName = "main";
   std::string BatchFile; ///< --batch: read the lines from this file.
+  std::string WorldLibrary; ///< --world: feeds input, reads output.
   unsigned CycleLimitMs = DefaultCycleLimitMs;
 };
 
