@@ -387,22 +387,22 @@ TEST_F(CodeGenTest, LayoutIsTheSameAtEveryOptLevel) {
 
 TEST_F(CodeGenTest, FibFrameLayout) {
   ASSERT_TRUE(check(getPrograms().at("fib")));
-  // header {cycle, reserved, input, output}, then fib's frame {resume,
-  // state, last_call, a, b}: five i32. `t` is declared after the for's
+  // header {cycle, reserved, input, output, user}, then fib's frame
+  // {resume, state, last_call, a, b}: five i32. `t` is declared after the for's
   // yield and dies before it: an alloca.
   BehaviorLayout L32, L64;
   std::unique_ptr<llvm::Module> M32 = emit(Targets[0], L32);
   std::unique_ptr<llvm::Module> M64 = emit(Targets[1], L64);
-  EXPECT_EQ(L32.StateSize, 16u + 20u);
+  EXPECT_EQ(L32.StateSize, 20u + 20u);
   EXPECT_EQ(L32.StateAlign, 4u);
   ASSERT_EQ(L32.Tasks.size(), 1u);
-  EXPECT_EQ(L32.Tasks[0].FrameOffset, 16u);
+  EXPECT_EQ(L32.Tasks[0].FrameOffset, 20u);
   ASSERT_EQ(L32.Tasks[0].Fields.size(), 2u);
   EXPECT_EQ(L32.Tasks[0].Fields[0].D->getName().Name, "a");
   EXPECT_EQ(L32.Tasks[0].Fields[1].D->getName().Name, "b");
-  EXPECT_EQ(L64.StateSize, 24u + 24u); // 20, rounded to the 8 of pointers
+  EXPECT_EQ(L64.StateSize, 32u + 24u); // 20, rounded to the 8 of pointers
   EXPECT_EQ(L64.StateAlign, 8u);
-  EXPECT_EQ(L64.Tasks[0].FrameOffset, 24u);
+  EXPECT_EQ(L64.Tasks[0].FrameOffset, 32u);
 
   llvm::StructType *Frame =
       llvm::StructType::getTypeByName(Ctx, "bs.frame.fib.fib");
@@ -417,7 +417,7 @@ TEST_F(CodeGenTest, ExactFramesKeepEveryVariable) {
   Opts.Probes = true;
   BehaviorLayout L;
   std::unique_ptr<llvm::Module> M = emit(Targets[0], L, Opts);
-  EXPECT_EQ(L.StateSize, 16u + 24u);
+  EXPECT_EQ(L.StateSize, 20u + 24u);
   ASSERT_EQ(L.Tasks[0].Fields.size(), 3u);
   EXPECT_EQ(L.Tasks[0].Fields[2].D->getName().Name, "t");
 }
@@ -448,9 +448,10 @@ TEST_F(CodeGenTest, SiblingScopesShareAField) {
 TEST_F(CodeGenTest, StateHeaderMatchesBscriptH) {
   ASSERT_TRUE(check(getPrograms().at("tasks")));
   // bs_state_header {u32 cycle, u32 reserved, const void *input, void
-  // *output} and bs_frame_header {i32 resume, i32 state, u32 last_call}
-  // as a C compiler lays them out for each target.
-  const uint64_t InputOffset[] = {8, 8}, OutputOffset[] = {12, 16};
+  // *output, void *user} and bs_frame_header {i32 resume, i32 state, u32
+  // last_call} as a C compiler lays them out for each target.
+  const uint64_t InputOffset[] = {8, 8}, OutputOffset[] = {12, 16},
+                 UserOffset[] = {16, 24};
   for (unsigned I = 0; I < 2; ++I) {
     SCOPED_TRACE(Targets[I].Triple);
     llvm::LLVMContext LocalCtx;
@@ -467,10 +468,11 @@ TEST_F(CodeGenTest, StateHeaderMatchesBscriptH) {
     EXPECT_EQ(SL->getElementOffset(1), 4u);
     EXPECT_EQ(SL->getElementOffset(2), InputOffset[I]);
     EXPECT_EQ(SL->getElementOffset(3), OutputOffset[I]);
+    EXPECT_EQ(SL->getElementOffset(4), UserOffset[I]);
     ASSERT_EQ(L.Tasks.size(), 2u);
     for (unsigned T = 0; T < L.Tasks.size(); ++T) {
-      auto *Frame = llvm::cast<llvm::StructType>(State->getElementType(4 + T));
-      EXPECT_EQ(L.Tasks[T].FrameOffset, SL->getElementOffset(4 + T));
+      auto *Frame = llvm::cast<llvm::StructType>(State->getElementType(5 + T));
+      EXPECT_EQ(L.Tasks[T].FrameOffset, SL->getElementOffset(5 + T));
       for (unsigned F = 0; F < 3; ++F)
         EXPECT_TRUE(Frame->getElementType(F)->isIntegerTy(32));
       EXPECT_EQ(L.Tasks[T].FrameOffset % 4, 0u);
@@ -503,7 +505,7 @@ TEST_F(CodeGenTest, FrameFieldTypes) {
   EXPECT_TRUE(Frame->getElementType(7)->isPointerTy());
   EXPECT_TRUE(Frame->getElementType(8)->isIntegerTy(32));
   // 12 + 4 + 4 + 1 + 1 + 2 (pad) + 4 + 4 on i586.
-  EXPECT_EQ(L.StateSize, 16u + 32u);
+  EXPECT_EQ(L.StateSize, 20u + 32u);
 }
 
 TEST_F(CodeGenTest, EntriesAndInfo) {
