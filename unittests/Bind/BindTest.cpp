@@ -535,6 +535,81 @@ TEST(BindTest, Errors) {
   Has(Both, "bad_magic.o");
 }
 
+/// Constructors, constants and bs::Context parameters (descriptor version
+/// 2), as GCC and Clang objects for both targets encode them.
+TEST(BindTest, ConstructorsConstantsAndContext) {
+  for (const char *Cfg : {"gcc32", "gcc64", "clang32", "clang64"}) {
+    SCOPED_TRACE(Cfg);
+    const Triple &T = tripleOf(Cfg);
+    BindingModel M = read({obj(std::string("geometry.") + Cfg + ".o"),
+                           obj(std::string("team.") + Cfg + ".o")},
+                          T);
+    const BoundModule *Geo = M.findModule("Geo");
+    ASSERT_TRUE(Geo);
+    EXPECT_EQ(Geo->Version, 2u);
+    const BoundClass *Pose = Geo->findClass("Pose2f");
+    ASSERT_TRUE(Pose);
+    std::vector<const BoundMember *> Ctors;
+    for (const BoundMember &Mb : Pose->Members)
+      if (Mb.Kind == MemberKind::Constructor)
+        Ctors.push_back(&Mb);
+    ASSERT_EQ(Ctors.size(), 4u);
+    EXPECT_EQ(Ctors[2]->Params.size(), 3u);
+    EXPECT_EQ(Ctors[2]->Params[2].Default, DefaultKind::Float);
+    EXPECT_EQ(Ctors[3]->Params[0].Type.Code, TypeCode::Int);
+    EXPECT_TRUE(Ctors[0]->resultViaOut());
+    EXPECT_EQ(M.getClass(Ctors[0]->Result), Pose);
+    EXPECT_FALSE(Ctors[0]->hasSelf());
+    EXPECT_FALSE(Ctors[0]->Thunk.empty());
+
+    ASSERT_EQ(Geo->Constants.size(), 4u);
+    EXPECT_EQ(Geo->Constants[0].Name, "off");
+    EXPECT_EQ(int32_t(Geo->Constants[0].Value), 10000);
+    EXPECT_EQ(Geo->Constants[1].Result.Code, TypeCode::Float);
+    float Half;
+    std::memcpy(&Half, &Geo->Constants[1].Value, 4);
+    EXPECT_EQ(Half, 0.5f);
+    EXPECT_EQ(Geo->Constants[2].Result.Code, TypeCode::Bool);
+    EXPECT_EQ(Geo->Constants[2].Value, 1u);
+    EXPECT_EQ(M.getEnum(Geo->Constants[3].Result), Geo->findEnum("Side"));
+    EXPECT_EQ(Geo->Constants[3].Value, 2u);
+    EXPECT_TRUE(Geo->Constants[0].Thunk.empty());
+
+    const BoundModule *Team = M.findModule("Team");
+    ASSERT_TRUE(Team);
+    const BoundMember *Request = Team->findFunction("requestHeadMode");
+    ASSERT_TRUE(Request);
+    ASSERT_EQ(Request->Params.size(), 2u);
+    EXPECT_EQ(Request->Params[0].Type.Code, TypeCode::Context);
+    EXPECT_EQ(Request->Params[1].Type.Code, TypeCode::Enum);
+
+    // What Sema and CodeGen see: constructors on the class, constants on
+    // the module, the context not among the script's parameters.
+    NativeRegistry Registry;
+    addToNativeRegistry(M, Registry);
+    const NativeModule *NGeo = nullptr, *NTeam = nullptr;
+    for (const auto &NM : Registry.Modules) {
+      if (NM->Name == "Geo")
+        NGeo = NM.get();
+      if (NM->Name == "Team")
+        NTeam = NM.get();
+    }
+    ASSERT_TRUE(NGeo && NTeam);
+    const NativeClass *NPose = NGeo->findClass("Pose2f");
+    ASSERT_TRUE(NPose);
+    EXPECT_EQ(NPose->Constructors.size(), 4u);
+    EXPECT_FALSE(NPose->findMember("_ctor_"));
+    const NativeConstant *Off = NGeo->findConstant("off");
+    ASSERT_TRUE(Off);
+    EXPECT_EQ(Off->Int, 10000);
+    EXPECT_EQ(Off->Type.TheCode, NativeType::Int);
+    const NativeFunction *NRequest = NTeam->findFunction("requestHeadMode");
+    ASSERT_TRUE(NRequest);
+    EXPECT_TRUE(NRequest->TakesContext);
+    EXPECT_EQ(NRequest->Params.size(), 1u);
+  }
+}
+
 /// The problems come as diagnostic kinds with the place as the first
 /// argument, in the order of the files, so that the driver reports each
 /// with its own kind (DiagnosticKinds.def).
