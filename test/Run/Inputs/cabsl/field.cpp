@@ -1,19 +1,14 @@
 // cabsl_option.test's world library for `bsc run --world`: feeds the same
 // inputs as inputs.jsonl (time in steps of 100, the ball near from cycle
 // 3, not seen in cycle 5) and reads what the behavior wrote.
+#include "world.h"
 #include <cstdint>
 #include <cstdio>
 
 namespace {
-struct In {
-  int time;
-  float ballDistance;
-  bool ballSeen;
-};
-struct Out {
-  int motion;
-  float kickPower;
-};
+using sw::In;
+using sw::Out;
+
 struct Field {
   int kicks = 0;
 };

@@ -3,19 +3,8 @@
 // the ball near from cycle 3, not seen in cycle 5) and prints what the
 // behavior wrote, one line per cycle, as `bsc run --print-output` does.
 #include "striker.h"
+#include "world.h"
 #include <cstdio>
-
-namespace sw {
-struct In {
-  int time;
-  float ballDistance;
-  bool ballSeen;
-};
-struct Out {
-  int motion;
-  float kickPower;
-};
-} // namespace sw
 
 int main() {
   static bs_striker_state State;
