@@ -29,7 +29,11 @@ BS_MODULE(Geo,
     .ctor<>()
     .ctor<float>()
     .ctor<float, float, float>().defaults(0.25f)
-    .ctor<int, int>();
+    .ctor<int, int>()
+    // A method with the context after the object: the cycle it ran in.
+    .func<[](const geo::Pose2f &P, bs::Context &C) {
+      return P.x + float(C.cycle());
+    }>("xPlusCycle");
   registerClass<geo::NoCtor>(module, "NoCtor").var<&geo::NoCtor::v>("v");
   registerClass<geo::Pair>(module, "Pair")
     .var<&geo::Pair::a>("a")
