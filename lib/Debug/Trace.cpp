@@ -75,8 +75,18 @@ DebugTables debug::buildDebugTables(const Behavior &B,
                          : Task.Name;
     Task.File = FileOf(D->getLoc());
     Task.Line = LineOf(D->getName().Loc);
-    for (const YieldStmt *Y : D->Yields)
+    for (const YieldStmt *Y : D->Yields) {
       Task.YieldLines.push_back(LineOf(Y->getLoc()));
+      // `yield Done::kicked`: a value of an `enum Done : TaskState`.
+      std::string State;
+      if (const auto *N = llvm::dyn_cast_or_null<NameExpr>(Y->Value))
+        if (N->Kind == NameKind::EnumValue && N->Ty && N->Ty->isTaskState() &&
+            N->Name.Parts.size() >= 2 && N->Name.Parts[0].Name != "TaskState")
+          State = (N->Name.Parts[N->Name.Parts.size() - 2].Name + "::" +
+                   N->Name.Parts.back().Name)
+                      .str();
+      Task.YieldStates.push_back(std::move(State));
+    }
     unsigned Index = TaskIndex.lookup(D);
     Task.Callers.assign(Callers[Index].begin(), Callers[Index].end());
     for (const BehaviorLayout::FrameField &F : LT.Fields)
@@ -102,14 +112,16 @@ llvm::json::Value debug::toJSON(const DebugTables &T) {
     for (const DebugTables::Field &F : Task.Fields)
       Fields.push_back(llvm::json::Object{
           {"name", F.Name}, {"type", F.Type}, {"param", F.IsParam}});
-    Tasks.push_back(llvm::json::Object{
-        {"name", Task.Name},
-        {"short", Task.ShortName},
-        {"file", Task.File},
-        {"line", Task.Line},
-        {"yields", llvm::json::Array(Task.YieldLines)},
-        {"callers", llvm::json::Array(Task.Callers)},
-        {"fields", std::move(Fields)}});
+    llvm::json::Object O{{"name", Task.Name},
+                         {"short", Task.ShortName},
+                         {"file", Task.File},
+                         {"line", Task.Line},
+                         {"yields", llvm::json::Array(Task.YieldLines)},
+                         {"callers", llvm::json::Array(Task.Callers)},
+                         {"fields", std::move(Fields)}};
+    if (Task.YieldStates.size() == Task.YieldLines.size())
+      O["yieldStates"] = llvm::json::Array(Task.YieldStates);
+    Tasks.push_back(std::move(O));
   }
   return llvm::json::Object{{"version", TablesVersion},
                             {"tasks", std::move(Tasks)}};
@@ -155,6 +167,17 @@ llvm::Expected<DebugTables> debug::parseDebugTables(llvm::StringRef Text) {
       if (!L)
         return badTables("a yield line is not a number");
       Task.YieldLines.push_back(*L);
+    }
+    // Optional: tables of older objects have no state names.
+    if (const llvm::json::Array *States = O->getArray("yieldStates")) {
+      if (States->size() != Yields->size())
+        return badTables("the yield states do not match the yields");
+      for (const llvm::json::Value &S : *States) {
+        std::optional<llvm::StringRef> Str = S.getAsString();
+        if (!Str)
+          return badTables("a yield state is not a string");
+        Task.YieldStates.push_back(Str->str());
+      }
     }
     for (const llvm::json::Value &C : *Callers) {
       std::optional<int64_t> I = C.getAsInteger();
@@ -234,6 +257,11 @@ std::string debug::describeActivation(const DebugTables &T,
   else
     S = "state " + std::to_string(A.state);
   const DebugTables::Task &Task = T.Tasks[A.task];
+  // Waiting at `yield Done::kicked`: the state has that name.
+  if (A.state != BS_TASK_DONE && A.resume > 0 &&
+      A.resume <= Task.YieldStates.size() &&
+      !Task.YieldStates[A.resume - 1].empty())
+    S = Task.YieldStates[A.resume - 1];
   // A task that ended (done) waits at no yield: optimised code does not
   // clear its resume point (lib/CodeGen/CGTask.cpp).
   if (A.state != BS_TASK_DONE && A.resume > 0 &&

@@ -173,6 +173,10 @@ TEST(DebugTraceTest, ParentIsTheFirstActiveCaller) {
             formatTraceLine(T, {{1, 1, 1}, {2, 1, 1}, {3, 0, 0}}));
   EXPECT_EQ("look [failure, M.bs:22]",
             formatTraceLine(T, {{1, 2, -1}}));
+  // A yield of a named task state (`enum Done : TaskState`) names it.
+  T.Tasks[1].YieldStates = {"", "Done::lost"};
+  EXPECT_EQ("look [Done::lost, M.bs:22]", formatTraceLine(T, {{1, 2, -1}}));
+  EXPECT_EQ("look [running, M.bs:21]", formatTraceLine(T, {{1, 1, 1}}));
   EXPECT_EQ("idle", formatTraceLine(T, {}));
   // Records of unknown tasks are dropped rather than trusted.
   EXPECT_EQ("idle", formatTraceLine(T, {{7, 1, 1}}));
@@ -181,9 +185,13 @@ TEST(DebugTraceTest, ParentIsTheFirstActiveCaller) {
 TEST(DebugTraceTest, TablesSurviveJSON) {
   DebugTables T = makeTables();
   T.Tasks[0].Fields = {{"n", "int", true}, {"i", "float", false}};
+  T.Tasks[1].YieldStates = {"", "Done::lost"};
   llvm::Expected<DebugTables> Back =
       parseDebugTables(toJSONString(toJSON(T)));
   ASSERT_TRUE(bool(Back));
+  EXPECT_EQ(std::vector<std::string>({"", "Done::lost"}),
+            Back->Tasks[1].YieldStates);
+  EXPECT_TRUE(Back->Tasks[0].YieldStates.empty());
   ASSERT_EQ(4u, Back->Tasks.size());
   EXPECT_EQ("M::look", Back->Tasks[1].Name);
   EXPECT_EQ(std::vector<unsigned>({1, 2}), Back->Tasks[0].Callers);

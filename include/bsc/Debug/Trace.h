@@ -54,6 +54,10 @@ struct DebugTables {
     unsigned Line = 0;
     /// Line of the k-th yield (resume point k + 1).
     std::vector<unsigned> YieldLines;
+    /// The named task state the k-th yield yields (`Done::kicked`, an
+    /// `enum ... : TaskState` value), or "" (empty when the tables came
+    /// without them).
+    std::vector<std::string> YieldStates;
     /// Tasks (by index) that call it directly or through funcs, ascending.
     std::vector<unsigned> Callers;
     std::vector<Field> Fields; ///< Parameters, then locals.
@@ -85,7 +89,9 @@ ActiveTree buildActiveTree(const DebugTables &T,
                            llvm::ArrayRef<bs_activation> Records);
 
 /// `running, Behavior.bs:57` / `done` / `failure, Kick.bs:9` / `state 3,
-/// Head.bs:12`: a task's state and the yield it waits at.
+/// Head.bs:12` / `Done::kicked, Striker.bs:29`: a task's state (by its
+/// name when the yield it waits at yields a named task state) and the yield
+/// it waits at.
 std::string describeActivation(const DebugTables &T, const bs_activation &A);
 
 /// The hierarchy on one line, each path from a root to a leaf:
