@@ -14,6 +14,12 @@ void requestHeadMode(bs::Context &C, HeadMode M) {
 HeadMode headMode(bs::Context &C) { return C.user<Robot>()->headMode; }
 const char *robotName(bs::Context &C) { return C.user<Robot>()->name; }
 int cycleOfRobot(bs::Context &C) { return int(C.cycle()); }
+// The context's input and output are the cycle's `input` and `output`.
+bool contextSeesBall(bs::Context &C) {
+  auto *In = static_cast<const Input *>(C.input());
+  auto *Out = static_cast<Output *>(C.output());
+  return In && Out && In->ballSeen;
+}
 
 } // namespace team
 
@@ -34,5 +40,6 @@ BS_MODULE(Team,
   registerFunction<&team::headMode>(module, "headMode");
   registerFunction<&team::robotName>(module, "robotName");
   registerFunction<&team::cycleOfRobot>(module, "cycleOfRobot");
+  registerFunction<&team::contextSeesBall>(module, "contextSeesBall");
   registerConstant(module, "sweepPan", 60);
 )
