@@ -10,6 +10,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "SemaImpl.h"
+#include "llvm/Support/FormatVariadic.h"
 
 using namespace bsc;
 using namespace bsc::sema;
@@ -616,8 +617,16 @@ bool Sema::resolveConstructor(CallExpr *C, NameExpr *Callee, const Type *T) {
   const NativeClass *Cls = T->getClass();
   auto Signature = [&](const NativeFunction &Ctor) {
     std::string S = Cls->Name + "(";
-    for (size_t I = 0; I != Ctor.Params.size(); ++I)
-      S += (I ? ", " : "") + resolveNativeType(Ctor.Params[I])->getName().str();
+    size_t MinArgs = Ctor.getMinArgs();
+    for (size_t I = 0; I != Ctor.Params.size(); ++I) {
+      const Type *T = resolveNativeType(Ctor.Params[I]);
+      S += (I ? ", " : "") + T->getName().str();
+      if (I >= MinArgs) { // `= 0.25`: the registered default.
+        const NativeDefault &D = Ctor.Defaults[I - MinArgs];
+        S += " = " + (D.IsFloat ? llvm::formatv("{0}", D.Float).str()
+                                : std::to_string(D.Int));
+      }
+    }
     return S + ")";
   };
   if (Cls->Constructors.empty()) {
