@@ -7,6 +7,7 @@
 // Registered enums and classes point at their Native.h description, which
 // is where Sema finds enum values and class members and CodeGen finds sizes,
 // alignments and thunks; the type itself only adds identity and a name.
+// A script's own `enum` (EnumDecl) carries its values in the same form.
 //
 //===----------------------------------------------------------------------===//
 #ifndef BSC_AST_TYPE_H
@@ -31,7 +32,7 @@ enum class TypeKind {
   Bool,
   String,
   TaskState,
-  Enum,  ///< A registered enum (getEnum()).
+  Enum,  ///< A registered or script enum (getEnum()).
   Class, ///< A registered C++ class, a value type (getClass()).
   /// An array field of a registered class (`float m[3][3]` is an array of
   /// 3 arrays of 3 floats): getElement(), getExtent(). Only the base of an
