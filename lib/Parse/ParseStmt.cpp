@@ -84,6 +84,10 @@ Stmt *Parser::parseStatement() {
     diag(Start, diag::err_const_in_body);
     return recoverStatement(nullptr, Start);
   }
+  if (Tok.is(tok::kw_enum)) {
+    diag(Start, diag::err_enum_in_body);
+    return recoverStatement(nullptr, Start);
+  }
   if (diagnoseStatementHabit())
     return recoverStatement(nullptr, Start);
   if (!startsExpression(Tok.Kind)) {
