@@ -338,7 +338,8 @@ BehaviorSession::~BehaviorSession() {
     // As a robot program ends: the world, the class values running tasks
     // hold, then the input and output objects.
     if (World.Exit)
-      runGuardedBody([&] { World.Exit(WorldUser); }, 0);
+      runGuardedBody(
+          [&] { inHook("bs_world_exit", [&] { World.Exit(WorldUser); }); }, 0);
     bs_state_destroy(State, Info);
     llvm::consumeError(callThunk(InputSpec.Destroy, Input));
     llvm::consumeError(callThunk(OutputSpec.Destroy, Output));
@@ -363,10 +364,12 @@ BehaviorSession::Outcome BehaviorSession::runCycle(unsigned LimitMs) {
   uint32_t Cycle = getCycle();
   return runGuardedBody(
       [&] {
-        World.Begin(WorldUser, Input, Output, Cycle);
+        inHook("bs_world_begin",
+               [&] { World.Begin(WorldUser, Input, Output, Cycle); });
         Entry(State);
         if (World.End)
-          World.End(WorldUser, Input, Output, Cycle);
+          inHook("bs_world_end",
+                 [&] { World.End(WorldUser, Input, Output, Cycle); });
       },
       LimitMs);
 }
@@ -376,7 +379,7 @@ BehaviorSession::Outcome BehaviorSession::attachWorld(const WorldHooks &Hooks,
   World = Hooks;
   return runGuardedBody(
       [&] {
-        WorldUser = World.Init(Input, Output);
+        inHook("bs_world_init", [&] { WorldUser = World.Init(Input, Output); });
         bs_state_set_user(State, WorldUser);
       },
       LimitMs);
@@ -405,6 +408,8 @@ BehaviorSession::runGuardedBody(llvm::function_ref<void()> Body,
   }
   Result.LoopSite = LoopProbe ? *LoopProbe : 0;
   Result.NativeSite = NativeProbe ? *NativeProbe : 0;
+  Result.WorldHook = CurrentHook;
+  CurrentHook = nullptr;
   std::fflush(stdout);
   return Result;
 }

@@ -160,6 +160,17 @@ bool bsc::reportOutcome(Compilation &C, const LoadedBehavior &L,
   auto Site = [&](uint32_t N) -> const DebugSite * {
     return N && N <= L.Layout.Sites.size() ? &L.Layout.Sites[N - 1] : nullptr;
   };
+  if (O.K != BehaviorSession::Outcome::Completed && O.WorldHook) {
+    std::string When = Cycle ? "cycle " + std::to_string(Cycle)
+                             : std::string("before the first cycle");
+    if (O.K == BehaviorSession::Outcome::TimedOut)
+      C.Diags.report(llvm::SMLoc(), diag::err_world_runaway)
+          << When << LimitMs << O.WorldHook;
+    else
+      C.Diags.report(llvm::SMLoc(), diag::err_world_crash)
+          << When << describeSignal(O.Signal) << O.WorldHook;
+    return false;
+  }
   switch (O.K) {
   case BehaviorSession::Outcome::Completed:
     return true;

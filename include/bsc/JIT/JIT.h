@@ -156,6 +156,9 @@ public:
     int Signal = 0;          ///< Crashed: the signal.
     uint32_t LoopSite = 0;   ///< The last loop probe (BehaviorLayout::Sites).
     uint32_t NativeSite = 0; ///< The binding being called, if any.
+    /// The world library's hook that was running (`bs_world_begin`...),
+    /// or null if the behavior was.
+    const char *WorldHook = nullptr;
   };
   /// Begins the next cycle and calls the entry; a cycle still running after
   /// `LimitMs` milliseconds (0: no limit) is stopped.
@@ -199,6 +202,14 @@ private:
   bool Started = false; ///< bs_state_init succeeded.
   WorldHooks World;
   void *WorldUser = nullptr;
+  /// The hook running now (read after a signal or the watchdog).
+  const char *volatile CurrentHook = nullptr;
+  /// Calls a world hook, naming it while it runs.
+  template <class Fn> void inHook(const char *Name, Fn &&Call) {
+    CurrentHook = Name;
+    Call();
+    CurrentHook = nullptr;
+  }
 };
 
 } // namespace bsc
