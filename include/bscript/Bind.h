@@ -1507,6 +1507,11 @@ template <class Body> constexpr auto buildModule() {
 inline std::uint64_t moduleHash(const void *Descriptor) {
   using namespace detail;
   const unsigned char *B = static_cast<const unsigned char *>(Descriptor);
+  // Declarations of `bs_module_X` name its Header, but the descriptor is
+  // the tables and strings behind it too: hide the declared object's size,
+  // or the optimiser and -fsanitize=object-size take the reads past the
+  // header for reads past the object.
+  __asm__("" : "+r"(B));
   // A field's offset: the bytes of the data member pointer its holder holds.
   auto FieldOffset = [](void *D, std::uint32_t I, std::int64_t *Off) -> int {
     const unsigned char *Bytes = static_cast<const unsigned char *>(D);
