@@ -403,16 +403,14 @@ private:
 };
 } // namespace
 
-bool Sema::suggestNearest(const Ident &Id,
+void Sema::suggestNearest(const Ident &Id,
                           llvm::ArrayRef<llvm::StringRef> Candidates) {
   NearestName Near(Id.Name);
   for (llvm::StringRef C : Candidates)
     Near.consider(C);
-  if (!Near.get())
-    return false;
-  diag(Id.Loc, diag::note_did_you_mean)
-      << *Near.get() << llvm::SMFixIt(Id.getRange(), *Near.get());
-  return true;
+  if (Near.get())
+    diag(Id.Loc, diag::note_did_you_mean)
+        << *Near.get() << llvm::SMFixIt(Id.getRange(), *Near.get());
 }
 
 std::optional<std::string> Sema::findNearValueName(llvm::StringRef Name) {
@@ -454,7 +452,6 @@ LookupResult Sema::lookupEnumValue(const Type *ValueTy,
                                    llvm::StringRef EnumName,
                                    const Ident &Value) {
   LookupResult R;
-  const Type *EnumTy = ValueTy;
   if (!Values) {
     int32_t V = 0;
     bool Found = true;
@@ -468,7 +465,7 @@ LookupResult Sema::lookupEnumValue(const Type *ValueTy,
       Found = false;
     if (Found) {
       R.Kind = LookupKind::EnumValue;
-      R.Ty = EnumTy;
+      R.Ty = ValueTy;
       R.Value = V;
       return R;
     }
@@ -476,7 +473,7 @@ LookupResult Sema::lookupEnumValue(const Type *ValueTy,
     for (const NativeEnum::Value &NV : Values->Values)
       if (NV.Name == Value.Name) {
         R.Kind = LookupKind::EnumValue;
-        R.Ty = EnumTy;
+        R.Ty = ValueTy;
         R.Value = NV.Number;
         return R;
       }
@@ -649,21 +646,22 @@ LookupResult Sema::lookupQualified(const QualifiedName &N) {
 
   // Not a module: an enum of this module, TaskState, or an enum of a
   // required native module.
+  const Type *EnumTy = nullptr;
+  const NativeEnum *Values = nullptr; // TaskState's own names.
   if (EnumDecl *E = CurModule->Enums.lookup(Q.Name)) {
-    if (N.Parts.size() == 3) {
-      diag(Q.Loc, diag::err_unknown_qualifier) << Join(2);
-      return R;
-    }
-    return lookupEnumValue(E->Ty, &E->Values, Q.Name, Second);
+    EnumTy = E->Ty;
+    Values = &E->Values;
+  } else if (Q.Name == "TaskState") {
+    EnumTy = Types.getTaskState();
+  } else if ((EnumTy = findRequiredEnum(Q.Name))) {
+    Values = EnumTy->getEnum();
   }
-  const Type *EnumTy = Q.Name == "TaskState" ? Types.getTaskState()
-                                              : findRequiredEnum(Q.Name);
   if (EnumTy) {
     if (N.Parts.size() == 3) {
       diag(Q.Loc, diag::err_unknown_qualifier) << Join(2);
       return R;
     }
-    return lookupEnumValue(EnumTy, Q.Name, Second);
+    return lookupEnumValue(EnumTy, Values, Q.Name, Second);
   }
   // A module loaded for another file, or a file the loader would find.
   if (KnownModules.count(Q.Name) ||

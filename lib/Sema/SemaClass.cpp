@@ -196,15 +196,11 @@ const Type *Sema::checkClassUnary(UnaryExpr *E) {
 
 Expr *Sema::makeDefaultArg(const NativeDefault &D, const Type *ParamTy,
                            llvm::SMLoc Loc) {
-  llvm::SMRange R(Loc, Loc);
-  Expr *E = nullptr;
-  if (ParamTy->isFloat())
-    E = Ctx.create<FloatLiteralExpr>(R, D.IsFloat ? D.Float : float(D.Int));
-  else if (ParamTy->isBool())
-    E = Ctx.create<BoolLiteralExpr>(R, D.IsFloat ? D.Float != 0 : D.Int != 0);
-  else
-    E = Ctx.create<IntLiteralExpr>(R, D.IsFloat ? int32_t(D.Float) : D.Int);
-  // An int literal stands for an enum value too: it has the enum's type.
-  E->Ty = ParamTy;
-  return E;
+  // The registered value as each scalar type reads it; makeConstantExpr
+  // picks the one ParamTy needs.
+  ConstantValue V;
+  V.Int = D.IsFloat ? int32_t(D.Float) : D.Int;
+  V.Float = D.IsFloat ? D.Float : float(D.Int);
+  V.Bool = D.IsFloat ? D.Float != 0 : D.Int != 0;
+  return makeConstantExpr(V, ParamTy, Loc);
 }

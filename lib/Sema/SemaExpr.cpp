@@ -32,17 +32,28 @@ void Sema::promoteToFloat(Expr *&E) {
   E = C;
 }
 
+Sema::ImplicitConversion Sema::classifyImplicit(const Type *From,
+                                                const Type *To) {
+  if (From == To || From->isError() || To->isError())
+    return ImplicitConversion::Unchanged;
+  if (From->isInt() && To->isFloat())
+    return ImplicitConversion::IntToFloat;
+  return ImplicitConversion::None;
+}
+
 bool Sema::convertImplicitly(Expr *&E, const Type *To) {
   if (!E || !E->Ty)
     return true;
-  const Type *From = E->Ty;
-  if (From == To || From->isError() || To->isError())
+  switch (classifyImplicit(E->Ty, To)) {
+  case ImplicitConversion::Unchanged:
     return true;
-  if (From->isInt() && To->isFloat()) {
+  case ImplicitConversion::IntToFloat:
     promoteToFloat(E);
     return true;
+  case ImplicitConversion::None:
+    return false;
   }
-  return false;
+  llvm_unreachable("unknown conversion");
 }
 
 const Type *Sema::checkExpr(Expr *E, Access A) {
@@ -646,14 +657,17 @@ bool Sema::resolveConstructor(CallExpr *C, NameExpr *Callee, const Type *T) {
     unsigned Conversions = 0;
     bool Viable = true;
     for (size_t I = 0; I != C->Args.size() && Viable; ++I) {
-      const Type *Arg = C->Args[I]->Ty;
-      const Type *Param = resolveNativeType(Ctor.Params[I]);
-      if (Arg->isError() || Param->isError() || Arg == Param)
-        continue;
-      if (Arg->isInt() && Param->isFloat())
+      switch (classifyImplicit(C->Args[I]->Ty,
+                               resolveNativeType(Ctor.Params[I]))) {
+      case ImplicitConversion::Unchanged:
+        break;
+      case ImplicitConversion::IntToFloat:
         ++Conversions;
-      else
+        break;
+      case ImplicitConversion::None:
         Viable = false;
+        break;
+      }
     }
     if (!Viable || Conversions > BestConversions)
       continue;

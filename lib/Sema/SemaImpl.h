@@ -111,8 +111,8 @@ public:
   /// close enough to suggest (`did you mean`).
   std::optional<std::string> findNearValueName(llvm::StringRef Name);
   /// Adds note_did_you_mean at `Id` for the candidate nearest to its name
-  /// (NearestName's rule), if one is near enough; returns whether it did.
-  bool suggestNearest(const Ident &Id,
+  /// (NearestName's rule), if one is near enough.
+  void suggestNearest(const Ident &Id,
                       llvm::ArrayRef<llvm::StringRef> Candidates);
   /// The value `Value` of the enum `EnumName` whose values are `Values`
   /// (null: TaskState's own done, running, failure) and of type `ValueTy`.
@@ -222,6 +222,11 @@ public:
   /// Converts `E` to `To` if the language allows it implicitly (wrapping an
   /// int in an implicit int-to-float conversion); false if not allowed.
   bool convertImplicitly(Expr *&E, const Type *To);
+  /// The language's one rule of implicit conversion, as a question: a
+  /// value of `From` passes as `To` unchanged (the same type, or poison),
+  /// after int-to-float promotion, or not at all.
+  enum class ImplicitConversion { Unchanged, IntToFloat, None };
+  static ImplicitConversion classifyImplicit(const Type *From, const Type *To);
   void promoteToFloat(Expr *&E);
   /// The source text of an expression, for messages.
   std::string getText(const Expr *E) const;
