@@ -358,14 +358,13 @@ uint32_t BehaviorSession::getCycle() const {
 
 BehaviorSession::Outcome BehaviorSession::runCycle(unsigned LimitMs) {
   bs_begin_cycle(State, Input, Output);
-  if (!World.Begin)
-    return runGuarded(Entry, LimitMs);
-  // The world's hooks run in the cycle: under its guard and time limit.
+  // A world's hooks run in the cycle: under its guard and time limit.
   uint32_t Cycle = getCycle();
   return runGuardedBody(
       [&] {
-        inHook("bs_world_begin",
-               [&] { World.Begin(WorldUser, Input, Output, Cycle); });
+        if (World.Begin)
+          inHook("bs_world_begin",
+                 [&] { World.Begin(WorldUser, Input, Output, Cycle); });
         Entry(State);
         if (World.End)
           inHook("bs_world_end",

@@ -208,16 +208,9 @@ EnumDecl *Parser::parseEnum() {
   }
   auto *D = make<EnumDecl>(rangeFrom(Start), Name, IsTaskState);
   D->Module = Module;
-  if (Tok.isNot(tok::newline)) {
-    diag(Tok.Loc, diag::err_expected_block) << "'enum'";
-    skipToLineEnd();
-  }
-  llvm::SMLoc LineEnd = Tok.Loc;
-  consumeIf(tok::newline);
-  if (Tok.isNot(tok::indent)) {
-    diag(LineEnd, diag::err_expected_block) << "'enum'";
+  llvm::SMLoc LineEnd;
+  if (!startBlock("'enum'", LineEnd))
     return D;
-  }
   consume();
   while (Tok.isNot(tok::dedent) && Tok.isNot(tok::eof)) {
     const char *Before = Tok.Loc.getPointer();
@@ -367,17 +360,23 @@ void Parser::parseParams(CallableDecl *D) {
 /// had an error is skipped to its end, and a block under it is still parsed
 /// so that the errors inside it are found too.
 BlockStmt *Parser::parseBlock(llvm::StringRef After, bool IsTaskBody) {
+  llvm::SMLoc LineEnd;
+  if (!startBlock(After, LineEnd))
+    return make<BlockStmt>(llvm::SMRange(LineEnd, LineEnd));
+  InError = false;
+  return parseBlockBody(IsTaskBody);
+}
+
+bool Parser::startBlock(llvm::StringRef After, llvm::SMLoc &LineEnd) {
   if (Tok.isNot(tok::newline))
     diag(Tok.Loc, diag::err_expected_block) << After;
   skipToLineEnd();
-  llvm::SMLoc LineEnd = Tok.Loc;
+  LineEnd = Tok.Loc;
   consumeIf(tok::newline);
-  if (Tok.isNot(tok::indent)) {
-    diag(LineEnd, diag::err_expected_block) << After;
-    return make<BlockStmt>(llvm::SMRange(LineEnd, LineEnd));
-  }
-  InError = false;
-  return parseBlockBody(IsTaskBody);
+  if (Tok.is(tok::indent))
+    return true;
+  diag(LineEnd, diag::err_expected_block) << After;
+  return false;
 }
 
 /// The statements from INDENT to its DEDENT.

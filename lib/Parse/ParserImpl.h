@@ -65,6 +65,11 @@ private:
   bool parseQualifiedName(QualifiedName &QN);
   BlockStmt *parseBlock(llvm::StringRef After, bool IsTaskBody = false);
   BlockStmt *parseBlockBody(bool IsTaskBody);
+  /// The end of a block's head line: reports anything left on it (once)
+  /// and consumes the newline. Returns whether an INDENT follows (not
+  /// consumed); else reports err_expected_block at the line's end,
+  /// `LineEnd`.
+  bool startBlock(llvm::StringRef After, llvm::SMLoc &LineEnd);
 
   //--- ParseStmt.cpp -------------------------------------------------------
   Stmt *parseStatement();
