@@ -257,17 +257,16 @@ std::string debug::describeActivation(const DebugTables &T,
   else
     S = "state " + std::to_string(A.state);
   const DebugTables::Task &Task = T.Tasks[A.task];
-  // Waiting at `yield Done::kicked`: the state has that name.
-  if (A.state != BS_TASK_DONE && A.resume > 0 &&
-      A.resume <= Task.YieldStates.size() &&
-      !Task.YieldStates[A.resume - 1].empty())
-    S = Task.YieldStates[A.resume - 1];
   // A task that ended (done) waits at no yield: optimised code does not
   // clear its resume point (lib/CodeGen/CGTask.cpp).
-  if (A.state != BS_TASK_DONE && A.resume > 0 &&
-      A.resume <= Task.YieldLines.size())
-    S += ", " + Task.File + ":" + std::to_string(Task.YieldLines[A.resume - 1]);
-  return S;
+  if (A.state == BS_TASK_DONE || A.resume == 0 ||
+      A.resume > Task.YieldLines.size())
+    return S;
+  size_t Yield = A.resume - 1;
+  // Waiting at `yield Done::kicked`: the state has that name.
+  if (Yield < Task.YieldStates.size() && !Task.YieldStates[Yield].empty())
+    S = Task.YieldStates[Yield];
+  return S + ", " + Task.File + ":" + std::to_string(Task.YieldLines[Yield]);
 }
 
 std::string debug::formatTraceLine(const DebugTables &T,
