@@ -63,16 +63,17 @@ public:
 void ObjectReader::readDescriptor(StringRef SymName, uint64_t Base,
                                   uint64_t Sec, StringRef Data,
                                   std::vector<BoundModule> &Out) {
-  auto Fail = [&](diag::Kind Kind, std::vector<std::string> Args = {}) {
-    Errs.add(File, SymName, Kind, std::move(Args));
-  };
-  auto Damaged = [&](const Twine &Detail) {
-    Fail(diag::err_bind_damaged_descriptor, {Detail.str()});
-  };
   // A problem of a record, or an error of a helper about it.
   auto ReportAt = [&](const Twine &Path, diag::Kind Kind,
                       std::vector<std::string> Args = {}) {
     return Errs.add(File, Path.str(), Kind, std::move(Args));
+  };
+  // ...of the descriptor as a whole, at its symbol.
+  auto Fail = [&](diag::Kind Kind, std::vector<std::string> Args = {}) {
+    ReportAt(SymName, Kind, std::move(Args));
+  };
+  auto Damaged = [&](const Twine &Detail) {
+    Fail(diag::err_bind_damaged_descriptor, {Detail.str()});
   };
   auto ErrorAt = [&](const Twine &Path, Error E) {
     Errs.add(File, Path.str(), std::move(E), what());
