@@ -6,10 +6,8 @@
 #  - 10,000 cycles of the paper's soccer behavior stepped in the REPL
 #    (`:step 10000`, printing each cycle's output changes, and `:run 10000`),
 #    less a session that steps once; best of 5, on one core.
-#  - tracing on the robot: the instructions bs_trace_snapshot adds to each
-#    cycle of bench/Steps.bs (callgrind, host build; the generated code of
-#    an --instrument object is the same as without), against the
-#    instructions of the cycle itself.
+# (Tracing on the robot, `--instrument`, is counted by bench/run.sh on the
+# shared benchmark's behaviors for i586.)
 #   bench/repl.sh [BUILD_DIR]     (default: build)
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -56,15 +54,3 @@ one=$(seconds "$OUT/one.txt" "${E[@]}")
 step=$(seconds "$OUT/step.txt" "${E[@]}")
 run=$(seconds "$OUT/run.txt" "${E[@]}")
 echo "10,000 cycles of the paper's soccer behavior: :step $(diff_s "$step" "$one") s, :run $(diff_s "$run" "$one") s (goal < 0.3 s)"
-
-N1=10000 N2=60000
-"$BSC" -O2 -c --instrument --behavior-name steps Steps.bs -o "$OUT/steps.o"
-cc -O2 -I../include snapshot_cost.c "$OUT/steps.o" "$BUILD/lib/libbscript_rt.a" -o "$OUT/cost"
-instructions() {
-  valgrind --tool=callgrind --callgrind-out-file="$OUT/cg.out" "$@" >/dev/null 2>"$OUT/cg.err"
-  grep -Eo 'Collected : [0-9]+' "$OUT/cg.err" | grep -Eo '[0-9]+'
-}
-per_cycle() { awk -v a="$1" -v b="$2" -v n1=$N1 -v n2=$N2 'BEGIN { printf "%.2f", (b - a) / (n2 - n1) }'; }
-plain=$(per_cycle "$(instructions "$OUT/cost" $N1 0)" "$(instructions "$OUT/cost" $N2 0)")
-traced=$(per_cycle "$(instructions "$OUT/cost" $N1 1)" "$(instructions "$OUT/cost" $N2 1)")
-echo "tracing Steps.bs (2 tasks): $plain instructions per cycle, $traced with bs_trace_snapshot ($(awk -v a="$traced" -v b="$plain" 'BEGIN { printf "+%.1f%%", 100 * (a - b) / b }'))"

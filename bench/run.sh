@@ -10,7 +10,10 @@
 #    prints instructions per behavior cycle (callgrind, --toggle-collect on
 #    the harness's bsc_cycle_*), state bytes, heap allocations per cycle and
 #    the ratios bsc / protothreads.
-# 2. Steps.bs, a parent task driving a child state machine, against the same
+# 2. Tracing on the robot: the same i586 -O2 programs with the behavior
+#    compiled with --instrument, which writes a trace record each cycle
+#    (and, second figure, the cycle's record copied into a log ring).
+# 3. Steps.bs, a parent task driving a child state machine, against the same
 #    state machines written in C (steps_reference.c).
 #
 #   bench/run.sh [BUILD_DIR]        (default: build)
@@ -78,12 +81,23 @@ for t in i586 x86_64; do
 done
 ((status == 0)) && echo "checksums: bsc at -O0 to -O3 equals the protothreads on both targets"
 
-echo "== logging the robot's trace (bs_trace_snapshot after each cycle, i586 -O2)"
+echo "== tracing on the robot (i586 -O2, --instrument: each task call writes the state's trace record)"
+pct() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%+.1f%%", (b - a) / a * 100 }'; }
 for b in soccer wide; do
-  shared/build.sh "$BUILD" "$SHARED" i586 "$b" -O2 "$OUT/snap-$b" -DBENCH_SNAPSHOT
+  shared/build.sh "$BUILD" "$SHARED" i586 "$b" -O2 "$OUT/trace-$b" -DBENCH_TRACE
+  shared/build.sh "$BUILD" "$SHARED" i586 "$b" -O2 "$OUT/log-$b" -DBENCH_TRACE -DBENCH_TRACE_LOG
+  ref=$(field checksum "$("$OUT/proto-i586" "$b" verify)")
+  for v in trace log; do
+    got=$("$OUT/$v-$b/$b" "$b" verify)
+    if [[ $(field checksum "$got") != "$ref" ]]; then
+      echo "bench: $b with --instrument ($v): checksum $(field checksum "$got"), protothreads $ref" >&2
+      status=1
+    fi
+  done
   plain=$(per_cycle "$OUT/bsc-i586-$b-O2" "$b")
-  snap=$(per_cycle "$OUT/snap-$b/$b" "$b")
-  echo "$b: $plain -> $snap instructions per cycle (+$(awk -v a="$plain" -v b="$snap" 'BEGIN { printf "%.0f", (b - a) / a * 100 }')%; issue 10's budget: 10%)"
+  traced=$(per_cycle "$OUT/trace-$b/$b" "$b")
+  logged=$(per_cycle "$OUT/log-$b/$b" "$b")
+  echo "$b: $plain -> $traced instructions per cycle with the record ($(pct "$plain" "$traced"); issue 10's budget: +10%), $logged with a copy of it into a log ring ($(pct "$plain" "$logged")); state bytes $(field state_bytes "$got")"
 done
 
 echo "== Steps.bs against hand-written C (host)"

@@ -4,15 +4,20 @@
 // bsc_cycle_wide once per cycle; here each is one cycle of the compiled
 // behavior: bs_begin_cycle and the entry, as robot code does. The program
 // holds one behavior (BENCH_WIDE selects which), so the other cycle
-// function only reports the mix-up. With BENCH_SNAPSHOT each cycle also
-// takes the robot's trace record (bs_trace_snapshot, docs/repl.md), to
-// count what logging a trace costs.
+// function only reports the mix-up. With BENCH_TRACE (and a behavior
+// compiled with --instrument) each cycle also starts its trace record
+// (bs_bench_trace_begin, docs/repl.md), which the behavior's task calls
+// write; with BENCH_TRACE_LOG as well, the record is then copied into a log
+// ring in memory, as a robot that logs its trace does: the two costs of
+// tracing on the robot.
 //
 //===----------------------------------------------------------------------===//
 #define BSC_MAIN
 #include "harness.h"
 
 #include "behavior.h"
+
+#include <cstring>
 
 #ifdef BENCH_WIDE
 #define BENCH_ENTRY bs_bench_call__wide__cycle
@@ -22,13 +27,23 @@
 
 static bs_bench_state State;
 
-#ifdef BENCH_SNAPSHOT
-static bs_activation Activations[BS_BENCH_NUM_TASKS];
-static void snapshot() {
-  bs_trace_snapshot(&State, &bs_bench_info, Activations, BS_BENCH_NUM_TASKS);
+#ifdef BENCH_TRACE
+static void startTrace() { bs_bench_trace_begin(&State); }
+#else
+static void startTrace() {}
+#endif
+
+#ifdef BENCH_TRACE_LOG
+// 256 cycles of records; a logger thread would write them out.
+// Not static: the copies are the point, so the compiler must keep them.
+alignas(4) unsigned char Log[256][BS_BENCH_TRACE_RECORD_SIZE];
+static unsigned NextRecord = 0;
+static void logTrace() {
+  std::memcpy(Log[NextRecord++ % 256], bs_bench_trace_record(&State),
+              BS_BENCH_TRACE_RECORD_SIZE);
 }
 #else
-static void snapshot() {}
+static void logTrace() {}
 #endif
 
 static void wrongBehavior() {
@@ -42,16 +57,18 @@ extern "C" __attribute__((noinline)) void bsc_cycle_soccer() {
   wrongBehavior();
 #else
   bs_bench_begin_cycle(&State, &g_in, &g_out);
+  startTrace();
   BENCH_ENTRY(&State);
-  snapshot();
+  logTrace();
 #endif
 }
 
 extern "C" __attribute__((noinline)) void bsc_cycle_wide() {
 #ifdef BENCH_WIDE
   bs_bench_begin_cycle(&State, &g_in, &g_out);
+  startTrace();
   BENCH_ENTRY(&State);
-  snapshot();
+  logTrace();
 #else
   wrongBehavior();
 #endif

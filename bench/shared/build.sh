@@ -3,7 +3,9 @@
 # around one behavior compiled by bsc: bench/run.sh and
 # test/Run/shared-bench.test use it.
 #   build.sh BSC_BUILD_DIR SHARED_BENCH_DIR i586|x86_64 soccer|wide -O<n> OUT
-#            [-DBENCH_SNAPSHOT]
+#            [-DBENCH_TRACE [-DBENCH_TRACE_LOG]]
+# (-DBENCH_TRACE: the behavior compiled with --instrument, its trace record
+# started each cycle; -DBENCH_TRACE_LOG: and copied into a log.)
 # writes OUT/<behavior> (and its objects beside it).
 set -euo pipefail
 build=$1 shared=$2 target=$3 behavior=$4 opt=$5 out=$6
@@ -17,11 +19,13 @@ case $target in
 esac
 glue=("$@")
 [[ $behavior == wide ]] && glue+=(-DBENCH_WIDE)
+instrument=()
+[[ " ${glue[*]} " == *" -DBENCH_TRACE "* ]] && instrument=(--instrument)
 cxx=(clang++-19 "${cxxflags[@]}" -std=c++20 -O2 -I "$include" -I "$shared")
 mkdir -p "$out"
 "${cxx[@]}" -c "$here/BenchBindings.cpp" -o "$out/bind.o"
 args=(-target "$target" --bind "$out/bind.o" --behavior-name bench -I "$here"
-      "$here/$behavior.bs")
+      "${instrument[@]}" "$here/$behavior.bs")
 "$build/bin/bsc" "$opt" -c "${args[@]}" -o "$out/behavior.o"
 "$build/bin/bsc" --emit-header "${args[@]}" -o "$out/behavior.h"
 "${cxx[@]}" "${glue[@]}" -I "$out" -c "$here/bench_bsc.cpp" -o "$out/glue.o"

@@ -36,7 +36,7 @@ extern "C" {
 #endif
 
 /** Bumped whenever the layout below changes; bs_behavior_info carries it. */
-#define BS_ABI_VERSION 6
+#define BS_ABI_VERSION 7
 
 /** Task states (language.md): > 0 running, 0 done, < 0 failure. */
 #define BS_TASK_DONE 0
@@ -78,6 +78,10 @@ typedef struct bs_task_info {
 #define BS_INIT_OK 0
 #define BS_INIT_BAD_INFO (-1)       /**< Another ABI version, or misaligned. */
 #define BS_INIT_STALE_BINDINGS (-2) /**< See bs_check_bindings. */
+/** The generated header's bs_B_init: the object's state size is not the
+ *  header's (the two come from different compilations: another target or
+ *  script, or `--instrument` on one of them only). */
+#define BS_INIT_WRONG_SIZE (-3)
 
 /** A binding module the behavior was compiled against. */
 typedef struct bs_binding_module {
@@ -85,6 +89,26 @@ typedef struct bs_binding_module {
   const void *descriptor; /**< &bs_module_Math, as linked */
   uint64_t hash;          /**< bs_binding_hash of the descriptor bsc read */
 } bs_binding_module;
+
+/** Trace records (`bsc --instrument`). Every task call of an instrumented
+ *  behavior writes into the state's trace record which yield its task now
+ *  waits at, so that the robot can log the active hierarchy for the price
+ *  of a store or two per task call. The record is `record_size` bytes,
+ *  4-aligned, at `offset` in the state: one slot per task (task-table
+ *  order) of `slot_bytes` bytes (1, or 2 if a task has more than 254
+ *  yields), little-endian, which holds
+ *    0               the task was not called in this cycle,
+ *    k (1, 2, ...)   its last call this cycle stopped at its k-th yield,
+ *    0xff / 0xffff   its last call finished it (done);
+ *  then, from byte `clear_size` on, one int32 per task that yields values
+ *  computed at run time (`yield acc + 1`): the state it yielded, valid when
+ *  its slot names such a yield. bs_trace_begin clears the slots. */
+typedef struct bs_trace_layout {
+  uint32_t record_size; /**< Bytes of the record; 0: not instrumented. */
+  uint32_t clear_size;  /**< Bytes of slots, which bs_trace_begin zeroes. */
+  uint32_t slot_bytes;  /**< 1 or 2. */
+  uint32_t offset;      /**< Of the record inside the state. */
+} bs_trace_layout;
 
 typedef struct bs_behavior_info {
   uint32_t abi_version; /**< BS_ABI_VERSION of the compiler that made it. */
@@ -103,14 +127,10 @@ typedef struct bs_behavior_info {
    *  `bsc trace-decode` reads to turn a trace log into text; NULL
    *  otherwise. Also in the object's section `.bs_debug_tables`. */
   const char *debug_tables;
+  /** `bsc --instrument`: where the behavior writes its trace record ("Trace
+   *  records" below); all zero otherwise. */
+  bs_trace_layout trace;
 } bs_behavior_info;
-
-/** One task that ran in the current cycle (bs_trace_snapshot). */
-typedef struct bs_activation {
-  uint16_t task;   /**< Index into bs_behavior_info.tasks. */
-  uint16_t resume; /**< 0: finished; k: waits after its k-th yield. */
-  int32_t state;   /**< The state it left: > 0 running, 0 done, < 0 failure. */
-} bs_activation;
 
 /** Zeroes a state: every task reports done and starts from the top at its
  *  next call. Returns BS_INIT_OK; BS_INIT_BAD_INFO if `info` is from another
@@ -144,20 +164,21 @@ uint64_t bs_binding_hash(const void *descriptor);
  *  links call it; it uses stdio, like the io module. */
 int bs_report_init_failure(const bs_behavior_info *info, int code);
 
-/** The tasks called in the current cycle, in task-table order, into `out`
- *  (at most `capacity` records); returns how many there are, which may be
- *  more than `capacity`. Call it after the cycle's entry calls. It reads
- *  the frame headers only, so it works with any compiled behavior and costs
- *  nothing inside the behavior.
+/** Starts the trace record of the cycle that is about to run (after
+ *  bs_begin_cycle, before the entry): zeroes its slots. Does nothing for a
+ *  behavior compiled without `--instrument`.
  *
  *  Trace logs: a robot that logs its behavior writes, per cycle, the
- *  little-endian words {cycle (the state's bs_state_header.cycle), count}
- *  and then `count` bs_activation records (8 bytes each: task, resume as
- *  uint16, state as int32). `bsc trace-decode --object B.o LOG` prints
- *  them as `bsc run --trace` does, with the names and lines of the tables
- *  an object compiled with `bsc --instrument` carries. */
-uint32_t bs_trace_snapshot(const void *state, const bs_behavior_info *info,
-                           bs_activation *out, uint32_t capacity);
+ *  little-endian uint32 cycle (the state's bs_state_header.cycle) and the
+ *  cycle's record (bs_trace_record, record_size bytes) after the entry
+ *  calls. `bsc trace-decode --object B.o LOG` prints them as `bsc run
+ *  --trace` does, with the names and lines of the tables an object compiled
+ *  with `bsc --instrument` carries. */
+void bs_trace_begin(void *state, const bs_behavior_info *info);
+
+/** The trace record inside the state, or NULL for a behavior compiled
+ *  without `--instrument`. */
+const void *bs_trace_record(const void *state, const bs_behavior_info *info);
 
 /** Starts the next execution cycle with this cycle's input and output. */
 void bs_begin_cycle(void *state, const void *input, void *output);

@@ -11,10 +11,18 @@
 //   dispatch:  frame.last_call = cycle; [frame.params = args]
 //              switch (frame.resume) { k: resume.k; default: start }
 //   start:     the body...
-//   yield k:   [frame.resume = k]; [frame.state = v]; ret void
+//   yield k:   [frame.resume = k]; [frame.state = v];
+//              [trace.slot = k; [trace.word = v]]; ret void
 //   resume.k:  ...the code after the k-th yield
 //   end:       [destroy(frame)]; frame.state = done;
-//              [frame.last_call = cycle ^ ended]; ret
+//              [frame.last_call = cycle ^ ended]; [trace.slot = 0xff]; ret
+//
+// The trace record (`--instrument`, bscript.h "Trace records"): every way
+// out of a call writes the task's slot in the state's record, a constant
+// (the resume point, or "finished"), and a yield of a value computed at
+// run time writes the value into the task's word. One store, where the
+// value is known; the embedding zeroes the slots before each cycle, so a
+// slot left 0 is a task that was not called.
 //
 // The last call. Each call records the cycle in frame.last_call, with
 // bit 31 flipped if the call ended the task (done or failure); a new
@@ -98,10 +106,7 @@ llvm::Value *FunctionEmitter::emitTaskState(const TaskDecl *T) {
                     getFrameFieldPtr(T, FrameState), "taskstate");
 }
 
-/// The task state a yield's value always has, if it is a constant: an int
-/// literal, `-` one, a named state (`TaskState::failure`) or a module
-/// constant.
-static std::optional<int64_t> getConstantState(const Expr *E) {
+std::optional<int64_t> codegen::getConstantState(const Expr *E) {
   if (!E)
     return TaskRunning;
   if (const auto *L = llvm::dyn_cast<IntLiteralExpr>(E))
@@ -124,6 +129,8 @@ YieldPlan codegen::planYields(const TaskDecl &T) {
   unsigned Running = 0;
   for (const YieldStmt *Y : T.Yields) {
     std::optional<int64_t> V = getConstantState(Y->Value);
+    if (!V)
+      P.ComputedStates = true;
     if (V && *V <= TaskDone)
       continue; // Ends the task.
     if (!V || *V != TaskRunning)
@@ -246,6 +253,7 @@ void FunctionEmitter::emitTaskFinish() {
   createStore(Access::State, Builder.getInt32(TaskDone),
               getFrameFieldPtr(Task, FrameState));
   markEnded();
+  recordTraceExit(CGM.getLayout().Trace.finishedSlot(), nullptr);
   Builder.CreateRetVoid();
 }
 
@@ -255,6 +263,25 @@ void FunctionEmitter::markEnded() {
     createStore(Access::State,
                 Builder.CreateXor(Cycle, Builder.getInt32(LastCallEnded)),
                 getFrameFieldPtr(Task, FrameLastCall));
+}
+
+void FunctionEmitter::recordTraceExit(uint32_t Slot,
+                                      llvm::Value *ComputedState) {
+  const BehaviorLayout::TraceLayout &Trace = CGM.getLayout().Trace;
+  if (!Trace.RecordSize)
+    return;
+  unsigned Index = CGM.getFrame(Task).TaskIndex;
+  llvm::Value *Record = Builder.CreateConstInBoundsGEP2_32(
+      CGM.getStateType(), StatePtr, 0, CGM.getTraceRecordField(), "trace");
+  llvm::Type *SlotTy = Builder.getIntNTy(8 * Trace.SlotBytes);
+  createStore(Access::TraceRecord, llvm::ConstantInt::get(SlotTy, Slot),
+              Builder.CreateConstInBoundsGEP1_64(SlotTy, Record, Index,
+                                                 "trace.slot"));
+  if (ComputedState)
+    createStore(Access::TraceRecord, ComputedState,
+                Builder.CreateConstInBoundsGEP1_64(
+                    Builder.getInt8Ty(), Record, *Trace.StateWords[Index],
+                    "trace.state"));
 }
 
 void FunctionEmitter::emitTaskEpilogue() {
@@ -287,6 +314,7 @@ void FunctionEmitter::emitYield(const YieldStmt &S) {
     createStore(Access::State, State, getFrameFieldPtr(Task, FrameState));
   if (Ends)
     markEnded();
+  recordTraceExit(S.ResumePoint, Constant ? nullptr : State);
   Builder.CreateRetVoid();
 
   // The code after the yield; a yield that ends the task is never resumed

@@ -63,8 +63,9 @@ ModuleEmitter::ModuleEmitter(const Behavior &B, llvm::Module &M,
     llvm::MDNode *Ty = MDB.createTBAAScalarTypeNode(Name, Root);
     return MDB.createTBAAStructTagNode(Ty, Ty, 0);
   };
-  StateAccessTag = Tag("behavior state");
-  NativeAccessTag = Tag("registered C++ field");
+  AccessTags[unsigned(Access::State)] = Tag("behavior state");
+  AccessTags[unsigned(Access::Native)] = Tag("registered C++ field");
+  AccessTags[unsigned(Access::TraceRecord)] = Tag("trace record");
 }
 
 llvm::Type *ModuleEmitter::getValueType(const Type *T) {
@@ -307,6 +308,7 @@ void ModuleEmitter::layoutState() {
   llvm::SmallVector<llvm::Type *, 8> StateFields = {I32, I32, Ptr, Ptr, Ptr};
   for (const TaskDecl *T : B.Tasks) {
     FrameInfo &FI = Frames[T];
+    FI.TaskIndex = StateFields.size() - FirstFrameField;
     // bs_frame_header: resume, state, last_call; then params, then locals.
     llvm::SmallVector<llvm::Type *, 8> Fields = {I32, I32, I32};
     std::string Prefix = T->getName().Name.str() + ".";
@@ -368,17 +370,44 @@ void ModuleEmitter::layoutState() {
     FI.StateFieldNo = StateFields.size();
     StateFields.push_back(FI.Ty);
   }
+  // `--instrument`: the trace record, after the frames so that the frames
+  // sit where they do without it.
+  BehaviorLayout::TraceLayout &Trace = Layout.Trace;
+  Trace = {};
+  if (Opts.Instrument) {
+    bool WideSlots = llvm::any_of(B.Tasks, [&](const TaskDecl *T) {
+      return T->Yields.size() >= Trace.finishedSlot();
+    });
+    Trace.SlotBytes = WideSlots ? 2 : 1;
+    Trace.ClearSize = llvm::alignTo(B.Tasks.size() * Trace.SlotBytes, 4);
+    Trace.RecordSize = Trace.ClearSize;
+    for (const TaskDecl *T : B.Tasks) {
+      std::optional<uint64_t> Word;
+      if (planYields(*T).ComputedStates) {
+        Word = Trace.RecordSize;
+        Trace.RecordSize += 4;
+      }
+      Trace.StateWords.push_back(Word);
+    }
+    // Never 0, which reads "not instrumented".
+    Trace.RecordSize = std::max<uint64_t>(Trace.RecordSize, 4);
+    TraceRecordField = StateFields.size();
+    StateFields.push_back(llvm::ArrayType::get(I32, Trace.RecordSize / 4));
+  }
   StateTy = llvm::StructType::create(Ctx, StateFields, "bs.state");
 
   const llvm::DataLayout &DL = M.getDataLayout();
   const llvm::StructLayout *SL = DL.getStructLayout(StateTy);
   Layout.StateSize = DL.getTypeAllocSize(StateTy);
   Layout.StateAlign = DL.getABITypeAlign(StateTy).value();
+  if (Opts.Instrument)
+    Trace.Offset = SL->getElementOffset(TraceRecordField);
   Layout.Tasks.clear();
   for (const TaskDecl *T : B.Tasks) {
     const FrameInfo &FI = Frames[T];
     uint64_t FrameOffset = SL->getElementOffset(FI.StateFieldNo);
-    BehaviorLayout::Task Entry{T, FrameOffset, DL.getTypeStoreSize(FI.Ty), {}};
+    BehaviorLayout::Task Entry{
+        T, FrameOffset, DL.getTypeStoreSize(FI.Ty), {}, false, {}};
     auto Add = [&](const Decl *D, const Type *Ty) {
       Entry.Fields.push_back(
           {D, Ty, getFrameFieldOffset(T, FI.Fields.lookup(D))});
@@ -390,6 +419,11 @@ void ModuleEmitter::layoutState() {
       if (FI.Fields.count(V))
         Add(V, V->Ty);
     Entry.OnlyRunningStates = planYields(*T).OnlyRunning;
+    for (const YieldStmt *Y : T->Yields) {
+      std::optional<int64_t> V = getConstantState(Y->Value);
+      Entry.YieldValues.push_back(V ? std::optional<int32_t>(*V)
+                                    : std::nullopt);
+    }
     Layout.Tasks.push_back(std::move(Entry));
   }
 }
@@ -589,8 +623,11 @@ void ModuleEmitter::emitInfo() {
   auto *TaskInfoTy = llvm::StructType::create(Ctx, {Ptr, I32}, "bs_task_info");
   auto *ModuleInfoTy =
       llvm::StructType::create(Ctx, {Ptr, Ptr, I64}, "bs_binding_module");
+  auto *TraceTy =
+      llvm::StructType::create(Ctx, {I32, I32, I32, I32}, "bs_trace_layout");
   auto *InfoTy = llvm::StructType::create(
-      Ctx, {I32, I32, I32, I32, Ptr, I32, Ptr, Ptr, Ptr}, "bs_behavior_info");
+      Ctx, {I32, I32, I32, I32, Ptr, I32, Ptr, Ptr, Ptr, TraceTy},
+      "bs_behavior_info");
 
   // A private constant array, or null when there is nothing to list.
   auto EmitTable = [&](llvm::StructType *Ty,
@@ -623,6 +660,14 @@ void ModuleEmitter::emitInfo() {
                        llvm::ConstantInt::get(I64, NM->Hash)}));
   }
 
+  const BehaviorLayout::TraceLayout &Trace = Layout.Trace;
+  llvm::Constant *TraceInit = llvm::ConstantStruct::get(
+      TraceTy, {llvm::ConstantInt::get(I32, Trace.RecordSize),
+                llvm::ConstantInt::get(I32, Trace.ClearSize),
+                llvm::ConstantInt::get(I32, Trace.RecordSize ? Trace.SlotBytes
+                                                              : 0),
+                llvm::ConstantInt::get(I32, Trace.Offset)});
+
   Layout.InfoSymbol = "bs_" + Opts.BehaviorName + "_info";
   llvm::Constant *Init = llvm::ConstantStruct::get(
       InfoTy, {llvm::ConstantInt::get(I32, ABIVersion),
@@ -635,7 +680,7 @@ void ModuleEmitter::emitInfo() {
                BehaviorDestroy ? static_cast<llvm::Constant *>(BehaviorDestroy)
                                : llvm::ConstantPointerNull::get(
                                      llvm::PointerType::getUnqual(Ctx)),
-               getDebugTables()});
+               getDebugTables(), TraceInit});
   Info = new llvm::GlobalVariable(M, InfoTy, /*isConstant=*/true,
                                   llvm::GlobalValue::ExternalLinkage, Init,
                                   Layout.InfoSymbol);

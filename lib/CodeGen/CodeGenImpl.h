@@ -65,6 +65,7 @@ constexpr uint32_t LastCallEnded = 0x80000000u;
 struct FrameInfo {
   llvm::StructType *Ty = nullptr;
   unsigned StateFieldNo = 0; ///< Field of %bs.state holding this frame.
+  unsigned TaskIndex = 0;    ///< In the task table (B.Tasks order).
   /// ParamDecl or VarDecl of the task -> field of the frame struct.
   llvm::DenseMap<const Decl *, unsigned> Fields;
   /// Per field, the name its address gets in the IR (`fib.b`).
@@ -84,8 +85,15 @@ struct YieldPlan {
   /// The resume point of the one yield that leaves the task running,
   /// if it has exactly one: the reset stores it, that yield does not.
   unsigned SingleResume = 0;
+  /// Some yield's value is known only at run time (`yield acc + 1`): an
+  /// instrumented task writes it into its trace record's state word.
+  bool ComputedStates = false;
 };
 YieldPlan planYields(const TaskDecl &T);
+/// The task state a yield's value always has, if it is a constant: none
+/// (running), an int literal, `-` one, a named state
+/// (`TaskState::failure`) or a module constant.
+std::optional<int64_t> getConstantState(const Expr *Value);
 
 class ModuleEmitter;
 
@@ -259,20 +267,23 @@ public:
 
   // Alias information ------------------------------------------------------
 
-  /// TBAA access tags of the two kinds of memory generated code touches.
+  /// TBAA access tags of the kinds of memory generated code touches.
   /// The state (cycle, input/output pointers, frame headers, scalar
   /// parameters and locals, REPL slots) and the scalar fields of registered
   /// C++ objects (`input`, `output` and class values) never overlap, so a
   /// store to `output.motion` does not force the next read of the output
   /// pointer or of a frame field to reload. Class values are copied and
-  /// passed to C++ without a tag (they may alias anything).
-  enum class Access { State, Native };
-  llvm::MDNode *getAccessTag(Access A) const {
-    return A == Access::State ? StateAccessTag : NativeAccessTag;
-  }
+  /// passed to C++ without a tag (they may alias anything). An
+  /// instrumented behavior's trace record overlaps neither, so that
+  /// writing it reloads nothing.
+  enum class Access { State, Native, TraceRecord };
+  llvm::MDNode *getAccessTag(Access A) const { return AccessTags[unsigned(A)]; }
 
   /// With CodeGenOptions::DebugInfo, the DWARF being built; else null.
   DebugInfoEmitter *getDebugInfo() { return DebugInfo.get(); }
+  /// With CodeGenOptions::Instrument: the field of %bs.state that holds
+  /// the cycle's trace record.
+  unsigned getTraceRecordField() const { return TraceRecordField; }
   /// The offset of field `Field` of the frame of `T` from the start of
   /// the state.
   uint64_t getFrameFieldOffset(const TaskDecl *T, unsigned Field) const;
@@ -312,6 +323,7 @@ private:
   BehaviorLayout &Layout;
 
   llvm::StructType *StateTy = nullptr;
+  unsigned TraceRecordField = 0;
   llvm::DenseMap<const TaskDecl *, FrameInfo> Frames;
   llvm::DenseMap<const CallableDecl *, llvm::Function *> Functions;
   llvm::DenseMap<const NativeFunction *, llvm::FunctionCallee> Natives;
@@ -319,8 +331,7 @@ private:
   llvm::Function *StringEquals = nullptr;
   llvm::GlobalVariable *Info = nullptr;
   llvm::Function *BehaviorDestroy = nullptr; ///< Null: nothing to destroy.
-  llvm::MDNode *StateAccessTag = nullptr;
-  llvm::MDNode *NativeAccessTag = nullptr;
+  llvm::MDNode *AccessTags[3] = {};
   /// emitReplLine: the REPL's variables at their addresses.
   const llvm::DenseMap<const Decl *, uint64_t> *ReplSlots = nullptr;
   std::unique_ptr<DebugInfoEmitter> DebugInfo;
@@ -350,6 +361,10 @@ private:
   void emitTaskFinish();
   /// Marks the task's last call as ended (CGTask.cpp, "The last call").
   void markEnded();
+  /// With CodeGenOptions::Instrument: writes this call's way out into the
+  /// task's slot of the trace record (a yield's resume point, or the
+  /// finished value), and a state known only at run time into its word.
+  void recordTraceExit(uint32_t Slot, llvm::Value *ComputedState);
   void emitYield(const YieldStmt &S);
   /// A pointer to field `Field` of the frame of `T`.
   llvm::Value *getFrameFieldPtr(const TaskDecl *T, unsigned Field);

@@ -99,8 +99,12 @@ void bsc::writeBehaviorHeader(const Behavior &B, const BehaviorLayout &L,
 
   // Typed wrappers.
   OS << "/** Zeroes the state: every task starts from the top at its next "
-        "call.\n *  Returns 0, or -1 if the state is misaligned. */\n"
+        "call.\n *  Returns BS_INIT_OK, or why not (bscript.h): "
+        "BS_INIT_WRONG_SIZE if the\n *  object linked is not the one this "
+        "header was generated with. */\n"
      << "static inline int " << P << "_init(" << P << "_state *state) {\n"
+     << "  if (" << L.InfoSymbol << ".state_size != " << M << "_STATE_SIZE)\n"
+     << "    return BS_INIT_WRONG_SIZE;\n"
      << "  return bs_state_init(state, &" << L.InfoSymbol << ");\n}\n\n"
      << "/** Destroys the class values the state holds (bs_state_destroy):\n"
         " *  once, when the behavior stops; initialise it again to reuse it. */\n"
@@ -132,6 +136,25 @@ void bsc::writeBehaviorHeader(const Behavior &B, const BehaviorLayout &L,
         OS << Param->getName().Name;
     }
     OS << ");\n}\n\n";
+  }
+  // `--instrument`: the trace record (bscript.h, "Trace records"), without
+  // a call into the shim.
+  if (const BehaviorLayout::TraceLayout &Trace = L.Trace; Trace.RecordSize) {
+    OS << "/** Bytes of the trace record (bscript.h, \"Trace records\"). */\n"
+       << "#define " << M << "_TRACE_RECORD_SIZE " << Trace.RecordSize
+       << "u\n\n"
+       << "/** Starts the trace record of the cycle about to run, after\n"
+          " *  begin_cycle: zeroes its slots. */\n"
+       << "static inline void " << P << "_trace_begin(" << P
+       << "_state *state) {\n"
+       << "  for (unsigned i = 0; i < " << Trace.ClearSize << "u; ++i)\n"
+       << "    state->bytes[" << Trace.Offset << "u + i] = 0;\n}\n\n"
+       << "/** The trace record (" << M
+       << "_TRACE_RECORD_SIZE bytes, 4-aligned): what\n"
+          " *  the cycle's task calls wrote, for the robot's log. */\n"
+       << "static inline const void *" << P << "_trace_record(const " << P
+       << "_state *state) {\n"
+       << "  return state->bytes + " << Trace.Offset << "u;\n}\n\n";
   }
   // Task states, straight from the frame header (bscript.h).
   for (const BehaviorLayout::Task &Task : L.Tasks) {

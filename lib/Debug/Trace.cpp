@@ -13,6 +13,7 @@
 #include "llvm/Support/Endian.h"
 #include "llvm/Support/Path.h"
 #include "llvm/Support/SourceMgr.h"
+#include <cstring>
 #include <functional>
 #include <set>
 
@@ -66,9 +67,14 @@ DebugTables debug::buildDebugTables(const Behavior &B,
     return SM.FindBufferContainingLoc(Loc) ? SM.getLineAndColumn(Loc).first
                                            : 0u;
   };
+  T.RecordSize = Layout.Trace.RecordSize;
+  T.SlotBytes = Layout.Trace.SlotBytes;
   for (const BehaviorLayout::Task &LT : Layout.Tasks) {
     const TaskDecl *D = LT.Decl;
     DebugTables::Task Task;
+    Task.YieldValues = LT.YieldValues;
+    if (T.RecordSize)
+      Task.StateWord = Layout.Trace.StateWords[T.Tasks.size()];
     Task.Name = D->getQualifiedName();
     Task.ShortName = NameCount[D->getName().Name] == 1
                          ? D->getName().Name.str()
@@ -103,7 +109,7 @@ DebugTables debug::buildDebugTables(const Behavior &B,
 //===----------------------------------------------------------------------===//
 
 /// Bumped when the JSON form of the tables changes.
-static constexpr int64_t TablesVersion = 1;
+static constexpr int64_t TablesVersion = 2;
 
 llvm::json::Value debug::toJSON(const DebugTables &T) {
   llvm::json::Array Tasks;
@@ -121,10 +127,19 @@ llvm::json::Value debug::toJSON(const DebugTables &T) {
                          {"fields", std::move(Fields)}};
     if (Task.YieldStates.size() == Task.YieldLines.size())
       O["yieldStates"] = llvm::json::Array(Task.YieldStates);
+    llvm::json::Array Values;
+    for (std::optional<int32_t> V : Task.YieldValues)
+      Values.push_back(V ? llvm::json::Value(*V) : llvm::json::Value(nullptr));
+    O["yieldValues"] = std::move(Values);
+    if (Task.StateWord)
+      O["stateWord"] = *Task.StateWord;
     Tasks.push_back(std::move(O));
   }
-  return llvm::json::Object{{"version", TablesVersion},
-                            {"tasks", std::move(Tasks)}};
+  return llvm::json::Object{
+      {"version", TablesVersion},
+      {"record", llvm::json::Object{{"size", T.RecordSize},
+                                    {"slotBytes", T.SlotBytes}}},
+      {"tasks", std::move(Tasks)}};
 }
 
 static llvm::Error badTables(const llvm::Twine &Why) {
@@ -140,11 +155,20 @@ llvm::Expected<DebugTables> debug::parseDebugTables(llvm::StringRef Text) {
   if (!Root)
     return badTables("not an object");
   if (Root->getInteger("version") != TablesVersion)
-    return badTables("unknown version");
+    return badTables("unknown version (compiled by another bsc?)");
   const llvm::json::Array *Tasks = Root->getArray("tasks");
   if (!Tasks)
     return badTables("no task list");
   DebugTables T;
+  const llvm::json::Object *Record = Root->getObject("record");
+  std::optional<int64_t> Size = Record ? Record->getInteger("size") : std::nullopt;
+  std::optional<int64_t> SlotBytes =
+      Record ? Record->getInteger("slotBytes") : std::nullopt;
+  if (!Size || !SlotBytes || (*SlotBytes != 1 && *SlotBytes != 2) ||
+      *Size < int64_t(Tasks->size() * *SlotBytes) || *Size % 4 != 0)
+    return badTables("no valid trace record layout");
+  T.RecordSize = *Size;
+  T.SlotBytes = *SlotBytes;
   for (const llvm::json::Value &V : *Tasks) {
     const llvm::json::Object *O = V.getAsObject();
     if (!O)
@@ -179,6 +203,25 @@ llvm::Expected<DebugTables> debug::parseDebugTables(llvm::StringRef Text) {
         Task.YieldStates.push_back(Str->str());
       }
     }
+    const llvm::json::Array *Values = O->getArray("yieldValues");
+    if (!Values || Values->size() != Yields->size())
+      return badTables("the yield values do not match the yields");
+    bool Computed = false;
+    for (const llvm::json::Value &V : *Values) {
+      std::optional<int64_t> I = V.getAsInteger();
+      if (!I && V.kind() != llvm::json::Value::Null)
+        return badTables("a yield value is neither a number nor null");
+      Computed |= !I;
+      Task.YieldValues.push_back(I ? std::optional<int32_t>(*I) : std::nullopt);
+    }
+    if (std::optional<int64_t> Word = O->getInteger("stateWord")) {
+      if (*Word < int64_t(Tasks->size() * T.SlotBytes) ||
+          *Word % 4 != 0 || *Word + 4 > int64_t(T.RecordSize))
+        return badTables("a state word is outside the record");
+      Task.StateWord = *Word;
+    }
+    if (Computed && !Task.StateWord)
+      return badTables("a task yields computed states but has no state word");
     for (const llvm::json::Value &C : *Callers) {
       std::optional<int64_t> I = C.getAsInteger();
       if (!I || *I < 0 || size_t(*I) >= Tasks->size())
@@ -204,13 +247,13 @@ llvm::Expected<DebugTables> debug::parseDebugTables(llvm::StringRef Text) {
 //===----------------------------------------------------------------------===//
 
 ActiveTree debug::buildActiveTree(const DebugTables &T,
-                                  llvm::ArrayRef<bs_activation> Records) {
+                                  llvm::ArrayRef<Activation> Records) {
   ActiveTree Tree;
   llvm::DenseMap<unsigned, unsigned> NodeOfTask;
-  for (const bs_activation &A : Records) {
-    if (A.task >= T.Tasks.size() || NodeOfTask.count(A.task))
+  for (const Activation &A : Records) {
+    if (A.Task >= T.Tasks.size() || NodeOfTask.count(A.Task))
       continue;
-    NodeOfTask[A.task] = Tree.Nodes.size();
+    NodeOfTask[A.Task] = Tree.Nodes.size();
     Tree.Nodes.push_back({A, {}});
   }
   // Each node's parent is its deepest active caller (the first in table
@@ -222,7 +265,7 @@ ActiveTree debug::buildActiveTree(const DebugTables &T,
     if (Depth[N] >= 0)
       return Depth[N];
     Depth[N] = 0;
-    const DebugTables::Task &Task = T.Tasks[Tree.Nodes[N].Record.task];
+    const DebugTables::Task &Task = T.Tasks[Tree.Nodes[N].Record.Task];
     for (unsigned Caller : Task.Callers) {
       auto It = NodeOfTask.find(Caller);
       if (It == NodeOfTask.end() || It->second == N)
@@ -246,23 +289,23 @@ ActiveTree debug::buildActiveTree(const DebugTables &T,
 }
 
 std::string debug::describeActivation(const DebugTables &T,
-                                      const bs_activation &A) {
+                                      const Activation &A) {
   std::string S;
-  if (A.state == BS_TASK_RUNNING)
+  if (A.State == BS_TASK_RUNNING)
     S = "running";
-  else if (A.state == BS_TASK_DONE)
+  else if (A.State == BS_TASK_DONE)
     S = "done";
-  else if (A.state == BS_TASK_FAILURE)
+  else if (A.State == BS_TASK_FAILURE)
     S = "failure";
   else
-    S = "state " + std::to_string(A.state);
-  const DebugTables::Task &Task = T.Tasks[A.task];
+    S = "state " + std::to_string(A.State);
+  const DebugTables::Task &Task = T.Tasks[A.Task];
   // A task that ended (done) waits at no yield: optimised code does not
   // clear its resume point (lib/CodeGen/CGTask.cpp).
-  if (A.state == BS_TASK_DONE || A.resume == 0 ||
-      A.resume > Task.YieldLines.size())
+  if (A.State == BS_TASK_DONE || A.Resume == 0 ||
+      A.Resume > Task.YieldLines.size())
     return S;
-  size_t Yield = A.resume - 1;
+  size_t Yield = A.Resume - 1;
   // Waiting at `yield Done::kicked`: the state has that name.
   if (Yield < Task.YieldStates.size() && !Task.YieldStates[Yield].empty())
     S = Task.YieldStates[Yield];
@@ -270,7 +313,7 @@ std::string debug::describeActivation(const DebugTables &T,
 }
 
 std::string debug::formatTraceLine(const DebugTables &T,
-                                   llvm::ArrayRef<bs_activation> Records) {
+                                   llvm::ArrayRef<Activation> Records) {
   ActiveTree Tree = buildActiveTree(T, Records);
   std::vector<std::string> Paths;
   std::vector<unsigned> Stack;
@@ -282,7 +325,7 @@ std::string debug::formatTraceLine(const DebugTables &T,
       std::string P;
       llvm::ListSeparator Sep(" > ");
       for (unsigned S : Stack)
-        P += (llvm::Twine(Sep) + T.Tasks[Tree.Nodes[S].Record.task].ShortName)
+        P += (llvm::Twine(Sep) + T.Tasks[Tree.Nodes[S].Record.Task].ShortName)
                  .str();
       Paths.push_back(P + " [" + describeActivation(T, Node.Record) + "]");
     }
@@ -297,16 +340,56 @@ std::string debug::formatTraceLine(const DebugTables &T,
   return llvm::join(Paths, "; ");
 }
 
-std::vector<bs_activation> debug::takeSnapshot(const void *State,
-                                               const bs_behavior_info *Info) {
-  std::vector<bs_activation> Records(Info->num_tasks);
-  uint32_t N = bs_trace_snapshot(State, Info, Records.data(), Records.size());
-  Records.resize(std::min<size_t>(N, Records.size()));
+std::vector<Activation> debug::takeSnapshot(const void *State,
+                                            const bs_behavior_info *Info) {
+  std::vector<Activation> Records;
+  const auto *Bytes = static_cast<const unsigned char *>(State);
+  uint32_t Cycle = static_cast<const bs_state_header *>(State)->cycle;
+  if (Cycle == 0)
+    return Records;
+  for (uint32_t I = 0; I < Info->num_tasks; ++I) {
+    bs_frame_header Frame;
+    std::memcpy(&Frame, Bytes + Info->tasks[I].frame_offset, sizeof Frame);
+    // Every call records the cycle (bit 31 flipped if the call ended the
+    // task): the tasks called in this one.
+    if (((Frame.last_call ^ Cycle) & ~BS_LAST_CALL_ENDED) == 0)
+      Records.push_back({I, uint32_t(Frame.resume), Frame.state});
+  }
+  return Records;
+}
+
+llvm::Expected<std::vector<Activation>>
+debug::decodeTraceRecord(const DebugTables &T,
+                         llvm::ArrayRef<uint8_t> Record) {
+  namespace endian = llvm::support::endian;
+  assert(Record.size() == T.RecordSize && "one whole record");
+  uint32_t Finished = T.SlotBytes == 1 ? 0xff : 0xffff;
+  std::vector<Activation> Records;
+  for (unsigned I = 0; I < T.Tasks.size(); ++I) {
+    const DebugTables::Task &Task = T.Tasks[I];
+    const uint8_t *Slot = Record.data() + I * T.SlotBytes;
+    uint32_t Value = T.SlotBytes == 1 ? *Slot : endian::read16le(Slot);
+    if (Value == 0)
+      continue;
+    if (Value == Finished) {
+      Records.push_back({I, 0, BS_TASK_DONE});
+      continue;
+    }
+    if (Value > Task.YieldValues.size())
+      return llvm::createStringError(
+          llvm::inconvertibleErrorCode(),
+          "task " + Task.Name + " stopped at yield " + llvm::Twine(Value) +
+              ", but it has " + llvm::Twine(Task.YieldValues.size()));
+    std::optional<int32_t> State = Task.YieldValues[Value - 1];
+    if (!State)
+      State = int32_t(endian::read32le(Record.data() + *Task.StateWord));
+    Records.push_back({I, Value, *State});
+  }
   return Records;
 }
 
 llvm::Expected<std::vector<LoggedCycle>>
-debug::parseTraceLog(llvm::StringRef Bytes, size_t NumTasks) {
+debug::parseTraceLog(llvm::StringRef Bytes, const DebugTables &T) {
   namespace endian = llvm::support::endian;
   std::vector<LoggedCycle> Cycles;
   size_t Pos = 0;
@@ -315,29 +398,21 @@ debug::parseTraceLog(llvm::StringRef Bytes, size_t NumTasks) {
                                    "byte " + llvm::Twine(Pos) + ": " + Why);
   };
   while (Pos < Bytes.size()) {
-    if (Bytes.size() - Pos < 8)
-      return Fail("the log ends inside a cycle header");
+    if (Bytes.size() - Pos < 4 + T.RecordSize)
+      return Fail("the log ends inside a cycle (a cycle is 4 + " +
+                  llvm::Twine(T.RecordSize) + " bytes)");
     LoggedCycle C;
     C.Cycle = endian::read32le(Bytes.data() + Pos);
-    uint32_t Count = endian::read32le(Bytes.data() + Pos + 4);
-    Pos += 8;
-    if (Count > NumTasks)
-      return Fail("cycle " + llvm::Twine(C.Cycle) + " has " +
-                  llvm::Twine(Count) + " records, but the behavior has " +
-                  llvm::Twine(NumTasks) + " tasks");
-    if ((Bytes.size() - Pos) / 8 < Count)
-      return Fail("the log ends inside cycle " + llvm::Twine(C.Cycle));
-    for (uint32_t I = 0; I < Count; ++I, Pos += 8) {
-      bs_activation A;
-      A.task = endian::read16le(Bytes.data() + Pos);
-      A.resume = endian::read16le(Bytes.data() + Pos + 2);
-      A.state = int32_t(endian::read32le(Bytes.data() + Pos + 4));
-      if (A.task >= NumTasks)
-        return Fail("a record names task " + llvm::Twine(A.task) +
-                    ", but the behavior has " + llvm::Twine(NumTasks));
-      C.Records.push_back(A);
-    }
+    auto Record = llvm::ArrayRef(
+        reinterpret_cast<const uint8_t *>(Bytes.data()) + Pos + 4,
+        T.RecordSize);
+    auto Records = decodeTraceRecord(T, Record);
+    if (!Records)
+      return Fail("cycle " + llvm::Twine(C.Cycle) + ": " +
+                  llvm::toString(Records.takeError()));
+    C.Records = std::move(*Records);
     Cycles.push_back(std::move(C));
+    Pos += 4 + T.RecordSize;
   }
   return Cycles;
 }

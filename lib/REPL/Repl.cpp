@@ -507,30 +507,30 @@ static void collectChanges(const llvm::json::Value &Old,
 }
 
 std::string Repl::checkBreakpoints() {
-  std::vector<bs_activation> Records =
+  std::vector<debug::Activation> Records =
       debug::takeSnapshot(S->getState(), &S->getInfo());
   for (Breakpoint &B : Breakpoints) {
     switch (B.K) {
     case Breakpoint::Task:
-      for (const bs_activation &A : Records)
-        if (A.task == B.TaskIndex)
+      for (const debug::Activation &A : Records)
+        if (A.Task == B.TaskIndex)
           return "breakpoint " + std::to_string(B.Number) + ", " + B.Text +
                  " ran";
       break;
     case Breakpoint::Line:
-      for (const bs_activation &A : Records) {
-        const debug::DebugTables::Task &T = L->Tables.Tasks[A.task];
-        if (A.resume > 0 && T.File == B.File &&
-            T.YieldLines[A.resume - 1] == B.LineNo)
+      for (const debug::Activation &A : Records) {
+        const debug::DebugTables::Task &T = L->Tables.Tasks[A.Task];
+        if (A.Resume > 0 && T.File == B.File &&
+            T.YieldLines[A.Resume - 1] == B.LineNo)
           return "breakpoint " + std::to_string(B.Number) + ", " + T.Name +
                  " waits at " + B.Text;
       }
       break;
     case Breakpoint::Failure:
-      for (const bs_activation &A : Records)
-        if (A.state < 0)
+      for (const debug::Activation &A : Records)
+        if (A.State < 0)
           return "breakpoint " + std::to_string(B.Number) + ", " +
-                 L->Tables.Tasks[A.task].Name + " failed";
+                 L->Tables.Tasks[A.Task].Name + " failed";
       break;
     case Breakpoint::Watch: {
       BehaviorSession::Outcome O = S->runGuarded(B.Eval, Opts.CycleLimitMs);
@@ -631,7 +631,7 @@ void Repl::cmdTasks(llvm::StringRef Args, llvm::SMLoc Loc) {
     OS << "no cycle has run yet\n";
     return;
   }
-  std::vector<bs_activation> Records =
+  std::vector<debug::Activation> Records =
       debug::takeSnapshot(S->getState(), &S->getInfo());
   debug::ActiveTree Tree = debug::buildActiveTree(L->Tables, Records);
   if (Tree.Nodes.empty()) {
@@ -642,7 +642,7 @@ void Repl::cmdTasks(llvm::StringRef Args, llvm::SMLoc Loc) {
   std::function<void(unsigned, unsigned)> Print = [&](unsigned N,
                                                       unsigned Depth) {
     const debug::ActiveTask &Node = Tree.Nodes[N];
-    const BehaviorLayout::Task &T = L->Layout.Tasks[Node.Record.task];
+    const BehaviorLayout::Task &T = L->Layout.Tasks[Node.Record.Task];
     std::string Indent(2 * Depth, ' ');
     std::vector<std::string> Params, Locals;
     for (const BehaviorLayout::FrameField &F : T.Fields) {
@@ -650,12 +650,12 @@ void Repl::cmdTasks(llvm::StringRef Args, llvm::SMLoc Loc) {
                          formatValue(F.Ty, Values->read(F.Ty, State + F.Offset));
       (llvm::isa<ParamDecl>(F.D) ? Params : Locals).push_back(Text);
     }
-    OS << Indent << L->Tables.Tasks[Node.Record.task].ShortName;
+    OS << Indent << L->Tables.Tasks[Node.Record.Task].ShortName;
     if (!T.Decl->Params.empty())
       OS << "(" << llvm::join(Params, ", ") << ")";
     OS << " [" << debug::describeActivation(L->Tables, Node.Record) << "]";
     // A finished task's locals are gone (the next call starts afresh).
-    if (Node.Record.resume > 0 && !Locals.empty())
+    if (Node.Record.Resume > 0 && !Locals.empty())
       OS << "  " << llvm::join(Locals, ", ");
     OS << "\n";
     for (unsigned Child : Node.Children)
@@ -813,9 +813,9 @@ void Repl::cmdGraph(llvm::StringRef Args, llvm::SMLoc Loc) {
   if (!noArgs("graph", Args, Loc))
     return;
   llvm::DenseSet<const CallableDecl *> Active;
-  for (const bs_activation &A :
+  for (const debug::Activation &A :
        debug::takeSnapshot(S->getState(), &S->getInfo()))
-    Active.insert(L->Layout.Tasks[A.task].Decl);
+    Active.insert(L->Layout.Tasks[A.Task].Decl);
   writeCallGraphDOT(C->Checked, C->SM, OS, &Active);
 }
 

@@ -1,10 +1,10 @@
 /*===- bscript.c - the runtime shim of compiled behaviors ----------------===*
  *
  * The whole runtime a compiled behavior needs besides `io`: initialising a
- * state, starting a cycle, reading a task's state by name, checking the
- * linked binding modules against the hashes the behavior was compiled with
- * (include/bscript/bscript.h). It stays tiny and free of libc (loops instead of memset and
- * strcmp; CMake also stops the compiler from turning them back into calls)
+ * state, starting a cycle and its trace record, reading a task's state by
+ * name, checking the linked binding modules against the hashes the behavior
+ * was compiled with (include/bscript/bscript.h). It stays tiny and free of
+ * libc (loops instead of memset and strcmp; CMake also stops the compiler from turning them back into calls)
  * so that it links into any robot software, and so that the same file serves
  * the host, the JIT and the robot. bs_state_destroy runs the behavior's
  * own destroy function (bs_behavior_info.destroy), which calls the class
@@ -87,29 +87,18 @@ void bs_begin_cycle(void *state, const void *input, void *output) {
   bs_begin_cycle_inline(state, input, output);
 }
 
-uint32_t bs_trace_snapshot(const void *state, const bs_behavior_info *info,
-                           bs_activation *out, uint32_t capacity) {
-  if (!state || !info || info->abi_version != BS_ABI_VERSION)
+void bs_trace_begin(void *state, const bs_behavior_info *info) {
+  unsigned char *record = (unsigned char *)bs_trace_record(state, info);
+  if (record)
+    for (uint32_t i = 0; i < info->trace.clear_size; ++i)
+      record[i] = 0;
+}
+
+const void *bs_trace_record(const void *state, const bs_behavior_info *info) {
+  if (!state || !info || info->abi_version != BS_ABI_VERSION ||
+      !info->trace.record_size)
     return 0;
-  const unsigned char *bytes = (const unsigned char *)state;
-  uint32_t cycle = ((const bs_state_header *)state)->cycle, count = 0;
-  if (cycle == 0)
-    return 0;
-  for (uint32_t i = 0; i < info->num_tasks; ++i) {
-    const bs_frame_header *frame =
-        (const bs_frame_header *)(bytes + info->tasks[i].frame_offset);
-    /* Every call records the cycle (bit 31 flipped if the call ended the
-     * task): the tasks called in this one. */
-    if (((frame->last_call ^ cycle) & ~BS_LAST_CALL_ENDED) != 0)
-      continue;
-    if (count < capacity) {
-      out[count].task = (uint16_t)i;
-      out[count].resume = (uint16_t)frame->resume;
-      out[count].state = frame->state;
-    }
-    ++count;
-  }
-  return count;
+  return (const unsigned char *)state + info->trace.offset;
 }
 
 /* Whether two NUL-terminated strings are equal. */

@@ -16,6 +16,12 @@ int bs_report_init_failure(const bs_behavior_info *info, int code) {
             "module '%s' whose descriptor has changed (sizes, offsets or "
             "signatures); recompile the scripts\n",
             stale);
+  else if (code == BS_INIT_WRONG_SIZE)
+    fprintf(stderr,
+            "bscript: error: the behavior's state has %u bytes, but its "
+            "header says otherwise; regenerate the header with the options "
+            "of the object (--instrument, -target)\n",
+            (unsigned)info->state_size);
   else
     fprintf(stderr, "bscript: error: cannot initialise the behavior state "
                     "(ABI version or alignment, code %d)\n",

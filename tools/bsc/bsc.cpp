@@ -144,8 +144,9 @@ cl::opt<std::string> DepFilePath(
     cl::value_desc("file"), cl::cat(BscCategory));
 cl::opt<bool> InstrumentFlag(
     "instrument",
-    cl::desc("Embed the debugger's tables (task names, yield lines) in the "
-             "object, for `bsc trace-decode` of robot trace logs"),
+    cl::desc("Make every task call write the state's trace record, and embed "
+             "the debugger's tables (task names, yield lines) in the object, "
+             "for `bsc trace-decode` of robot trace logs"),
     cl::cat(BscCategory));
 cl::opt<std::string> TraceObject(
     "object", cl::desc("The object compiled with --instrument"),
@@ -760,7 +761,7 @@ int decodeTrace(Compilation &C) {
   if (!Log)
     return Fail(TraceLog, Log.getError().message());
   auto Cycles =
-      debug::parseTraceLog((*Log)->getBuffer(), Tables->Tasks.size());
+      debug::parseTraceLog((*Log)->getBuffer(), *Tables);
   if (!Cycles)
     return Fail(TraceLog, llvm::toString(Cycles.takeError()));
   for (const debug::LoggedCycle &Cycle : *Cycles)

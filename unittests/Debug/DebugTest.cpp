@@ -142,9 +142,13 @@ TEST(DebugValuesTest, ArrayFieldsAreJSONArrays) {
 }
 
 /// walk (0) is called by look (1) and main (2); look and head (3) by main.
+/// Each has two yields: `yield` and `yield TaskState::failure`, but walk's
+/// second yields a value computed at run time (its trace record's word).
 DebugTables makeTables() {
   DebugTables T;
   T.Tasks.resize(4);
+  T.RecordSize = 8;
+  T.SlotBytes = 1;
   const char *Names[] = {"walk", "look", "main", "head"};
   for (unsigned I = 0; I < 4; ++I) {
     T.Tasks[I].Name = std::string("M::") + Names[I];
@@ -152,7 +156,10 @@ DebugTables makeTables() {
     T.Tasks[I].File = "M.bs";
     T.Tasks[I].Line = 10 * (I + 1);
     T.Tasks[I].YieldLines = {10 * I + 11, 10 * I + 12};
+    T.Tasks[I].YieldValues = {1, -1};
   }
+  T.Tasks[0].YieldValues[1] = std::nullopt;
+  T.Tasks[0].StateWord = 4;
   T.Tasks[0].Callers = {1, 2};
   T.Tasks[1].Callers = {2};
   T.Tasks[3].Callers = {2};
@@ -198,34 +205,88 @@ TEST(DebugTraceTest, TablesSurviveJSON) {
   EXPECT_EQ(std::vector<unsigned>({21, 22}), Back->Tasks[1].YieldLines);
   EXPECT_EQ("float", Back->Tasks[0].Fields[1].Type);
   EXPECT_FALSE(Back->Tasks[0].Fields[1].IsParam);
-  for (const char *Bad : {"", "[]", "{\"version\":2,\"tasks\":[]}",
-                          "{\"version\":1,\"tasks\":[{\"name\":\"a\"}]}",
-                          "{\"version\":1,\"tasks\":[{\"name\":\"a\",\"short\":"
-                          "\"a\",\"file\":\"f\",\"line\":1,\"yields\":[],"
-                          "\"callers\":[5],\"fields\":[]}]}"}) {
+  EXPECT_EQ(8u, Back->RecordSize);
+  EXPECT_EQ(1u, Back->SlotBytes);
+  EXPECT_EQ(std::optional<uint64_t>(4), Back->Tasks[0].StateWord);
+  EXPECT_FALSE(Back->Tasks[1].StateWord);
+  EXPECT_EQ((std::vector<std::optional<int32_t>>{1, std::nullopt}),
+            Back->Tasks[0].YieldValues);
+  EXPECT_EQ((std::vector<std::optional<int32_t>>{1, -1}),
+            Back->Tasks[1].YieldValues);
+  // A task of the right shape, for the damaged variants below.
+  std::string Good = "{\"name\":\"a\",\"short\":\"a\",\"file\":\"f\","
+                     "\"line\":1,\"yields\":[3],\"callers\":[],"
+                     "\"fields\":[],";
+  auto Tables = [](const std::string &Record, const std::string &Task) {
+    return "{\"version\":2,\"record\":" + Record + ",\"tasks\":[" + Task +
+           "]}";
+  };
+  std::string Layout = "{\"size\":8,\"slotBytes\":1}";
+  ASSERT_TRUE(bool(parseDebugTables(
+      Tables(Layout, Good + "\"yieldValues\":[null],\"stateWord\":4}"))));
+  for (std::string Bad :
+       {std::string(), std::string("[]"),
+        std::string("{\"version\":1,\"tasks\":[]}"),
+        Tables(Layout, "{\"name\":\"a\"}"),
+        Tables(Layout, Good + "\"yieldValues\":[1],\"callers\":[5]}"),
+        // The record: missing, too small for the slots, odd slots.
+        Tables("{}", Good + "\"yieldValues\":[1]}"),
+        Tables("{\"size\":0,\"slotBytes\":1}", Good + "\"yieldValues\":[1]}"),
+        Tables("{\"size\":4,\"slotBytes\":3}", Good + "\"yieldValues\":[1]}"),
+        // Yield values: missing, too few, a string; a computed one
+        // without a word; a word inside the slots or past the end.
+        Tables(Layout, Good + "\"x\":0}"),
+        Tables(Layout, Good + "\"yieldValues\":[]}"),
+        Tables(Layout, Good + "\"yieldValues\":[\"1\"]}"),
+        Tables(Layout, Good + "\"yieldValues\":[null]}"),
+        Tables(Layout, Good + "\"yieldValues\":[null],\"stateWord\":0}"),
+        Tables(Layout, Good + "\"yieldValues\":[null],\"stateWord\":8}")}) {
     llvm::Expected<DebugTables> R = parseDebugTables(Bad);
     EXPECT_FALSE(bool(R)) << Bad;
     llvm::consumeError(R.takeError());
   }
 }
 
-TEST(DebugTraceTest, LogsAreCheckedRecordByRecord) {
-  // Cycle 5 with one record {task 1, resume 2, state -1}.
-  const char Log[] = "\5\0\0\0\1\0\0\0\1\0\2\0\xff\xff\xff\xff";
-  auto Cycles = parseTraceLog(llvm::StringRef(Log, 16), 3);
+TEST(DebugTraceTest, TraceRecordsDecodeToActivations) {
+  DebugTables T = makeTables();
+  // Cycle 5: walk stopped at its second yield with the state 7 (its
+  // word), look at its first (running), main was not called, head
+  // finished. Cycle 6: look failed at its second yield.
+  const char Log[] = "\5\0\0\0"
+                     "\2\1\0\xff\7\0\0\0"
+                     "\6\0\0\0"
+                     "\0\2\0\0\0\0\0\0";
+  auto Cycles = parseTraceLog(llvm::StringRef(Log, 24), T);
   ASSERT_TRUE(bool(Cycles));
-  ASSERT_EQ(1u, Cycles->size());
+  ASSERT_EQ(2u, Cycles->size());
   EXPECT_EQ(5u, (*Cycles)[0].Cycle);
-  EXPECT_EQ(2, (*Cycles)[0].Records[0].resume);
-  EXPECT_EQ(-1, (*Cycles)[0].Records[0].state);
-  for (size_t Cut : {4, 8, 12}) {
-    auto R = parseTraceLog(llvm::StringRef(Log, Cut), 3);
+  const std::vector<Activation> &C5 = (*Cycles)[0].Records;
+  ASSERT_EQ(3u, C5.size());
+  EXPECT_EQ(0u, C5[0].Task);
+  EXPECT_EQ(2u, C5[0].Resume);
+  EXPECT_EQ(7, C5[0].State);
+  EXPECT_EQ(1u, C5[1].Task);
+  EXPECT_EQ(1u, C5[1].Resume);
+  EXPECT_EQ(1, C5[1].State);
+  EXPECT_EQ(3u, C5[2].Task);
+  EXPECT_EQ(0u, C5[2].Resume);
+  EXPECT_EQ(0, C5[2].State);
+  EXPECT_EQ("look > walk [state 7, M.bs:12]; head [done]",
+            formatTraceLine(T, C5));
+  EXPECT_EQ("look [failure, M.bs:22]",
+            formatTraceLine(T, (*Cycles)[1].Records));
+  // A log cut inside a cycle.
+  for (size_t Cut : {2, 4, 11, 14}) {
+    auto R = parseTraceLog(llvm::StringRef(Log, Cut), T);
     EXPECT_FALSE(bool(R)) << Cut;
     llvm::consumeError(R.takeError());
   }
-  auto R = parseTraceLog(llvm::StringRef(Log, 16), 1); // Task 1 of 1.
-  EXPECT_FALSE(bool(R));
-  llvm::consumeError(R.takeError());
+  // A slot naming a yield the task does not have.
+  const char Bad[] = "\1\0\0\0\3\0\0\0\0\0\0\0";
+  auto R = parseTraceLog(llvm::StringRef(Bad, 12), T);
+  ASSERT_FALSE(bool(R));
+  EXPECT_EQ("byte 0: cycle 1: task M::walk stopped at yield 3, but it has 2",
+            llvm::toString(R.takeError()));
 }
 
 } // namespace

@@ -49,11 +49,13 @@ struct CodeGenOptions {
   /// loop that ran away or the binding that crashed. Values computed do
   /// not change; robot objects never have probes (no mutable globals).
   bool Probes = false;
-  /// `--instrument`: bs_behavior_info.debug_tables points to the static
-  /// tables of the debugger (task names, yield lines, frame fields, the
-  /// call graph; bsc/Debug/Trace.h) as JSON, in the section
+  /// `--instrument`: every way out of a task call writes the task's slot of
+  /// the trace record, which follows the frames in the state
+  /// (BehaviorLayout::Trace, bscript.h "Trace records"), and
+  /// bs_behavior_info.debug_tables points to the static tables of the
+  /// debugger (task names, yield lines and values, frame fields, the call
+  /// graph, the record's layout; bsc/Debug/Trace.h) as JSON, in the section
   /// DebugTablesSection, so that a robot's trace log can be decoded offline.
-  /// The code of tasks and funcs does not change.
   bool Instrument = false;
   /// Floats on the x87 unit (usesX87Floats): every float that an operation
   /// computes (arithmetic, conversion from int, a result of registered C++)
@@ -119,6 +121,9 @@ struct BehaviorLayout {
     /// be carried into such a task (the REPL's :reload) from one that is
     /// too.
     bool OnlyRunningStates = false;
+    /// The state the k-th yield leaves when it is a constant (`yield`,
+    /// `yield TaskState::failure`); none for a value computed at run time.
+    std::vector<std::optional<int32_t>> YieldValues;
   };
   std::vector<Task> Tasks;
   struct Entry {
@@ -133,6 +138,20 @@ struct BehaviorLayout {
   std::vector<DebugSite> Sites;
   /// With CodeGenOptions::Instrument: the declared symbol of the tables.
   std::string DebugTablesSymbol;
+  /// With CodeGenOptions::Instrument: the trace record every task call
+  /// writes (bscript.h, "Trace records"); RecordSize 0 otherwise.
+  struct TraceLayout {
+    uint64_t RecordSize = 0;
+    uint64_t ClearSize = 0; ///< The slots, rounded up to 4 bytes.
+    unsigned SlotBytes = 1;
+    uint64_t Offset = 0; ///< Of the record inside the state.
+    /// Per task (Tasks order), the offset in the record of the word that
+    /// holds a state computed at run time, if it yields one.
+    std::vector<std::optional<uint64_t>> StateWords;
+    /// The slot value of a call that finished its task.
+    uint32_t finishedSlot() const { return SlotBytes == 1 ? 0xff : 0xffff; }
+  };
+  TraceLayout Trace;
 };
 
 /// Defines the debug tables an instrumented module declares

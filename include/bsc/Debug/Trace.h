@@ -1,20 +1,22 @@
 //===- Trace.h - which tasks ran in a cycle, and where they stopped -*- C++ -*-===//
 //
-// A cycle's activation: the tasks called in it (frame.last_call holds the
-// state's cycle, bit 31 aside), each with the state it left and the yield it is
-// suspended at. The runtime takes it from a state with bs_trace_snapshot
-// (bscript.h), on the robot as in the JIT, so the same records serve
-// `bsc run --trace`, the REPL's `:tasks` and a robot log decoded offline.
+// A cycle's activation: the tasks called in it, each with the state it left
+// and the yield it is suspended at. The JIT's debugger reads it from the
+// frames (frame.last_call holds the state's cycle, bit 31 aside); a robot
+// reads it from the trace record an instrumented behavior writes
+// (bscript.h, "Trace records"), which the decoder turns into the same
+// activations. So the same lines serve `bsc run --trace`, the REPL's
+// `:tasks` and a robot log decoded offline.
 //
-// The records carry no caller: recording one would cost instructions in
-// every task call. The hierarchy is rebuilt from the static call graph in
+// The activations carry no caller: recording one would cost instructions
+// in every task call. The hierarchy is rebuilt from the static call graph in
 // DebugTables instead: a task's parent is the deepest active task that can
 // call it, directly or through funcs (the first in table order among
 // equals). Only a task that two active tasks both can call is ambiguous,
 // and then this rule decides, on every target alike (docs/repl.md).
 //
-// DebugTables are the static half: task names, yield lines, frame fields,
-// callers. bsc builds them from the checked behavior; `bsc --instrument`
+// DebugTables are the static half: task names, yield lines and states,
+// frame fields, callers, the trace record's layout. bsc builds them from the checked behavior; `bsc --instrument`
 // also embeds them in the object as JSON (bs_behavior_info.debug_tables)
 // so that `bsc trace-decode` needs nothing but the object and the log.
 //
@@ -26,6 +28,7 @@
 #include "llvm/ADT/ArrayRef.h"
 #include "llvm/Support/Error.h"
 #include "llvm/Support/JSON.h"
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -58,11 +61,24 @@ struct DebugTables {
     /// `enum ... : TaskState` value), or "" (empty when the tables came
     /// without them).
     std::vector<std::string> YieldStates;
+    /// The state the k-th yield leaves, where it is a constant; a yield of
+    /// a value computed at run time writes it into the record's StateWord.
+    std::vector<std::optional<int32_t>> YieldValues;
+    std::optional<uint64_t> StateWord; ///< In the trace record.
     /// Tasks (by index) that call it directly or through funcs, ascending.
     std::vector<unsigned> Callers;
     std::vector<Field> Fields; ///< Parameters, then locals.
   };
   std::vector<Task> Tasks; ///< In bs_behavior_info.tasks order.
+  uint64_t RecordSize = 0; ///< Of a trace record (bscript.h).
+  unsigned SlotBytes = 1;
+};
+
+/// One task that ran in a cycle, and where its last call stopped.
+struct Activation {
+  unsigned Task = 0;   ///< Index into DebugTables::Tasks.
+  unsigned Resume = 0; ///< 0: finished; k: waits after its k-th yield.
+  int32_t State = 0;   ///< > 0 running, 0 done, < 0 failure.
 };
 
 /// Builds the tables from a checked behavior (whose Calls give the call
@@ -76,7 +92,7 @@ llvm::Expected<DebugTables> parseDebugTables(llvm::StringRef JSON);
 
 /// One node of a cycle's hierarchy.
 struct ActiveTask {
-  bs_activation Record;
+  Activation Record;
   std::vector<unsigned> Children; ///< Indexes into the tree's nodes.
 };
 
@@ -86,32 +102,38 @@ struct ActiveTree {
   std::vector<unsigned> Roots;
 };
 ActiveTree buildActiveTree(const DebugTables &T,
-                           llvm::ArrayRef<bs_activation> Records);
+                           llvm::ArrayRef<Activation> Records);
 
 /// `running, Behavior.bs:57` / `done` / `failure, Kick.bs:9` / `state 3,
 /// Head.bs:12` / `Done::kicked, Striker.bs:29`: a task's state (by its
 /// name when the yield it waits at yields a named task state) and the yield
 /// it waits at.
-std::string describeActivation(const DebugTables &T, const bs_activation &A);
+std::string describeActivation(const DebugTables &T, const Activation &A);
 
 /// The hierarchy on one line, each path from a root to a leaf:
 /// `play > gotoBallAndKick > executeKick [running, Soccer.bs:57]`, paths
 /// separated by `; `; `idle` when no task ran.
 std::string formatTraceLine(const DebugTables &T,
-                            llvm::ArrayRef<bs_activation> Records);
+                            llvm::ArrayRef<Activation> Records);
 
-/// The activations of `State` now (bs_trace_snapshot).
-std::vector<bs_activation> takeSnapshot(const void *State,
-                                        const bs_behavior_info *Info);
+/// The activations of `State` now, read from its frames: the tasks whose
+/// last call was in the state's cycle, in task-table order.
+std::vector<Activation> takeSnapshot(const void *State,
+                                     const bs_behavior_info *Info);
 
-/// A robot's trace log (bscript.h, "Trace logs"): per cycle a header
-/// {uint32 cycle, uint32 count} and `count` records, little-endian.
+/// The activations a trace record holds (RecordSize bytes); an error names
+/// what contradicts the tables.
+llvm::Expected<std::vector<Activation>>
+decodeTraceRecord(const DebugTables &T, llvm::ArrayRef<uint8_t> Record);
+
+/// A robot's trace log (bscript.h, "Trace logs"): per cycle the uint32
+/// cycle and a trace record, little-endian.
 struct LoggedCycle {
   uint32_t Cycle;
-  std::vector<bs_activation> Records;
+  std::vector<Activation> Records;
 };
 llvm::Expected<std::vector<LoggedCycle>> parseTraceLog(llvm::StringRef Bytes,
-                                                       size_t NumTasks);
+                                                       const DebugTables &T);
 
 } // namespace debug
 } // namespace bsc
