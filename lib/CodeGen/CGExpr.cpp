@@ -437,7 +437,11 @@ llvm::Value *FunctionEmitter::emitCall(const CallExpr &E) {
     }
     if (Callee->getReturnType()->isVoidTy())
       return Builder.CreateCall(Callee, Args);
-    return Builder.CreateCall(Callee, Args, E.Target->getName().Name);
+    llvm::CallInst *Call =
+        Builder.CreateCall(Callee, Args, E.Target->getName().Name);
+    if (E.Kind == CallKind::Task)
+      LastTaskCall = Call;
+    return Call;
   }
   case CallKind::NativeFunction:
     return emitNativeCall(*E.NativeFn, nullptr, E.Args);

@@ -17,6 +17,14 @@
 //   end:       [destroy(frame)]; frame.state = done;
 //              [frame.last_call = cycle ^ ended]; [trace.slot = 0xff]; ret
 //
+// The result. A task's function returns the state it left, which is what
+// its frame's state holds after the call. `taskState(T)` right after a call
+// of T in the same block, with no other call between (which might call T
+// again), is that result rather than a load: the caller of a task that
+// yields values need not read them back through memory (not on i386:
+// ModuleEmitter::readsReturnedStates). Calls that ignore it let LLVM drop
+// the result (dead argument elimination of internal functions).
+//
 // The trace record (`--instrument`, bscript.h "Trace records"): every way
 // out of a call writes the task's slot in the state's record, a constant
 // (the resume point, or "finished"), and a yield of a value computed at
@@ -77,6 +85,7 @@
 //===----------------------------------------------------------------------===//
 #include "CodeGenImpl.h"
 #include "llvm/IR/Constants.h"
+#include "llvm/IR/IntrinsicInst.h"
 #include <optional>
 
 using namespace bsc;
@@ -101,6 +110,17 @@ llvm::Value *FunctionEmitter::getFrameFieldPtr(const TaskDecl *T,
 }
 
 llvm::Value *FunctionEmitter::emitTaskState(const TaskDecl *T) {
+  // Right after a call of T: what the call returned ("The result").
+  if (CGM.readsReturnedStates() && LastTaskCall &&
+      LastTaskCall->getCalledFunction() == CGM.getFunction(T) &&
+      LastTaskCall->getParent() == Builder.GetInsertBlock() &&
+      !llvm::any_of(llvm::make_range(std::next(LastTaskCall->getIterator()),
+                                     Builder.GetInsertPoint()),
+                    [](const llvm::Instruction &I) {
+                      return llvm::isa<llvm::CallBase>(I) &&
+                             !llvm::isa<llvm::IntrinsicInst>(I);
+                    }))
+    return LastTaskCall;
   // A never-called task reports done: the state starts zeroed.
   return createLoad(Access::State, Builder.getInt32Ty(),
                     getFrameFieldPtr(T, FrameState), "taskstate");
@@ -254,7 +274,7 @@ void FunctionEmitter::emitTaskFinish() {
               getFrameFieldPtr(Task, FrameState));
   markEnded();
   recordTraceExit(CGM.getLayout().Trace.finishedSlot(), nullptr);
-  Builder.CreateRetVoid();
+  Builder.CreateRet(Builder.getInt32(TaskDone));
 }
 
 void FunctionEmitter::markEnded() {
@@ -315,7 +335,7 @@ void FunctionEmitter::emitYield(const YieldStmt &S) {
   if (Ends)
     markEnded();
   recordTraceExit(S.ResumePoint, Constant ? nullptr : State);
-  Builder.CreateRetVoid();
+  Builder.CreateRet(State);
 
   // The code after the yield; a yield that ends the task is never resumed
   // (the next call starts from the top), so nothing jumps there.

@@ -428,6 +428,29 @@ void ModuleEmitter::layoutState() {
   }
 }
 
+void ModuleEmitter::useRegisterCalls() {
+  // LLVM's i386 PIC lowering loads the GOT address into EBX before every
+  // call that is not a tail call, whatever the callee, so that a call
+  // through the PLT finds it: three instructions and a saved register in
+  // every function that calls another, though calls between internal
+  // functions never go through the PLT. It leaves calls of the regcall
+  // convention alone. Only functions whose every use is a direct call can
+  // change their convention (bs.destroy is called through
+  // bs_behavior_info; the entries are C functions).
+  for (llvm::Function &F : M) {
+    if (F.isDeclaration() || !F.hasLocalLinkage() ||
+        llvm::any_of(F.uses(), [](const llvm::Use &U) {
+          const auto *Call = llvm::dyn_cast<llvm::CallBase>(U.getUser());
+          return !Call || !Call->isCallee(&U);
+        }))
+      continue;
+    F.setCallingConv(llvm::CallingConv::X86_RegCall);
+    for (llvm::Use &U : F.uses())
+      llvm::cast<llvm::CallBase>(U.getUser())
+          ->setCallingConv(llvm::CallingConv::X86_RegCall);
+  }
+}
+
 unsigned ModuleEmitter::addSite(DebugSite Site) {
   Layout.Sites.push_back(std::move(Site));
   return Layout.Sites.size();
@@ -471,8 +494,8 @@ void ModuleEmitter::declareFunctions() {
     if (const auto *F = llvm::dyn_cast<FuncDecl>(D))
       Declare(F, F->ResultTy->isClass() ? llvm::Type::getVoidTy(Ctx)
                                         : getValueType(F->ResultTy));
-    else
-      Declare(D, llvm::Type::getVoidTy(Ctx));
+    else // A task returns the state it left (CGTask.cpp, "The result").
+      Declare(D, llvm::Type::getInt32Ty(Ctx));
   }
   // After the funcs and tasks, so that they keep their names should a
   // nested func be called `destroy` (LLVM then renames this one).
@@ -585,7 +608,10 @@ void ModuleEmitter::emitEntries() {
     llvm::SmallVector<llvm::Type *, 4> Params = {Ptr};
     for (const ParamDecl *P : D->Params)
       Params.push_back(CType(getValueType(P->Ty)));
-    llvm::Type *Result = CType(Impl->getReturnType());
+    // A task's entry returns nothing: its state is bs_B_state_of__M__t's.
+    llvm::Type *Result = llvm::isa<TaskDecl>(D)
+                             ? llvm::Type::getVoidTy(Ctx)
+                             : CType(Impl->getReturnType());
     std::string Symbol = getEntrySymbol(Opts.BehaviorName, *D);
     auto *F = llvm::Function::Create(
         llvm::FunctionType::get(Result, Params, false),
@@ -861,6 +887,8 @@ void ModuleEmitter::run() {
   emitInfo();
   if (Opts.ProgramEntry)
     emitProgramMain();
+  if (llvm::Triple(M.getTargetTriple()).getArch() == llvm::Triple::x86)
+    useRegisterCalls();
   // Both probes exist whenever probes are on: the REPL's lines use them too.
   if (Opts.Probes) {
     getProbe(LoopProbeSymbol);

@@ -281,6 +281,13 @@ public:
 
   /// With CodeGenOptions::DebugInfo, the DWARF being built; else null.
   DebugInfoEmitter *getDebugInfo() { return DebugInfo.get(); }
+  /// Whether taskState(T) right after a call of T reads the call's result
+  /// rather than T's frame (CGTask.cpp, "The result"): not on i386, where
+  /// the load folds into the instruction that uses it and the result would
+  /// tie up EAX (bench/README.md: wide +49 instructions per cycle).
+  bool readsReturnedStates() const {
+    return llvm::Triple(M.getTargetTriple()).getArch() != llvm::Triple::x86;
+  }
   /// With CodeGenOptions::Instrument: the field of %bs.state that holds
   /// the cycle's trace record.
   unsigned getTraceRecordField() const { return TraceRecordField; }
@@ -315,6 +322,9 @@ private:
   /// Instrument the symbol defineDebugTables defines.
   llvm::Constant *getDebugTables();
   void emitProgramMain();
+  /// i386: internal functions called only directly use the regcall
+  /// convention, whose calls do not set up the GOT pointer.
+  void useRegisterCalls();
 
   const Behavior &B;
   llvm::Module &M;
@@ -538,6 +548,9 @@ private:
   llvm::SwitchInst *ResumeSwitch = nullptr;
   YieldPlan Plan; ///< Of the task being emitted.
   llvm::Value *Cycle = nullptr; ///< The state's cycle, loaded at entry.
+  /// The latest call of a task, whose result is that task's state until
+  /// another call (emitTaskState).
+  llvm::CallInst *LastTaskCall = nullptr;
   /// Where allocas and frame-field addresses go: the top of the entry block.
   llvm::Instruction *EntryPoint = nullptr;
   /// The address of each frame field used, computed once (task, field).
