@@ -95,18 +95,18 @@ typedef struct bs_binding_module {
  *  waits at, so that the robot can log the active hierarchy for the price
  *  of a store or two per task call. The record is `record_size` bytes,
  *  4-aligned, at `offset` in the state: one slot per task (task-table
- *  order) of `slot_bytes` bytes (1, or 2 if a task has more than 254
- *  yields), little-endian, which holds
+ *  order) of `slot_bytes` bytes (1; 2 if a task has more than 254 yields,
+ *  4 past 65534), little-endian, which holds
  *    0               the task was not called in this cycle,
  *    k (1, 2, ...)   its last call this cycle stopped at its k-th yield,
- *    0xff / 0xffff   its last call finished it (done);
+ *    all ones        its last call finished it (done);
  *  then, from byte `clear_size` on, one int32 per task that yields values
  *  computed at run time (`yield acc + 1`): the state it yielded, valid when
  *  its slot names such a yield. bs_trace_begin clears the slots. */
 typedef struct bs_trace_layout {
   uint32_t record_size; /**< Bytes of the record; 0: not instrumented. */
   uint32_t clear_size;  /**< Bytes of slots, which bs_trace_begin zeroes. */
-  uint32_t slot_bytes;  /**< 1 or 2. */
+  uint32_t slot_bytes;  /**< 1, 2 or 4. */
   uint32_t offset;      /**< Of the record inside the state. */
 } bs_trace_layout;
 

@@ -375,10 +375,13 @@ void ModuleEmitter::layoutState() {
   BehaviorLayout::TraceLayout &Trace = Layout.Trace;
   Trace = {};
   if (Opts.Instrument) {
-    bool WideSlots = llvm::any_of(B.Tasks, [&](const TaskDecl *T) {
-      return T->Yields.size() >= Trace.finishedSlot();
-    });
-    Trace.SlotBytes = WideSlots ? 2 : 1;
+    // Wide enough for every resume point and the finished value.
+    size_t MostYields = 0;
+    for (const TaskDecl *T : B.Tasks)
+      MostYields = std::max(MostYields, T->Yields.size());
+    Trace.SlotBytes = 1;
+    while (MostYields >= Trace.finishedSlot())
+      Trace.SlotBytes *= 2;
     Trace.ClearSize = llvm::alignTo(B.Tasks.size() * Trace.SlotBytes, 4);
     Trace.RecordSize = Trace.ClearSize;
     for (const TaskDecl *T : B.Tasks) {

@@ -164,7 +164,7 @@ llvm::Expected<DebugTables> debug::parseDebugTables(llvm::StringRef Text) {
   std::optional<int64_t> Size = Record ? Record->getInteger("size") : std::nullopt;
   std::optional<int64_t> SlotBytes =
       Record ? Record->getInteger("slotBytes") : std::nullopt;
-  if (!Size || !SlotBytes || (*SlotBytes != 1 && *SlotBytes != 2) ||
+  if (!Size || !SlotBytes || (*SlotBytes != 1 && *SlotBytes != 2 && *SlotBytes != 4) ||
       *Size < int64_t(Tasks->size() * *SlotBytes) || *Size % 4 != 0)
     return badTables("no valid trace record layout");
   T.RecordSize = *Size;
@@ -363,12 +363,15 @@ debug::decodeTraceRecord(const DebugTables &T,
                          llvm::ArrayRef<uint8_t> Record) {
   namespace endian = llvm::support::endian;
   assert(Record.size() == T.RecordSize && "one whole record");
-  uint32_t Finished = T.SlotBytes == 1 ? 0xff : 0xffff;
+  uint32_t Finished =
+      BehaviorLayout::TraceLayout::getFinishedSlot(T.SlotBytes);
   std::vector<Activation> Records;
   for (unsigned I = 0; I < T.Tasks.size(); ++I) {
     const DebugTables::Task &Task = T.Tasks[I];
     const uint8_t *Slot = Record.data() + I * T.SlotBytes;
-    uint32_t Value = T.SlotBytes == 1 ? *Slot : endian::read16le(Slot);
+    uint32_t Value = T.SlotBytes == 1   ? *Slot
+                     : T.SlotBytes == 2 ? endian::read16le(Slot)
+                                        : endian::read32le(Slot);
     if (Value == 0)
       continue;
     if (Value == Finished) {

@@ -148,8 +148,11 @@ struct BehaviorLayout {
     /// Per task (Tasks order), the offset in the record of the word that
     /// holds a state computed at run time, if it yields one.
     std::vector<std::optional<uint64_t>> StateWords;
-    /// The slot value of a call that finished its task.
-    uint32_t finishedSlot() const { return SlotBytes == 1 ? 0xff : 0xffff; }
+    uint32_t finishedSlot() const { return getFinishedSlot(SlotBytes); }
+    /// The slot value of a call that finished its task: all ones.
+    static uint32_t getFinishedSlot(unsigned SlotBytes) {
+      return uint32_t(~0ull >> (64 - 8 * SlotBytes));
+    }
   };
   TraceLayout Trace;
 };
