@@ -12,10 +12,11 @@
 //              switch (frame.resume) { k: resume.k; default: start }
 //   start:     the body...
 //   yield k:   [frame.resume = k]; [frame.state = v];
-//              [trace.slot = k; [trace.word = v]]; ret void
+//              [trace.slot = k; [trace.word = v]]; ret v
 //   resume.k:  ...the code after the k-th yield
 //   end:       [destroy(frame)]; frame.state = done;
-//              [frame.last_call = cycle ^ ended]; [trace.slot = 0xff]; ret
+//              [frame.last_call = cycle ^ ended]; [trace.slot = finished];
+//              ret done
 //
 // The result. A task's function returns the state it left, which is what
 // its frame's state holds after the call. `taskState(T)` right after a call

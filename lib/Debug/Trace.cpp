@@ -161,10 +161,13 @@ llvm::Expected<DebugTables> debug::parseDebugTables(llvm::StringRef Text) {
     return badTables("no task list");
   DebugTables T;
   const llvm::json::Object *Record = Root->getObject("record");
-  std::optional<int64_t> Size = Record ? Record->getInteger("size") : std::nullopt;
-  std::optional<int64_t> SlotBytes =
-      Record ? Record->getInteger("slotBytes") : std::nullopt;
-  if (!Size || !SlotBytes || (*SlotBytes != 1 && *SlotBytes != 2 && *SlotBytes != 4) ||
+  std::optional<int64_t> Size, SlotBytes;
+  if (Record) {
+    Size = Record->getInteger("size");
+    SlotBytes = Record->getInteger("slotBytes");
+  }
+  if (!Size || !SlotBytes ||
+      (*SlotBytes != 1 && *SlotBytes != 2 && *SlotBytes != 4) ||
       *Size < int64_t(Tasks->size() * *SlotBytes) || *Size % 4 != 0)
     return badTables("no valid trace record layout");
   T.RecordSize = *Size;
@@ -209,8 +212,8 @@ llvm::Expected<DebugTables> debug::parseDebugTables(llvm::StringRef Text) {
     bool Computed = false;
     for (const llvm::json::Value &V : *Values) {
       std::optional<int64_t> I = V.getAsInteger();
-      if (!I && V.kind() != llvm::json::Value::Null)
-        return badTables("a yield value is neither a number nor null");
+      if (I ? *I != int32_t(*I) : V.kind() != llvm::json::Value::Null)
+        return badTables("a yield value is neither a task state nor null");
       Computed |= !I;
       Task.YieldValues.push_back(I ? std::optional<int32_t>(*I) : std::nullopt);
     }

@@ -4,11 +4,11 @@
  * state, starting a cycle and its trace record, reading a task's state by
  * name, checking the linked binding modules against the hashes the behavior
  * was compiled with (include/bscript/bscript.h). It stays tiny and free of
- * libc (loops instead of memset and strcmp; CMake also stops the compiler from turning them back into calls)
- * so that it links into any robot software, and so that the same file serves
- * the host, the JIT and the robot. bs_state_destroy runs the behavior's
- * own destroy function (bs_behavior_info.destroy), which calls the class
- * destructors' thunks.
+ * libc (loops instead of memset and strcmp; CMake also stops the compiler
+ * from turning them back into calls) so that it links into any robot
+ * software, and so that the same file serves the host, the JIT and the
+ * robot. bs_state_destroy runs the behavior's own destroy function
+ * (bs_behavior_info.destroy), which calls the class destructors' thunks.
  *===----------------------------------------------------------------------===*/
 #include "bscript/bscript.h"
 #include "bscript/descriptor.h"

@@ -16,9 +16,10 @@
 // and then this rule decides, on every target alike (docs/repl.md).
 //
 // DebugTables are the static half: task names, yield lines and states,
-// frame fields, callers, the trace record's layout. bsc builds them from the checked behavior; `bsc --instrument`
-// also embeds them in the object as JSON (bs_behavior_info.debug_tables)
-// so that `bsc trace-decode` needs nothing but the object and the log.
+// frame fields, callers, the trace record's layout. bsc builds them from
+// the checked behavior; `bsc --instrument` also embeds them in the object
+// as JSON (bs_behavior_info.debug_tables) so that `bsc trace-decode` needs
+// nothing but the object and the log.
 //
 //===----------------------------------------------------------------------===//
 #ifndef BSC_DEBUG_TRACE_H
