@@ -10,6 +10,7 @@
 #   %bsc_libdir   the runtime shim libraries (libbscript_rt.a, _i586.a)
 #   %bsc_build    the build folder (bin/bsc, lib/)
 #   %bsc_include  the public headers (bscript/bscript.h for C embeddings)
+#   %eigen_include Eigen's headers (the soccer bindings use Eigen::Vector2f)
 #   %run-i586     runs a 32-bit x86 program (natively, else qemu-i386)
 # The suite needs ../shared (the conformance programs and the bench
 # reference) and gdb (dev.sh installs it): without either it stops rather
@@ -34,6 +35,7 @@ config.substitutions.append(("%bsc_src", config.bsc_src_root))
 config.substitutions.append(("%bsc_libdir", os.path.join(config.bsc_obj_root, "lib")))
 config.substitutions.append(("%bsc_build", config.bsc_obj_root))
 config.substitutions.append(("%bsc_include", os.path.join(config.bsc_src_root, "include")))
+config.substitutions.append(("%eigen_include", config.eigen_include))
 config.substitutions.append(("%bsc", os.path.join(config.bsc_tools_dir, "bsc")))
 config.substitutions.append(("%python", config.python_executable))
 config.substitutions.append(("%conformance", os.path.join(config.shared_dir, "conformance")))
