@@ -56,6 +56,11 @@ config.substitutions.append(
     ("%run-i586", config.python_executable + " " +
      os.path.join(config.bsc_src_root, "utils", "run-i586")))
 
+if not os.path.isfile(os.path.join(config.eigen_include, "Eigen", "Dense")):
+    lit_config.fatal("Eigen not found (%%eigen_include is '%s'): the soccer "
+                     "bindings need it (dev.sh installs it)"
+                     % config.eigen_include)
+
 if not shutil.which("gdb"):
     lit_config.fatal("gdb not found: the debug-info tests need it "
                      "(dev.sh installs it)")
