@@ -9,7 +9,7 @@
 #    (-march=geode) and x86_64. Checks the checksums at -O0 to -O3, then
 #    prints instructions per behavior cycle (callgrind, --toggle-collect on
 #    the harness's bsc_cycle_*), state bytes, heap allocations per cycle and
-#    the ratios bsc / protothreads.
+#    the ratios bsc / protothreads; and bsc's -O0 instructions per cycle.
 # 2. Tracing on the robot: the same i586 -O2 programs with the behavior
 #    compiled with --instrument, which writes a trace record each cycle
 #    (and, second figure, the cycle's record copied into a log ring).
@@ -80,6 +80,13 @@ for t in i586 x86_64; do
   done
 done
 ((status == 0)) && echo "checksums: bsc at -O0 to -O3 equals the protothreads on both targets"
+
+echo "== bsc -O0 (instructions per behavior cycle; issue 11: nothing gets slower at -O0)"
+for t in i586 x86_64; do
+  for b in soccer wide; do
+    echo "$b $t: $(per_cycle "$OUT/bsc-$t-$b-O0" "$b")"
+  done
+done
 
 echo "== tracing on the robot (i586 -O2, --instrument: each task call writes the state's trace record)"
 pct() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%+.1f%%", (b - a) / a * 100 }'; }

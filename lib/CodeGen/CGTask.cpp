@@ -12,19 +12,20 @@
 //              switch (frame.resume) { k: resume.k; default: start }
 //   start:     the body...
 //   yield k:   [frame.resume = k]; [frame.state = v];
-//              [trace.slot = k; [trace.word = v]]; ret v
+//              [trace.slot = k; [trace.word = v]]; ret [v]
 //   resume.k:  ...the code after the k-th yield
 //   end:       [destroy(frame)]; frame.state = done;
 //              [frame.last_call = cycle ^ ended]; [trace.slot = finished];
-//              ret done
+//              ret [done]
 //
-// The result. A task's function returns the state it left, which is what
-// its frame's state holds after the call. `taskState(T)` right after a call
-// of T in the same block, with no other call between (which might call T
-// again), is that result rather than a load: the caller of a task that
-// yields values need not read them back through memory (not on i386:
-// ModuleEmitter::readsReturnedStates). Calls that ignore it let LLVM drop
-// the result (dead argument elimination of internal functions).
+// The result. In optimised code a task's function returns the state it
+// left, which is what its frame's state holds after the call.
+// `taskState(T)` right after a call of T in the same block, with no other
+// call between (which might call T again), is that result rather than a
+// load: the caller of a task that yields values need not read them back
+// through memory (not on i386: ModuleEmitter::readsReturnedStates). Calls
+// that ignore it let LLVM drop the result (dead argument elimination of
+// internal functions). At -O0 and in the JIT's modules tasks return void.
 //
 // The trace record (`--instrument`, bscript.h "Trace records"): every way
 // out of a call writes the task's slot in the state's record, a constant
@@ -275,7 +276,14 @@ void FunctionEmitter::emitTaskFinish() {
               getFrameFieldPtr(Task, FrameState));
   markEnded();
   recordTraceExit(CGM.getLayout().Trace.finishedSlot(), nullptr);
-  Builder.CreateRet(Builder.getInt32(TaskDone));
+  emitTaskReturn(Builder.getInt32(TaskDone));
+}
+
+void FunctionEmitter::emitTaskReturn(llvm::Value *State) {
+  if (CGM.tasksReturnStates())
+    Builder.CreateRet(State);
+  else
+    Builder.CreateRetVoid();
 }
 
 void FunctionEmitter::markEnded() {
@@ -336,7 +344,7 @@ void FunctionEmitter::emitYield(const YieldStmt &S) {
   if (Ends)
     markEnded();
   recordTraceExit(S.ResumePoint, Constant ? nullptr : State);
-  Builder.CreateRet(State);
+  emitTaskReturn(State);
 
   // The code after the yield; a yield that ends the task is never resumed
   // (the next call starts from the top), so nothing jumps there.

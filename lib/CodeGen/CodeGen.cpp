@@ -497,8 +497,9 @@ void ModuleEmitter::declareFunctions() {
     if (const auto *F = llvm::dyn_cast<FuncDecl>(D))
       Declare(F, F->ResultTy->isClass() ? llvm::Type::getVoidTy(Ctx)
                                         : getValueType(F->ResultTy));
-    else // A task returns the state it left (CGTask.cpp, "The result").
-      Declare(D, llvm::Type::getInt32Ty(Ctx));
+    else // The state it left (CGTask.cpp, "The result"), or nothing.
+      Declare(D, tasksReturnStates() ? llvm::Type::getInt32Ty(Ctx)
+                                     : llvm::Type::getVoidTy(Ctx));
   }
   // After the funcs and tasks, so that they keep their names should a
   // nested func be called `destroy` (LLVM then renames this one).

@@ -281,12 +281,18 @@ public:
 
   /// With CodeGenOptions::DebugInfo, the DWARF being built; else null.
   DebugInfoEmitter *getDebugInfo() { return DebugInfo.get(); }
+  /// Whether a task's function returns the state it left (CGTask.cpp, "The
+  /// result"): in optimised code without probes. At -O0 nothing would drop
+  /// a result that no caller reads; the JIT's modules (probes) and the
+  /// REPL's lines then agree on void whatever the -O level.
+  bool tasksReturnStates() const { return Opts.OptLevel > 0 && !Opts.Probes; }
   /// Whether taskState(T) right after a call of T reads the call's result
-  /// rather than T's frame (CGTask.cpp, "The result"): not on i386, where
-  /// the load folds into the instruction that uses it and the result would
-  /// tie up EAX (bench/README.md: wide +49 instructions per cycle).
+  /// rather than T's frame: not on i386, where the load folds into the
+  /// instruction that uses it and the result would tie up EAX
+  /// (bench/README.md: wide +49 instructions per cycle).
   bool readsReturnedStates() const {
-    return llvm::Triple(M.getTargetTriple()).getArch() != llvm::Triple::x86;
+    return tasksReturnStates() &&
+           llvm::Triple(M.getTargetTriple()).getArch() != llvm::Triple::x86;
   }
   /// With CodeGenOptions::Instrument: the field of %bs.state that holds
   /// the cycle's trace record.
@@ -371,6 +377,9 @@ private:
   void emitTaskFinish();
   /// Marks the task's last call as ended (CGTask.cpp, "The last call").
   void markEnded();
+  /// Returns from a task's call with its state, or void (CGTask.cpp, "The
+  /// result").
+  void emitTaskReturn(llvm::Value *State);
   /// With CodeGenOptions::Instrument: writes this call's way out into the
   /// task's slot of the trace record (a yield's resume point, or the
   /// finished value), and a state known only at run time into its word.

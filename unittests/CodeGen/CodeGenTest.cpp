@@ -14,6 +14,7 @@
 #include "bsc/Frontend/Frontend.h"
 #include "llvm/IR/Constants.h"
 #include "llvm/IR/GlobalVariable.h"
+#include "llvm/IR/InstIterator.h"
 #include "llvm/IR/Instructions.h"
 #include "llvm/IR/Operator.h"
 #include "llvm/IR/IntrinsicInst.h"
@@ -545,6 +546,61 @@ TEST_F(CodeGenTest, EntriesAndInfo) {
     if (!F.isDeclaration() && !F.getName().starts_with("bs_B__")) {
       EXPECT_TRUE(F.hasInternalLinkage()) << F.getName().str();
     }
+}
+
+/// In optimised code a task returns the state it left, and on x86_64
+/// taskState(T) right after a call of T is that result; at -O0, with
+/// probes, and on i586 (where the load folds into its use) it is a load.
+TEST_F(CodeGenTest, TasksReturnTheirStateWhenOptimised) {
+  ASSERT_TRUE(check({{"m", R"(requires "io"
+
+task count(int n)
+    yield n + 1
+
+func main()
+    count(1)
+    io::printi(int(taskState(count)))
+    io::printi(int(taskState(count)))
+)"}}));
+  struct Case {
+    const TargetCase &Target;
+    unsigned OptLevel;
+    bool Probes;
+    bool Returns, ReadsResult;
+  };
+  for (const Case &K : {Case{Targets[1], 1, false, true, true},
+                        Case{Targets[1], 0, false, false, false},
+                        Case{Targets[1], 1, true, false, false},
+                        Case{Targets[0], 2, false, true, false}}) {
+    SCOPED_TRACE(K.Target.Triple + std::string(" -O") +
+                 std::to_string(K.OptLevel) + (K.Probes ? " probes" : ""));
+    CodeGenOptions Opts;
+    Opts.OptLevel = K.OptLevel;
+    Opts.Probes = K.Probes;
+    BehaviorLayout L;
+    std::unique_ptr<llvm::Module> M = emit(K.Target, L, Opts);
+    EXPECT_FALSE(llvm::verifyModule(*M, &llvm::errs()));
+    const llvm::Function *Count = M->getFunction("bs.m.count");
+    ASSERT_TRUE(Count);
+    EXPECT_EQ(Count->getReturnType()->isIntegerTy(32), K.Returns);
+    // main: the first print gets the call's result or a load; the second
+    // always a load (a call came between).
+    const llvm::CallInst *TaskCall = nullptr;
+    std::vector<const llvm::Value *> Printed;
+    const llvm::Function *Main = M->getFunction("bs.m.main");
+    for (const llvm::Instruction &I : llvm::instructions(*Main))
+      if (const auto *Call = llvm::dyn_cast<llvm::CallInst>(&I)) {
+        if (Call->getCalledFunction() == Count)
+          TaskCall = Call;
+        else if (Call->arg_size() == 1 &&
+                 Call->getArgOperand(0)->getType()->isIntegerTy(32))
+          Printed.push_back(Call->getArgOperand(0));
+      }
+    ASSERT_TRUE(TaskCall);
+    ASSERT_EQ(Printed.size(), 2u);
+    EXPECT_EQ(Printed[0] == TaskCall, K.ReadsResult);
+    EXPECT_TRUE(llvm::isa<llvm::LoadInst>(Printed[1]));
+  }
 }
 
 TEST_F(CodeGenTest, ExportsAreWhatTheOptionsName) {
