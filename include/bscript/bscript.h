@@ -183,6 +183,15 @@ const void *bs_trace_record(const void *state, const bs_behavior_info *info);
 /** Starts the next execution cycle with this cycle's input and output. */
 void bs_begin_cycle(void *state, const void *input, void *output);
 
+/** bs_trace_begin inline, given the layout (bs_trace_layout.offset and
+ *  clear_size): the header of --emit-header uses it with constants. */
+static inline void bs_trace_begin_inline(void *state, uint32_t offset,
+                                         uint32_t clear_size) {
+  unsigned char *slots = (unsigned char *)state + offset;
+  for (uint32_t i = 0; i < clear_size; ++i)
+    slots[i] = 0;
+}
+
 /** bs_begin_cycle inline, for the robot's loop: it costs no call (the
  *  header of --emit-header uses it). */
 static inline void bs_begin_cycle_inline(void *state, const void *input,

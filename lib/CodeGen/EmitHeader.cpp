@@ -147,8 +147,8 @@ void bsc::writeBehaviorHeader(const Behavior &B, const BehaviorLayout &L,
           " *  begin_cycle: zeroes its slots. */\n"
        << "static inline void " << P << "_trace_begin(" << P
        << "_state *state) {\n"
-       << "  for (unsigned i = 0; i < " << Trace.ClearSize << "u; ++i)\n"
-       << "    state->bytes[" << Trace.Offset << "u + i] = 0;\n}\n\n"
+       << "  bs_trace_begin_inline(state, " << Trace.Offset << "u, "
+       << Trace.ClearSize << "u);\n}\n\n"
        << "/** The trace record (" << M
        << "_TRACE_RECORD_SIZE bytes, 4-aligned): what\n"
           " *  the cycle's task calls wrote, for the robot's log. */\n"

@@ -88,10 +88,8 @@ void bs_begin_cycle(void *state, const void *input, void *output) {
 }
 
 void bs_trace_begin(void *state, const bs_behavior_info *info) {
-  unsigned char *record = (unsigned char *)bs_trace_record(state, info);
-  if (record)
-    for (uint32_t i = 0; i < info->trace.clear_size; ++i)
-      record[i] = 0;
+  if (bs_trace_record(state, info))
+    bs_trace_begin_inline(state, info->trace.offset, info->trace.clear_size);
 }
 
 const void *bs_trace_record(const void *state, const bs_behavior_info *info) {
