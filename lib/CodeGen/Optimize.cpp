@@ -1,16 +1,14 @@
 //===- Optimize.cpp - the -O0..-O3 pipelines -------------------------------===//
 //
 // LLVM's own default pipelines from the new pass manager; bsc adds no passes
-// of its own. Two things are changed. The target library info says the
-// target has no C library at all, because the generated object must link
-// into robot software with only the runtime shim (architecture.md). Without
-// that, loop idiom recognition could turn a loop that zeroes a frame into a
-// memset call, and the optimiser could call libm. And SimplifyCFG does not
-// sink instructions common to the predecessors of a block: a task's exits
-// store their resume point and state and return, and once a task is
-// inlined, sinking merges those stores into one store of PHIs, which costs
-// a move per exit and, on i586, spills (bench/README.md: 2 to 6% fewer
-// instructions per cycle, and smaller code).
+// of its own. The target library info says the target has no C library at
+// all, because the generated object must link into robot software with
+// only the runtime shim (architecture.md). Without that, loop idiom
+// recognition could turn a loop that zeroes a frame into a memset call, and
+// the optimiser could call libm. And two LLVM options get other defaults
+// (setPipelineDefaults): SimplifyCFG does not sink instructions common to
+// the predecessors of a block, and GVN searches fewer blocks for a load's
+// value.
 //
 //===----------------------------------------------------------------------===//
 #include "bsc/CodeGen/Target.h"
@@ -42,7 +40,18 @@ static constexpr int InlineThreshold = 275;
 /// pipeline option for them.
 static void setPipelineDefaults() {
   static const std::pair<llvm::StringRef, llvm::StringRef> Defaults[] = {
+      // A task's exits store their resume point and state and return; once
+      // the task is inlined, sinking merges those stores into one store of
+      // PHIs, which costs a move per exit and, on i586, spills
+      // (bench/README.md: 2 to 6% fewer instructions per cycle, and
+      // smaller code).
       {"simplifycfg-sink-common", "false"},
+      // GVN's memory dependence analysis looks for a load's value through
+      // up to 200 predecessor blocks. A behavior inlines into one large
+      // function of many small blocks that read and write the state, where
+      // those searches were a third of the optimiser's work; 40 blocks find
+      // everything the benchmarks gain from (bench/README.md).
+      {"memdep-block-number-limit", "40"},
   };
   llvm::StringMap<llvm::cl::Option *> &Options =
       llvm::cl::getRegisteredOptions();

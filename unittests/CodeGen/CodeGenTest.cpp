@@ -337,16 +337,21 @@ TEST_F(CodeGenTest, NoLibcNoCoroutinesNoTrapsAfterOptimisation) {
 }
 
 /// bsc's pipelines keep SimplifyCFG from sinking a task's exit stores into
-/// one store of PHIs (lib/CodeGen/Optimize.cpp); the option is LLVM's, so
-/// a new LLVM that renames it fails here.
-TEST(OptimizeTest, SimplifyCFGDoesNotSinkCommonInstructions) {
+/// one store of PHIs and limit GVN's search for a load's value
+/// (lib/CodeGen/Optimize.cpp); the options are LLVM's, so a new LLVM that
+/// renames them fails here.
+TEST(OptimizeTest, PipelineDefaultsAreSet) {
   llvm::LLVMContext Ctx;
   llvm::Module M("empty", Ctx);
   optimizeModule(M, /*TM=*/nullptr, 2);
-  llvm::cl::Option *O =
-      llvm::cl::getRegisteredOptions().lookup("simplifycfg-sink-common");
-  ASSERT_NE(O, nullptr);
-  EXPECT_FALSE(static_cast<llvm::cl::opt<bool> *>(O)->getValue());
+  llvm::StringMap<llvm::cl::Option *> &Options =
+      llvm::cl::getRegisteredOptions();
+  llvm::cl::Option *Sink = Options.lookup("simplifycfg-sink-common");
+  ASSERT_NE(Sink, nullptr);
+  EXPECT_FALSE(static_cast<llvm::cl::opt<bool> *>(Sink)->getValue());
+  llvm::cl::Option *Blocks = Options.lookup("memdep-block-number-limit");
+  ASSERT_NE(Blocks, nullptr);
+  EXPECT_EQ(static_cast<llvm::cl::opt<unsigned> *>(Blocks)->getValue(), 40u);
 }
 
 /// The state size the module's info struct advertises.
