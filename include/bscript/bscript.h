@@ -36,7 +36,7 @@ extern "C" {
 #endif
 
 /** Bumped whenever the layout below changes; bs_behavior_info carries it. */
-#define BS_ABI_VERSION 7
+#define BS_ABI_VERSION 8
 
 /** Task states (language.md): > 0 running, 0 done, < 0 failure. */
 #define BS_TASK_DONE 0
@@ -46,7 +46,6 @@ extern "C" {
 /** The start of every behavior state. */
 typedef struct bs_state_header {
   uint32_t cycle;     /**< Execution cycle; bs_begin_cycle increments it. */
-  uint32_t reserved;  /**< Zero. */
   const void *input;  /**< The `input` global of this cycle. */
   void *output;       /**< The `output` global of this cycle. */
   /** The embedding's per-robot pointer (bs_state_set_user), which
@@ -55,23 +54,32 @@ typedef struct bs_state_header {
   void *user;
 } bs_state_header;
 
-/** The bit of bs_frame_header.last_call that marks an ending call. */
+/** The bit of a task's last call that marks an ending call. */
 #define BS_LAST_CALL_ENDED 0x80000000u
 
-/** The start of every task's frame inside the state. */
-typedef struct bs_frame_header {
-  int32_t resume;      /**< 0: start from the top; k: after the k-th yield. */
-  int32_t state;       /**< The task state its most recent call left. */
-  /** The cycle of its most recent call, with bit 31 flipped if that call
-   *  ended the task (done or failure); bs_state_init sets 0x80000000
-   *  ("ended in cycle 0"). A task was called in this cycle or the previous
-   *  one if cycle - last_call is 0 or 1 (unsigned): one subtraction. */
-  uint32_t last_call;
-} bs_frame_header;
-
+/** Where a task keeps its header inside the state. Every task has
+ *  - its last call (uint32 at frame_offset, the start of its frame): the
+ *    cycle of its most recent call, with bit 31 flipped if that call ended
+ *    the task (done or failure); bs_state_init sets 0x80000000 ("ended in
+ *    cycle 0"). A task was called in this cycle or the previous one if
+ *    cycle - last_call is 0 or 1 (unsigned): one subtraction;
+ *  - its resume point (unsigned, resume_bytes wide, at resume_offset):
+ *    0: start from the top; k: after the k-th yield;
+ *  - its state (signed, state_bytes wide, at state_offset): the task state
+ *    its most recent call left.
+ *  The resume point and the state are as narrow as the task's values
+ *  allow: 1 byte up to 255 yields, 2 up to 65535; a state of 1 byte when
+ *  every state the task yields is a constant from -128 to 127. Narrow ones
+ *  sit with the other tasks' after the frames, so that the state holds no
+ *  padding for them; 4-byte ones follow the last call in the frame. Read
+ *  them with bs_task_state_at and bs_task_resume_at. */
 typedef struct bs_task_info {
-  const char *name;      /**< "Module::task" */
-  uint32_t frame_offset; /**< Of its bs_frame_header inside the state. */
+  const char *name;       /**< "Module::task" */
+  uint32_t frame_offset;  /**< Of its frame, which starts with last_call. */
+  uint32_t resume_offset; /**< Of its resume point. */
+  uint32_t state_offset;  /**< Of its state. */
+  uint8_t resume_bytes;   /**< 1, 2 or 4. */
+  uint8_t state_bytes;    /**< 1 or 4. */
 } bs_task_info;
 
 /** bs_state_init's results. */
@@ -214,6 +222,35 @@ static inline void bs_state_set_user(void *state, void *user) {
 /** The pointer bs_state_set_user attached (NULL if none). */
 static inline void *bs_state_user(const void *state) {
   return ((const bs_state_header *)state)->user;
+}
+
+/** A task's state (bs_task_info): what its most recent call left,
+ *  BS_TASK_DONE if it was never called. */
+static inline int32_t bs_task_state_at(const void *state,
+                                       const bs_task_info *task) {
+  const unsigned char *at = (const unsigned char *)state + task->state_offset;
+  if (task->state_bytes == 1)
+    return *(const int8_t *)at;
+  return *(const int32_t *)at;
+}
+
+/** A task's resume point (bs_task_info): 0 to start from the top, k to go
+ *  on after its k-th yield. */
+static inline uint32_t bs_task_resume_at(const void *state,
+                                         const bs_task_info *task) {
+  const unsigned char *at = (const unsigned char *)state + task->resume_offset;
+  if (task->resume_bytes == 1)
+    return *at;
+  if (task->resume_bytes == 2)
+    return *(const uint16_t *)at;
+  return *(const uint32_t *)at;
+}
+
+/** A task's last call (bs_task_info). */
+static inline uint32_t bs_task_last_call_at(const void *state,
+                                            const bs_task_info *task) {
+  return *(const uint32_t *)((const unsigned char *)state +
+                             task->frame_offset);
 }
 
 /** The state that task `name` ("Module::task") left at its most recent call

@@ -30,6 +30,14 @@
 using namespace bsc;
 using namespace bsc::codegen;
 
+/// Whether a task's resume point or state lies in its frame (4 bytes) or
+/// among the narrow headers after the frames.
+static bool inFrame(const BehaviorLayout::Task &Task,
+                    const BehaviorLayout::TaskWord &W) {
+  return W.Offset >= Task.FrameOffset &&
+         W.Offset < Task.FrameOffset + Task.FrameSize;
+}
+
 /// DWARF 4: the gdb and binutils of older robot toolchains read it.
 constexpr unsigned DwarfVersion = 4;
 
@@ -135,18 +143,21 @@ llvm::DIType *DebugInfoEmitter::getStringType() {
   return StringTy;
 }
 
-llvm::DIType *DebugInfoEmitter::getTaskStateType() {
-  if (!TaskStateTy) {
-    llvm::DIType *Int = getBasicType("int", 32, llvm::dwarf::DW_ATE_signed);
+llvm::DIType *DebugInfoEmitter::getTaskStateType(unsigned Bits) {
+  llvm::DIType *&Ty = Bits == 8 ? TaskState8Ty : TaskStateTy;
+  if (!Ty) {
+    llvm::DIType *Int =
+        Bits == 8 ? getBasicType("signed char", 8, llvm::dwarf::DW_ATE_signed)
+                  : getBasicType("int", 32, llvm::dwarf::DW_ATE_signed);
     // The named states; a custom state (`yield 3`) prints as its number.
     llvm::Metadata *Values[] = {DIB.createEnumerator("done", 0),
                                 DIB.createEnumerator("running", 1),
                                 DIB.createEnumerator("failure", -1)};
-    TaskStateTy = DIB.createEnumerationType(
-        CU, "TaskState", nullptr, 0, 32, 32, DIB.getOrCreateArray(Values), Int,
-        /*RunTimeLang=*/0, "", /*IsScoped=*/true);
+    Ty = DIB.createEnumerationType(CU, "TaskState", nullptr, 0, Bits, Bits,
+                                   DIB.getOrCreateArray(Values), Int,
+                                   /*RunTimeLang=*/0, "", /*IsScoped=*/true);
   }
-  return TaskStateTy;
+  return Ty;
 }
 
 llvm::DIType *DebugInfoEmitter::getEnumType(const NativeEnum *E) {
@@ -298,7 +309,6 @@ llvm::DIType *DebugInfoEmitter::getStatePointerType() {
       DL.getStructLayout(CGM.getStateType());
   llvm::SmallVector<llvm::Metadata *, 16> Members = {
       Member(State, "cycle", 32, SL->getElementOffset(StateCycle), U32),
-      Member(State, "reserved", 32, SL->getElementOffset(StateReserved), U32),
       Member(State, "input", PtrBits, SL->getElementOffset(StateInput),
              WorldPtr(World ? World->Input : nullptr)),
       Member(State, "output", PtrBits, SL->getElementOffset(StateOutput),
@@ -307,8 +317,9 @@ llvm::DIType *DebugInfoEmitter::getStatePointerType() {
              VoidPtr)};
 
   // The frames, a structure per module holding its tasks' frames (tasks
-  // are laid out module by module), each with the frame header and the
-  // fields kept (locals of disjoint scopes may share one).
+  // are laid out module by module), each with the last call, the resume
+  // point and state if they take 4 bytes, and the fields kept (locals of
+  // disjoint scopes may share one).
   llvm::DIType *TaskState = getTaskStateType();
   for (size_t I = 0; I < Layout.Tasks.size();) {
     const ModuleAST *Mod = Layout.Tasks[I].Decl->Module;
@@ -330,9 +341,14 @@ llvm::DIType *DebugInfoEmitter::getStatePointerType() {
           ModStruct, TaskName + "_frame", nullptr, 0, Task.FrameSize * 8, 0,
           llvm::DINode::FlagZero, nullptr, llvm::DINodeArray());
       llvm::SmallVector<llvm::Metadata *, 8> Fields = {
-          Member(Frame, "resume", 32, 0, U32),
-          Member(Frame, "state", 32, 4, TaskState),
-          Member(Frame, "last_call", 32, 8, U32)};
+          Member(Frame, "last_call", 32, 0, U32)};
+      if (inFrame(Task, Task.Resume))
+        Fields.push_back(Member(Frame, "resume", 32,
+                                Task.Resume.Offset - Task.FrameOffset, U32));
+      if (inFrame(Task, Task.State))
+        Fields.push_back(Member(Frame, "state", 32,
+                                Task.State.Offset - Task.FrameOffset,
+                                TaskState));
       for (const BehaviorLayout::FrameField &F : Task.Fields) {
         llvm::DIType *Ty = getType(F.Ty);
         if (!Ty)
@@ -352,6 +368,61 @@ llvm::DIType *DebugInfoEmitter::getStatePointerType() {
     Members.push_back(Member(State, ModName, (ModEnd - ModStart) * 8, ModStart,
                              ModStruct));
     I = End;
+  }
+  // The narrow resume points and states, in one structure `headers` with
+  // a member per task that has any (bscript.h bs_task_info).
+  uint64_t HeadersStart = ~0ull, HeadersEnd = 0;
+  for (const BehaviorLayout::Task &Task : Layout.Tasks)
+    for (const BehaviorLayout::TaskWord &W : {Task.Resume, Task.State})
+      if (!inFrame(Task, W)) {
+        HeadersStart = std::min(HeadersStart, W.Offset);
+        HeadersEnd = std::max(HeadersEnd, W.Offset + W.Bytes);
+      }
+  if (HeadersStart < HeadersEnd) {
+    auto *Headers = DIB.createStructType(
+        State, "task_headers", nullptr, 0, (HeadersEnd - HeadersStart) * 8, 0,
+        llvm::DINode::FlagZero, nullptr, llvm::DINodeArray());
+    llvm::SmallVector<llvm::Metadata *, 16> PerTask;
+    for (const BehaviorLayout::Task &Task : Layout.Tasks) {
+      bool NarrowResume = !inFrame(Task, Task.Resume),
+           NarrowState = !inFrame(Task, Task.State);
+      if (!NarrowResume && !NarrowState)
+        continue;
+      uint64_t Start = ~0ull, End = 0;
+      for (const BehaviorLayout::TaskWord &W : {Task.Resume, Task.State})
+        if (!inFrame(Task, W)) {
+          Start = std::min(Start, W.Offset);
+          End = std::max(End, W.Offset + W.Bytes);
+        }
+      // The task's name, with its module's where another module has a
+      // task of that name.
+      std::string TaskName = Task.Decl->getName().Name.str();
+      if (llvm::count_if(Layout.Tasks, [&](const BehaviorLayout::Task &O) {
+            return O.Decl->getName().Name == Task.Decl->getName().Name;
+          }) > 1 &&
+          Task.Decl->Module)
+        TaskName = Task.Decl->Module->Name + "_" + TaskName;
+      auto *Header = DIB.createStructType(
+          Headers, TaskName + "_header", nullptr, 0, (End - Start) * 8, 0,
+          llvm::DINode::FlagZero, nullptr, llvm::DINodeArray());
+      llvm::SmallVector<llvm::Metadata *, 2> Words;
+      // A bit field of an unsigned int: gdb prints a one-byte integer type
+      // as a character too.
+      if (NarrowResume)
+        Words.push_back(DIB.createBitFieldMemberType(
+            Header, "resume", nullptr, 0, Task.Resume.Bytes * 8,
+            (Task.Resume.Offset - Start) * 8, 0, llvm::DINode::FlagZero, U32));
+      if (NarrowState)
+        Words.push_back(Member(Header, "state", 8, Task.State.Offset - Start,
+                               getTaskStateType(8)));
+      DIB.replaceArrays(Header, DIB.getOrCreateArray(Words));
+      PerTask.push_back(Member(Headers, TaskName, (End - Start) * 8,
+                               Start - HeadersStart, Header));
+    }
+    DIB.replaceArrays(Headers, DIB.getOrCreateArray(PerTask));
+    Members.push_back(Member(State, "headers",
+                             (HeadersEnd - HeadersStart) * 8, HeadersStart,
+                             Headers));
   }
   DIB.replaceArrays(State, DIB.getOrCreateArray(Members));
   StatePtrTy = DIB.createPointerType(State, PtrBits);

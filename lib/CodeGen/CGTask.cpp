@@ -2,21 +2,32 @@
 //
 // A task is a singleton generator. Its function runs one step per call:
 //
-//   entry:     if ([frame.state <= 0 ||] cycle - frame.last_call > 1)
+//   entry:     if ([T.state <= 0 ||] cycle - frame.last_call > 1)
 //                goto reset
-//   reset:     [destroy(frame) if live]; frame.state = running;
-//              [frame.resume = k]; class values constructed;
+//   reset:     [destroy(frame) if live]; T.state = running;
+//              [T.resume = k]; class values constructed;
 //              [frame.live = 1]; goto start
-//   running:   [resume = frame.resume]
+//   running:   [resume = T.resume]
 //   dispatch:  frame.last_call = cycle; [frame.params = args]
-//              switch (frame.resume) { k: resume.k; default: start }
+//              switch (resume) { k: resume.k; default: start }
 //   start:     the body...
-//   yield k:   [frame.resume = k]; [frame.state = v];
+//   yield k:   [T.resume = k]; [T.state = v];
 //              [trace.slot = k; [trace.word = v]]; ret [v]
 //   resume.k:  ...the code after the k-th yield
-//   end:       [destroy(frame)]; frame.state = done;
+//   end:       [destroy(frame)]; T.state = done;
 //              [frame.last_call = cycle ^ ended]; [trace.slot = finished];
 //              ret [done]
+//
+// The task header. A frame starts with the task's last call (4 bytes).
+// Its resume point (T.resume) and state (T.state) are as narrow as their
+// values allow (ModuleEmitter::chooseTaskWords): the resume point counts
+// the yields, a byte up to 255 of them; the state takes a byte when every
+// state the task stores is a constant from -128 to 127 (running at the
+// reset, done at the end, each yield's). Narrow ones sit in the task's
+// narrow header among the others after the frames, widest first, so that
+// they cost no padding: a task's header is 6 bytes rather than 12
+// (bscript.h bs_task_info). The resume point is switched on in its own
+// type; the state is read sign-extended, stored truncated.
 //
 // The result. In optimised code a task's function returns the state it
 // left, which is what its frame's state holds after the call.
@@ -111,6 +122,53 @@ llvm::Value *FunctionEmitter::getFrameFieldPtr(const TaskDecl *T,
   return Addr;
 }
 
+llvm::Value *FunctionEmitter::getTaskWordPtr(const TaskDecl *T,
+                                             TaskWord W) {
+  const FrameInfo &FI = CGM.getFrame(T);
+  const TaskWordInfo &Word = FI.getWord(W);
+  if (Word.InFrame)
+    return getFrameFieldPtr(T, Word.Field);
+  llvm::Value *&Addr = WordAddrs[{T, unsigned(W)}];
+  if (Addr)
+    return Addr;
+  llvm::IRBuilder<> EntryBuilder(EntryPoint);
+  llvm::Value *Idx[] = {EntryBuilder.getInt32(0),
+                        EntryBuilder.getInt32(CGM.getHeadersField()),
+                        EntryBuilder.getInt32(FI.HeaderFieldNo),
+                        EntryBuilder.getInt32(Word.Field)};
+  Addr = EntryBuilder.CreateInBoundsGEP(
+      CGM.getStateType(), StatePtr, Idx,
+      T->getName().Name + (W == TaskWord::Resume ? ".resume" : ".state"));
+  return Addr;
+}
+
+llvm::Value *FunctionEmitter::loadResume(const TaskDecl *T) {
+  // In its own type: the dispatch switches on it, and yields store
+  // constants, so the resume point never needs widening.
+  return createLoad(Access::State, CGM.getFrame(T).Resume.Ty,
+                    getTaskWordPtr(T, TaskWord::Resume), "resume");
+}
+
+void FunctionEmitter::storeResume(const TaskDecl *T, unsigned Point) {
+  createStore(Access::State,
+              llvm::ConstantInt::get(CGM.getFrame(T).Resume.Ty, Point),
+              getTaskWordPtr(T, TaskWord::Resume));
+}
+
+llvm::Value *FunctionEmitter::loadTaskState(const TaskDecl *T,
+                                            const llvm::Twine &Name) {
+  llvm::Value *V = createLoad(Access::State, CGM.getFrame(T).State.Ty,
+                              getTaskWordPtr(T, TaskWord::State), Name);
+  return Builder.CreateSExt(V, Builder.getInt32Ty());
+}
+
+void FunctionEmitter::storeTaskState(const TaskDecl *T, llvm::Value *State) {
+  // A narrow state holds every value the task can store (chooseTaskWords).
+  createStore(Access::State,
+              Builder.CreateTrunc(State, CGM.getFrame(T).State.Ty),
+              getTaskWordPtr(T, TaskWord::State));
+}
+
 llvm::Value *FunctionEmitter::emitTaskState(const TaskDecl *T) {
   // Right after a call of T: what the call returned ("The result").
   if (CGM.readsReturnedStates() && LastTaskCall &&
@@ -124,8 +182,7 @@ llvm::Value *FunctionEmitter::emitTaskState(const TaskDecl *T) {
                     }))
     return LastTaskCall;
   // A never-called task reports done: the state starts zeroed.
-  return createLoad(Access::State, Builder.getInt32Ty(),
-                    getFrameFieldPtr(T, FrameState), "taskstate");
+  return loadTaskState(T, "taskstate");
 }
 
 std::optional<int64_t> codegen::getConstantState(const Expr *E) {
@@ -174,9 +231,7 @@ void FunctionEmitter::emitTaskPrologue() {
     if (!CGM.keepsInFrame(V))
       Slots[V] = createSlot(V->Ty, V->getName().Name);
 
-  llvm::Value *StateAddr = getFrameFieldPtr(Task, FrameState);
   llvm::Value *LastAddr = getFrameFieldPtr(Task, FrameLastCall);
-  llvm::Value *ResumeAddr = getFrameFieldPtr(Task, FrameResume);
   Plan = planYields(*Task);
   Cycle = createLoad(Access::State, I32,
                      Builder.CreateConstInBoundsGEP2_32(
@@ -188,8 +243,7 @@ void FunctionEmitter::emitTaskPrologue() {
   llvm::Value *Reset =
       Builder.CreateICmpUGT(Gap, Builder.getInt32(1), "must.reset");
   if (!Plan.OnlyRunning) {
-    llvm::Value *State =
-        createLoad(Access::State, I32, StateAddr, "prev.state");
+    llvm::Value *State = loadTaskState(Task, "prev.state");
     llvm::Value *Finished =
         Builder.CreateICmpSLE(State, Builder.getInt32(TaskDone), "finished");
     Reset = Builder.CreateOr(Finished, Reset, "must.reset");
@@ -203,14 +257,16 @@ void FunctionEmitter::emitTaskPrologue() {
   // A running task continues after its last yield.
   Builder.SetInsertPoint(RunningBB);
   // Only running (1) can be stored where the state stays > 0: telling the
-  // optimiser so lets a caller's check of this call's state fold.
-  if (Plan.OnlyRunning)
+  // optimiser so lets a caller's check of this call's state fold (and at
+  // -O0, where nothing folds, the load would only cost time).
+  if (Plan.OnlyRunning && CGM.getOptions().OptLevel > 0)
     Builder.CreateAssumption(Builder.CreateICmpEQ(
-        createLoad(Access::State, I32, StateAddr, "prev.state"),
+        loadTaskState(Task, "prev.state"),
         Builder.getInt32(TaskRunning)));
-  llvm::Value *Resumed = Builder.getInt32(Plan.SingleResume);
+  llvm::IntegerType *ResumeTy = FI.Resume.Ty;
+  llvm::Value *Resumed = llvm::ConstantInt::get(ResumeTy, Plan.SingleResume);
   if (!Plan.SingleResume)
-    Resumed = createLoad(Access::State, I32, ResumeAddr, "resume");
+    Resumed = loadResume(Task);
   Builder.CreateBr(DispatchBB);
 
   // Fresh class values, constructed (parameters first: they are assigned
@@ -223,12 +279,11 @@ void FunctionEmitter::emitTaskPrologue() {
   if (FI.Destroy)
     Builder.CreateCall(FI.Destroy, {StatePtr});
   if (Plan.SingleResume)
-    createStore(Access::State, Builder.getInt32(Plan.SingleResume),
-                ResumeAddr);
+    storeResume(Task, Plan.SingleResume);
   else if (ExactFrames)
-    createStore(Access::State, Builder.getInt32(0), ResumeAddr);
+    storeResume(Task, 0);
   // Running from here on (docs/language.md: an executing task is running).
-  createStore(Access::State, Builder.getInt32(TaskRunning), StateAddr);
+  storeTaskState(Task, Builder.getInt32(TaskRunning));
   for (const ParamDecl *P : Task->Params)
     if (P->Ty->isClass())
       emitClassInit(P->Ty->getClass(),
@@ -250,8 +305,8 @@ void FunctionEmitter::emitTaskPrologue() {
   // Parameters are re-evaluated at every call (rule 2): the body reads the
   // arguments; nested funcs read the copies in the frame.
   Builder.SetInsertPoint(DispatchBB);
-  llvm::PHINode *Resume = Builder.CreatePHI(I32, 2, "resume.point");
-  Resume->addIncoming(Builder.getInt32(0), ResetEnd);
+  llvm::PHINode *Resume = Builder.CreatePHI(ResumeTy, 2, "resume.point");
+  Resume->addIncoming(llvm::ConstantInt::get(ResumeTy, 0), ResetEnd);
   Resume->addIncoming(Resumed, RunningBB);
   createStore(Access::State, Cycle, LastAddr);
   for (const ParamDecl *P : Task->Params)
@@ -270,10 +325,8 @@ void FunctionEmitter::emitTaskFinish() {
   if (llvm::Function *Destroy = CGM.getFrame(Task).Destroy)
     Builder.CreateCall(Destroy, {StatePtr});
   if (CGM.getOptions().Probes)
-    createStore(Access::State, Builder.getInt32(0),
-                getFrameFieldPtr(Task, FrameResume));
-  createStore(Access::State, Builder.getInt32(TaskDone),
-              getFrameFieldPtr(Task, FrameState));
+    storeResume(Task, 0);
+  storeTaskState(Task, Builder.getInt32(TaskDone));
   markEnded();
   recordTraceExit(CGM.getLayout().Trace.finishedSlot(), nullptr);
   emitTaskReturn(Builder.getInt32(TaskDone));
@@ -337,10 +390,9 @@ void FunctionEmitter::emitYield(const YieldStmt &S) {
   std::optional<int64_t> Constant = getConstantState(S.Value);
   bool Ends = Constant && *Constant <= TaskDone;
   if (Ends || S.ResumePoint != Plan.SingleResume)
-    createStore(Access::State, Builder.getInt32(S.ResumePoint),
-                getFrameFieldPtr(Task, FrameResume));
+    storeResume(Task, S.ResumePoint);
   if (Ends || !Plan.OnlyRunning)
-    createStore(Access::State, State, getFrameFieldPtr(Task, FrameState));
+    storeTaskState(Task, State);
   if (Ends)
     markEnded();
   recordTraceExit(S.ResumePoint, Constant ? nullptr : State);
@@ -351,6 +403,8 @@ void FunctionEmitter::emitYield(const YieldStmt &S) {
   llvm::BasicBlock *ResumeBB = llvm::BasicBlock::Create(
       CGM.getContext(), "resume." + llvm::Twine(S.ResumePoint), Fn);
   if (!Ends)
-    ResumeSwitch->addCase(Builder.getInt32(S.ResumePoint), ResumeBB);
+    ResumeSwitch->addCase(
+        llvm::ConstantInt::get(CGM.getFrame(Task).Resume.Ty, S.ResumePoint),
+        ResumeBB);
   Builder.SetInsertPoint(ResumeBB);
 }

@@ -292,6 +292,49 @@ uint64_t ModuleEmitter::getFrameFieldOffset(const TaskDecl *T,
          DL.getStructLayout(FI.Ty)->getElementOffset(Field);
 }
 
+uint64_t ModuleEmitter::getTaskWordOffset(const TaskDecl *T,
+                                          TaskWord W) const {
+  const FrameInfo &FI = getFrame(T);
+  const TaskWordInfo &Word = FI.getWord(W);
+  if (Word.InFrame)
+    return getFrameFieldOffset(T, Word.Field);
+  const llvm::DataLayout &DL = M.getDataLayout();
+  auto *Headers = llvm::cast<llvm::StructType>(
+      StateTy->getElementType(HeadersField));
+  return DL.getStructLayout(StateTy)->getElementOffset(HeadersField) +
+         DL.getStructLayout(Headers)->getElementOffset(FI.HeaderFieldNo) +
+         DL.getStructLayout(FI.HeaderTy)->getElementOffset(Word.Field);
+}
+
+void ModuleEmitter::chooseTaskWords(const TaskDecl &T, FrameInfo &FI) {
+  // The resume point counts the yields (0: the top).
+  size_t Yields = T.Yields.size();
+  unsigned ResumeBits = Yields <= 0xff ? 8 : Yields <= 0xffff ? 16 : 32;
+  // The state: running at the reset, done at the end, and each yield's.
+  bool SmallStates = !planYields(T).ComputedStates;
+  for (const YieldStmt *Y : T.Yields)
+    if (std::optional<int64_t> V = getConstantState(Y->Value))
+      SmallStates &= *V >= INT8_MIN && *V <= INT8_MAX;
+  unsigned StateBits = SmallStates ? 8 : 32;
+
+  llvm::SmallVector<llvm::Type *, 2> Narrow;
+  std::string Name = "bs.header.";
+  if (T.Module)
+    Name += T.Module->Name + ".";
+  Name += T.getName().Name.str();
+  for (auto [W, Bits] : {std::pair(&FI.Resume, ResumeBits),
+                         std::pair(&FI.State, StateBits)}) {
+    W->Ty = llvm::Type::getIntNTy(Ctx, Bits);
+    W->InFrame = Bits == 32;
+    if (!W->InFrame) {
+      W->Field = Narrow.size();
+      Narrow.push_back(W->Ty);
+    }
+  }
+  FI.HeaderTy =
+      Narrow.empty() ? nullptr : llvm::StructType::create(Ctx, Narrow, Name);
+}
+
 bool ModuleEmitter::keepsInFrame(const Decl *D) const {
   if (Opts.Probes)
     return true;
@@ -304,16 +347,24 @@ bool ModuleEmitter::keepsInFrame(const Decl *D) const {
 void ModuleEmitter::layoutState() {
   llvm::Type *I32 = llvm::Type::getInt32Ty(Ctx);
   llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
-  // bs_state_header: cycle, reserved, input, output, user.
-  llvm::SmallVector<llvm::Type *, 8> StateFields = {I32, I32, Ptr, Ptr, Ptr};
+  // bs_state_header: cycle, input, output, user.
+  llvm::SmallVector<llvm::Type *, 8> StateFields = {I32, Ptr, Ptr, Ptr};
   for (const TaskDecl *T : B.Tasks) {
     FrameInfo &FI = Frames[T];
     FI.TaskIndex = StateFields.size() - FirstFrameField;
-    // bs_frame_header: resume, state, last_call; then params, then locals.
-    llvm::SmallVector<llvm::Type *, 8> Fields = {I32, I32, I32};
+    // The last call; the resume point and state if they take 4 bytes; then
+    // params, then locals.
+    llvm::SmallVector<llvm::Type *, 8> Fields = {I32};
     std::string Prefix = T->getName().Name.str() + ".";
-    FI.FieldNames = {Prefix + "resume", Prefix + "state",
-                     Prefix + "last_call"};
+    FI.FieldNames = {Prefix + "last_call"};
+    chooseTaskWords(*T, FI);
+    for (TaskWordInfo *W : {&FI.Resume, &FI.State})
+      if (W->InFrame) {
+        W->Field = Fields.size();
+        Fields.push_back(I32);
+        FI.FieldNames.push_back(Prefix +
+                                (W == &FI.Resume ? "resume" : "state"));
+      }
     auto Add = [&](const Decl *D, const Type *Ty) {
       FI.Fields[D] = Fields.size();
       Fields.push_back(getMemoryType(Ty));
@@ -370,6 +421,26 @@ void ModuleEmitter::layoutState() {
     FI.StateFieldNo = StateFields.size();
     StateFields.push_back(FI.Ty);
   }
+  // The narrow headers, widest first, so that none needs padding.
+  llvm::SmallVector<const TaskDecl *, 16> Narrow;
+  for (const TaskDecl *T : B.Tasks)
+    if (Frames[T].HeaderTy)
+      Narrow.push_back(T);
+  const llvm::DataLayout &HeaderDL = M.getDataLayout();
+  llvm::stable_sort(Narrow, [&](const TaskDecl *A, const TaskDecl *B) {
+    return HeaderDL.getABITypeAlign(Frames[A].HeaderTy) >
+           HeaderDL.getABITypeAlign(Frames[B].HeaderTy);
+  });
+  HeadersField = 0;
+  if (!Narrow.empty()) {
+    llvm::SmallVector<llvm::Type *, 16> Headers;
+    for (const TaskDecl *T : Narrow) {
+      Frames[T].HeaderFieldNo = Headers.size();
+      Headers.push_back(Frames[T].HeaderTy);
+    }
+    HeadersField = StateFields.size();
+    StateFields.push_back(llvm::StructType::create(Ctx, Headers, "bs.headers"));
+  }
   // `--instrument`: the trace record, after the frames so that the frames
   // sit where they do without it.
   BehaviorLayout::TraceLayout &Trace = Layout.Trace;
@@ -409,8 +480,19 @@ void ModuleEmitter::layoutState() {
   for (const TaskDecl *T : B.Tasks) {
     const FrameInfo &FI = Frames[T];
     uint64_t FrameOffset = SL->getElementOffset(FI.StateFieldNo);
-    BehaviorLayout::Task Entry{
-        T, FrameOffset, DL.getTypeStoreSize(FI.Ty), {}, false, {}};
+    auto Word = [&](TaskWord W) {
+      return BehaviorLayout::TaskWord{
+          getTaskWordOffset(T, W),
+          unsigned(FI.getWord(W).Ty->getBitWidth() / 8)};
+    };
+    BehaviorLayout::Task Entry{T,
+                               FrameOffset,
+                               DL.getTypeStoreSize(FI.Ty),
+                               Word(TaskWord::Resume),
+                               Word(TaskWord::State),
+                               {},
+                               false,
+                               {}};
     auto Add = [&](const Decl *D, const Type *Ty) {
       Entry.Fields.push_back(
           {D, Ty, getFrameFieldOffset(T, FI.Fields.lookup(D))});
@@ -650,7 +732,9 @@ void ModuleEmitter::emitInfo() {
   llvm::Type *I32 = llvm::Type::getInt32Ty(Ctx);
   llvm::Type *I64 = llvm::Type::getInt64Ty(Ctx);
   llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
-  auto *TaskInfoTy = llvm::StructType::create(Ctx, {Ptr, I32}, "bs_task_info");
+  llvm::Type *I8 = llvm::Type::getInt8Ty(Ctx);
+  auto *TaskInfoTy = llvm::StructType::create(Ctx, {Ptr, I32, I32, I32, I8, I8},
+                                              "bs_task_info");
   auto *ModuleInfoTy =
       llvm::StructType::create(Ctx, {Ptr, Ptr, I64}, "bs_binding_module");
   auto *TraceTy =
@@ -676,7 +760,11 @@ void ModuleEmitter::emitInfo() {
   for (const BehaviorLayout::Task &T : Layout.Tasks)
     Tasks.push_back(llvm::ConstantStruct::get(
         TaskInfoTy, {getString(T.Decl->getQualifiedName()),
-                     llvm::ConstantInt::get(I32, T.FrameOffset)}));
+                     llvm::ConstantInt::get(I32, T.FrameOffset),
+                     llvm::ConstantInt::get(I32, T.Resume.Offset),
+                     llvm::ConstantInt::get(I32, T.State.Offset),
+                     llvm::ConstantInt::get(I8, T.Resume.Bytes),
+                     llvm::ConstantInt::get(I8, T.State.Bytes)}));
 
   // The binding modules it was compiled against: each descriptor by its
   // symbol (so the link fails if the module is missing) with the hash bsc

@@ -35,37 +35,50 @@ namespace bsc {
 namespace codegen {
 
 /// Field numbers of `%bs.state` (bs_state_header in bscript.h); the frame
-/// of task i is field FirstFrameField + i.
+/// of task i is field FirstFrameField + i, the tasks' narrow headers
+/// follow the frames (ModuleEmitter::getHeadersField).
 enum StateField : unsigned {
   StateCycle = 0,
-  StateReserved = 1,
-  StateInput = 2,
-  StateOutput = 3,
-  StateUser = 4,
-  FirstFrameField = 5,
+  StateInput = 1,
+  StateOutput = 2,
+  StateUser = 3,
+  FirstFrameField = 4,
 };
 
-/// Field numbers of a `%bs.frame.*` (bs_frame_header in bscript.h); the
-/// parameters follow, then the locals.
-enum FrameField : unsigned {
-  FrameResume = 0,
-  FrameState = 1,
-  FrameLastCall = 2,
-  FirstParamField = 3,
-};
+/// A frame (`%bs.frame.*`) starts with the task's last call; its resume
+/// point and state follow when they take 4 bytes (TaskWordInfo), then the
+/// parameters and locals.
+constexpr unsigned FrameLastCall = 0;
 
-/// Values of frame.state (bscript.h BS_TASK_*).
+/// Values of a task's state (bscript.h BS_TASK_*).
 constexpr int32_t TaskDone = 0;
 constexpr int32_t TaskRunning = 1;
-/// The bit of frame.last_call that marks a call that ended the task
+/// The bit of a task's last call that marks a call that ended the task
 /// (bscript.h BS_LAST_CALL_ENDED).
 constexpr uint32_t LastCallEnded = 0x80000000u;
+
+/// The two words of a task header that may be narrow (bscript.h
+/// bs_task_info): the resume point and the state.
+enum class TaskWord { Resume, State };
+
+/// Where one of them lives: a 4-byte field of the frame, or a field of the
+/// task's narrow header (`%bs.header.*`) in the state's header area.
+struct TaskWordInfo {
+  llvm::IntegerType *Ty = nullptr; ///< i8, i16 or i32.
+  bool InFrame = true;
+  unsigned Field = 0; ///< Of the frame, or of the narrow header.
+};
 
 /// Where a task's frame sits in the state and how its fields are numbered.
 struct FrameInfo {
   llvm::StructType *Ty = nullptr;
   unsigned StateFieldNo = 0; ///< Field of %bs.state holding this frame.
   unsigned TaskIndex = 0;    ///< In the task table (B.Tasks order).
+  TaskWordInfo Resume, State;
+  /// The task's narrow header (its narrow words) and its field in the
+  /// state's header area; null if both words are in the frame.
+  llvm::StructType *HeaderTy = nullptr;
+  unsigned HeaderFieldNo = 0;
   /// ParamDecl or VarDecl of the task -> field of the frame struct.
   llvm::DenseMap<const Decl *, unsigned> Fields;
   /// Per field, the name its address gets in the IR (`fib.b`).
@@ -75,6 +88,10 @@ struct FrameInfo {
   /// `bs.<M>.<task>.destroy`. Otherwise 0 and null.
   unsigned LiveField = 0;
   llvm::Function *Destroy = nullptr;
+
+  const TaskWordInfo &getWord(TaskWord W) const {
+    return W == TaskWord::Resume ? Resume : State;
+  }
 };
 
 /// What the task's yields store (CGTask.cpp, "Which stores").
@@ -158,7 +175,9 @@ private:
   llvm::DIType *getBasicType(llvm::StringRef Name, uint64_t Bits,
                              unsigned Encoding);
   llvm::DIType *getEnumType(const NativeEnum *E);
-  llvm::DIType *getTaskStateType();
+  /// TaskState of 32 bits (values, frames) or 8 (a narrow task state,
+  /// bscript.h bs_task_info): the same enumeration by name.
+  llvm::DIType *getTaskStateType(unsigned Bits = 32);
   llvm::DIType *getClassType(const NativeClass *C);
   llvm::DIType *getStringType();
   llvm::DIType *getStatePointerType();
@@ -175,7 +194,7 @@ private:
   llvm::StringMap<llvm::DIType *> BasicTypes;
   llvm::DenseMap<const NativeEnum *, llvm::DIType *> Enums;
   llvm::DenseMap<const NativeClass *, llvm::DIType *> Classes;
-  llvm::DIType *TaskStateTy = nullptr;
+  llvm::DIType *TaskStateTy = nullptr, *TaskState8Ty = nullptr;
   llvm::DIType *StringTy = nullptr;
   llvm::DIType *StatePtrTy = nullptr;
   bool Optimized; ///< CodeGenOptions::OptLevel > 0.
@@ -268,7 +287,7 @@ public:
   // Alias information ------------------------------------------------------
 
   /// TBAA access tags of the kinds of memory generated code touches.
-  /// The state (cycle, input/output pointers, frame headers, scalar
+  /// The state (cycle, input/output pointers, task headers, scalar
   /// parameters and locals, REPL slots) and the scalar fields of registered
   /// C++ objects (`input`, `output` and class values) never overlap, so a
   /// store to `output.motion` does not force the next read of the output
@@ -297,9 +316,15 @@ public:
   /// With CodeGenOptions::Instrument: the field of %bs.state that holds
   /// the cycle's trace record.
   unsigned getTraceRecordField() const { return TraceRecordField; }
+  /// The field of %bs.state holding the tasks' narrow headers (FrameInfo),
+  /// 0 if no task has one.
+  unsigned getHeadersField() const { return HeadersField; }
   /// The offset of field `Field` of the frame of `T` from the start of
   /// the state.
   uint64_t getFrameFieldOffset(const TaskDecl *T, unsigned Field) const;
+  /// The offset of the resume point or state of `T` from the start of the
+  /// state.
+  uint64_t getTaskWordOffset(const TaskDecl *T, TaskWord W) const;
 
   // Debugging probes (CodeGenOptions::Probes) -------------------------------
 
@@ -328,6 +353,9 @@ private:
   /// Instrument the symbol defineDebugTables defines.
   llvm::Constant *getDebugTables();
   void emitProgramMain();
+  /// Chooses the width and place of a task's resume point and state
+  /// (bscript.h bs_task_info) and builds its narrow header type.
+  void chooseTaskWords(const TaskDecl &T, FrameInfo &FI);
   /// i386: internal functions called only directly use the regcall
   /// convention, whose calls do not set up the GOT pointer.
   void useRegisterCalls();
@@ -340,6 +368,7 @@ private:
 
   llvm::StructType *StateTy = nullptr;
   unsigned TraceRecordField = 0;
+  unsigned HeadersField = 0;
   llvm::DenseMap<const TaskDecl *, FrameInfo> Frames;
   llvm::DenseMap<const CallableDecl *, llvm::Function *> Functions;
   llvm::DenseMap<const NativeFunction *, llvm::FunctionCallee> Natives;
@@ -373,7 +402,7 @@ private:
   // CGTask.cpp: everything a generator needs.
   void emitTaskPrologue();
   void emitTaskEpilogue();
-  /// frame.state = done; ret void.
+  /// The task's state = done; ret [done].
   void emitTaskFinish();
   /// Marks the task's last call as ended (CGTask.cpp, "The last call").
   void markEnded();
@@ -387,6 +416,16 @@ private:
   void emitYield(const YieldStmt &S);
   /// A pointer to field `Field` of the frame of `T`.
   llvm::Value *getFrameFieldPtr(const TaskDecl *T, unsigned Field);
+  /// A pointer to the resume point or state of `T`, in its frame or in its
+  /// narrow header (FrameInfo::getWord gives the type).
+  llvm::Value *getTaskWordPtr(const TaskDecl *T, TaskWord W);
+  /// The resume point of `T`, in its own type (FrameInfo::Resume).
+  llvm::Value *loadResume(const TaskDecl *T);
+  void storeResume(const TaskDecl *T, unsigned Point);
+  /// The state of `T` as an i32.
+  llvm::Value *loadTaskState(const TaskDecl *T, const llvm::Twine &Name);
+  /// Stores an i32 state into the state of `T`.
+  void storeTaskState(const TaskDecl *T, llvm::Value *State);
   llvm::Value *emitTaskState(const TaskDecl *T);
 
   // CGStmt.cpp.
@@ -553,7 +592,8 @@ private:
     unsigned ProbeSite; ///< With probes: the loop's site.
   };
   llvm::SmallVector<LoopTargets, 4> Loops;
-  /// Task bodies: the dispatch on frame.resume; a case is added per yield.
+  /// Task bodies: the dispatch on the resume point; a case is added per
+  /// yield.
   llvm::SwitchInst *ResumeSwitch = nullptr;
   YieldPlan Plan; ///< Of the task being emitted.
   llvm::Value *Cycle = nullptr; ///< The state's cycle, loaded at entry.
@@ -565,6 +605,9 @@ private:
   /// The address of each frame field used, computed once (task, field).
   llvm::DenseMap<std::pair<const TaskDecl *, unsigned>, llvm::Value *>
       FieldAddrs;
+  /// The same for the resume points and states used (task, TaskWord).
+  llvm::DenseMap<std::pair<const TaskDecl *, unsigned>, llvm::Value *>
+      WordAddrs;
   /// Pending temporaries of the current full expression.
   llvm::SmallVector<Cleanup, 4> Temps;
   /// A func's constructed parameters and locals that need destruction,

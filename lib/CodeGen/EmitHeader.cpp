@@ -156,15 +156,16 @@ void bsc::writeBehaviorHeader(const Behavior &B, const BehaviorLayout &L,
        << "_state *state) {\n"
        << "  return state->bytes + " << Trace.Offset << "u;\n}\n\n";
   }
-  // Task states, straight from the frame header (bscript.h).
+  // Task states, straight from where the task keeps its state (bscript.h
+  // bs_task_info): 1 or 4 bytes, signed.
   for (const BehaviorLayout::Task &Task : L.Tasks) {
     std::string QName = Task.Decl->getQualifiedName();
     OS << "/** The state task " << QName
        << " left at its most recent call (BS_TASK_*). */\n"
        << "static inline int32_t " << P << "_state_of__"
        << getEntrySuffix(*Task.Decl) << "(const " << P << "_state *state) {\n"
-       << "  return ((const bs_frame_header *)(state->bytes + "
-       << Task.FrameOffset << "u))->state;\n}\n\n";
+       << "  return *(const " << (Task.State.Bytes == 1 ? "int8_t" : "int32_t")
+       << " *)(state->bytes + " << Task.State.Offset << "u);\n}\n\n";
   }
   OS << "#ifdef __cplusplus\n} /* extern \"C\" */\n#endif\n\n#endif /* "
      << Guard << " */\n";

@@ -346,17 +346,17 @@ std::string debug::formatTraceLine(const DebugTables &T,
 std::vector<Activation> debug::takeSnapshot(const void *State,
                                             const bs_behavior_info *Info) {
   std::vector<Activation> Records;
-  const auto *Bytes = static_cast<const unsigned char *>(State);
   uint32_t Cycle = static_cast<const bs_state_header *>(State)->cycle;
   if (Cycle == 0)
     return Records;
   for (uint32_t I = 0; I < Info->num_tasks; ++I) {
-    bs_frame_header Frame;
-    std::memcpy(&Frame, Bytes + Info->tasks[I].frame_offset, sizeof Frame);
+    const bs_task_info &Task = Info->tasks[I];
     // Every call records the cycle (bit 31 flipped if the call ended the
     // task): the tasks called in this one.
-    if (((Frame.last_call ^ Cycle) & ~BS_LAST_CALL_ENDED) == 0)
-      Records.push_back({I, uint32_t(Frame.resume), Frame.state});
+    if (((bs_task_last_call_at(State, &Task) ^ Cycle) & ~BS_LAST_CALL_ENDED) ==
+        0)
+      Records.push_back({I, bs_task_resume_at(State, &Task),
+                         bs_task_state_at(State, &Task)});
   }
   return Records;
 }

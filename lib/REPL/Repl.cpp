@@ -164,9 +164,9 @@ private:
   unsigned NextBreakpoint = 1;
   unsigned LineNo = 0;
   std::unique_ptr<llvm::raw_fd_ostream> Recording;
-  /// The entry's frame offset, if the entry is a task (its failure stops
-  /// `:run`).
-  std::optional<uint64_t> EntryFrame;
+  /// The entry's index in the task table, if the entry is a task (its
+  /// failure stops `:run`).
+  std::optional<unsigned> EntryIndex;
 };
 
 } // namespace
@@ -212,7 +212,8 @@ static bool sameFrame(const BehaviorLayout::Task &A,
   // would resume somewhere else.
   if (A.FrameSize != B.FrameSize || A.Fields.size() != B.Fields.size() ||
       A.Decl->Yields.size() != B.Decl->Yields.size() ||
-      A.OnlyRunningStates != B.OnlyRunningStates)
+      A.OnlyRunningStates != B.OnlyRunningStates ||
+      A.Resume.Bytes != B.Resume.Bytes || A.State.Bytes != B.State.Bytes)
     return false;
   for (size_t I = 0; I < A.Fields.size(); ++I) {
     const BehaviorLayout::FrameField &FA = A.Fields[I], &FB = B.Fields[I];
@@ -272,6 +273,11 @@ bool Repl::load(std::unique_ptr<Compilation> NewC) {
         if (sameFrame(OT, NT)) {
           std::memcpy(NewBytes + NT.FrameOffset, OldBytes + OT.FrameOffset,
                       Size);
+          // Narrow resume points and states sit outside the frame.
+          std::memcpy(NewBytes + NT.Resume.Offset,
+                      OldBytes + OT.Resume.Offset, NT.Resume.Bytes);
+          std::memcpy(NewBytes + NT.State.Offset, OldBytes + OT.State.Offset,
+                      NT.State.Bytes);
           // The values moved: the old state must not destroy them.
           std::memset(OldBytes + OT.FrameOffset, 0, Size);
           Kept = true;
@@ -311,10 +317,10 @@ bool Repl::load(std::unique_ptr<Compilation> NewC) {
   C = std::move(NewC);
   Checker = std::make_unique<ReplChecker>(C->Ctx, C->Diags, C->Checked,
                                           &C->Natives, L->Entry->Module);
-  EntryFrame.reset();
-  for (const BehaviorLayout::Task &T : L->Layout.Tasks)
-    if (T.Decl == L->Entry)
-      EntryFrame = T.FrameOffset;
+  EntryIndex.reset();
+  for (unsigned T = 0; T < L->Layout.Tasks.size(); ++T)
+    if (L->Layout.Tasks[T].Decl == L->Entry)
+      EntryIndex = T;
   if (FirstLoad && !Opts.WorldLibrary.empty() &&
       !attachWorldLibrary(*C, *L, *S, Opts.WorldLibrary, Opts.CycleLimitMs)) {
     printDiagnostics(C->SM, C->Diags.getDiagnostics(), llvm::errs());
@@ -605,12 +611,9 @@ void Repl::step(unsigned N, bool Report) {
       OS << "\n";
     }
     std::string Why = checkBreakpoints();
-    if (Why.empty() && EntryFrame) {
-      int32_t State;
-      std::memcpy(&State,
-                  static_cast<char *>(S->getState()) + *EntryFrame +
-                      offsetof(bs_frame_header, state),
-                  sizeof State);
+    if (Why.empty() && EntryIndex) {
+      int32_t State =
+          bs_task_state_at(S->getState(), &S->getInfo().tasks[*EntryIndex]);
       if (State < 0)
         Why = "the entry " + L->Entry->getQualifiedName() + " failed";
     }

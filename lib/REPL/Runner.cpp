@@ -307,10 +307,11 @@ bool bsc::runBehavior(Compilation &C, LoadedBehavior &L, BehaviorSession &S,
 
   debug::ValueIO Values([&](llvm::StringRef Sym) { return L.JIT->lookup(Sym); });
   const TaskDecl *EntryTask = llvm::dyn_cast<TaskDecl>(L.Entry);
-  std::optional<uint64_t> EntryFrame;
-  for (const BehaviorLayout::Task &T : L.Layout.Tasks)
-    if (T.Decl == EntryTask)
-      EntryFrame = T.FrameOffset;
+  // The entry task's place in the task table, whose state tells a failure.
+  std::optional<unsigned> EntryIndex;
+  for (unsigned T = 0; T < L.Layout.Tasks.size(); ++T)
+    if (L.Layout.Tasks[T].Decl == EntryTask)
+      EntryIndex = T;
   bool ReportedFailure = false;
 
   unsigned Cycles = Replay.empty() ? Opts.Cycles : Replay.size();
@@ -352,12 +353,9 @@ bool bsc::runBehavior(Compilation &C, LoadedBehavior &L, BehaviorSession &S,
       debug::printJSON(Record->os(), Rec);
       Record->os() << "\n";
     }
-    if (EntryFrame && !ReportedFailure) {
-      int32_t State;
-      std::memcpy(&State,
-                  static_cast<char *>(S.getState()) + *EntryFrame +
-                      offsetof(bs_frame_header, state),
-                  sizeof State);
+    if (EntryIndex && !ReportedFailure) {
+      int32_t State =
+          bs_task_state_at(S.getState(), &S.getInfo().tasks[*EntryIndex]);
       if (State < 0) {
         C.Diags.report(L.Entry->getLoc(), diag::warn_entry_failed)
             << L.Entry->getQualifiedName() << State << Cycle;

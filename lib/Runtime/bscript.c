@@ -64,15 +64,14 @@ int bs_state_init(void *state, const bs_behavior_info *info) {
     return BS_INIT_BAD_INFO;
   if (bs_check_bindings(info))
     return BS_INIT_STALE_BINDINGS;
-  /* Zero state: cycle 0, every frame's state done and resume point 0, and
+  /* Zero state: cycle 0, every task's state done and resume point 0, and
    * its last call one that ended the task in cycle 0, so every task starts
    * from the top at its first call. */
   unsigned char *bytes = (unsigned char *)state;
   for (uint32_t i = 0; i < info->state_size; ++i)
     bytes[i] = 0;
   for (uint32_t i = 0; i < info->num_tasks; ++i)
-    ((bs_frame_header *)(bytes + info->tasks[i].frame_offset))->last_call =
-        BS_LAST_CALL_ENDED;
+    *(uint32_t *)(bytes + info->tasks[i].frame_offset) = BS_LAST_CALL_ENDED;
   return BS_INIT_OK;
 }
 
@@ -119,10 +118,7 @@ int32_t bs_task_state(const void *state, const bs_behavior_info *info,
       continue;
     if (found)
       *found = 1;
-    const bs_frame_header *frame =
-        (const bs_frame_header *)((const unsigned char *)state +
-                                  info->tasks[i].frame_offset);
-    return frame->state;
+    return bs_task_state_at(state, &info->tasks[i]);
   }
   return BS_TASK_DONE;
 }

@@ -25,6 +25,7 @@
 #include "llvm/Support/raw_ostream.h"
 #include "bscript/bscript.h"
 #include "gtest/gtest.h"
+#include <cstddef>
 #include <map>
 
 using namespace bsc;
@@ -391,27 +392,34 @@ TEST_F(CodeGenTest, LayoutIsTheSameAtEveryOptLevel) {
 
 TEST_F(CodeGenTest, FibFrameLayout) {
   ASSERT_TRUE(check(getPrograms().at("fib")));
-  // header {cycle, reserved, input, output, user}, then fib's frame
-  // {resume, state, last_call, a, b}: five i32. `t` is declared after the for's
-  // yield and dies before it: an alloca.
+  // header {cycle, input, output, user}, then fib's frame {last_call, a,
+  // b}: three i32; then its narrow header {resume, state}: a byte each (one
+  // yield, states 1 and 0). `t` is declared after the for's yield and dies
+  // before it: an alloca.
   BehaviorLayout L32, L64;
   std::unique_ptr<llvm::Module> M32 = emit(Targets[0], L32);
   std::unique_ptr<llvm::Module> M64 = emit(Targets[1], L64);
-  EXPECT_EQ(L32.StateSize, 20u + 20u);
+  EXPECT_EQ(L32.StateSize, 16u + 12u + 4u); // 2, rounded to 4
   EXPECT_EQ(L32.StateAlign, 4u);
   ASSERT_EQ(L32.Tasks.size(), 1u);
-  EXPECT_EQ(L32.Tasks[0].FrameOffset, 20u);
+  EXPECT_EQ(L32.Tasks[0].FrameOffset, 16u);
+  EXPECT_EQ(L32.Tasks[0].FrameSize, 12u);
+  EXPECT_EQ(L32.Tasks[0].Resume.Offset, 28u);
+  EXPECT_EQ(L32.Tasks[0].Resume.Bytes, 1u);
+  EXPECT_EQ(L32.Tasks[0].State.Offset, 29u);
+  EXPECT_EQ(L32.Tasks[0].State.Bytes, 1u);
   ASSERT_EQ(L32.Tasks[0].Fields.size(), 2u);
   EXPECT_EQ(L32.Tasks[0].Fields[0].D->getName().Name, "a");
   EXPECT_EQ(L32.Tasks[0].Fields[1].D->getName().Name, "b");
-  EXPECT_EQ(L64.StateSize, 32u + 24u); // 20, rounded to the 8 of pointers
+  EXPECT_EQ(L64.StateSize, 32u + 12u + 4u); // 46, rounded to 8
   EXPECT_EQ(L64.StateAlign, 8u);
   EXPECT_EQ(L64.Tasks[0].FrameOffset, 32u);
+  EXPECT_EQ(L64.Tasks[0].Resume.Offset, 44u);
 
   llvm::StructType *Frame =
       llvm::StructType::getTypeByName(Ctx, "bs.frame.fib.fib");
   ASSERT_TRUE(Frame);
-  EXPECT_EQ(Frame->getNumElements(), 5u);
+  EXPECT_EQ(Frame->getNumElements(), 3u);
 }
 
 TEST_F(CodeGenTest, ExactFramesKeepEveryVariable) {
@@ -421,7 +429,7 @@ TEST_F(CodeGenTest, ExactFramesKeepEveryVariable) {
   Opts.Probes = true;
   BehaviorLayout L;
   std::unique_ptr<llvm::Module> M = emit(Targets[0], L, Opts);
-  EXPECT_EQ(L.StateSize, 20u + 24u);
+  EXPECT_EQ(L.StateSize, 16u + 16u + 4u);
   ASSERT_EQ(L.Tasks[0].Fields.size(), 3u);
   EXPECT_EQ(L.Tasks[0].Fields[2].D->getName().Name, "t");
 }
@@ -446,16 +454,21 @@ TEST_F(CodeGenTest, SiblingScopesShareAField) {
   EXPECT_EQ(T.Fields[0].Offset, T.Fields[1].Offset);
   EXPECT_EQ(T.Fields[2].D->getName().Name, "f");
   EXPECT_NE(T.Fields[2].Offset, T.Fields[0].Offset);
-  EXPECT_EQ(T.FrameSize, 12u + 4u + 4u);
+  EXPECT_EQ(T.FrameSize, 4u + 4u + 4u);
 }
 
 TEST_F(CodeGenTest, StateHeaderMatchesBscriptH) {
   ASSERT_TRUE(check(getPrograms().at("tasks")));
-  // bs_state_header {u32 cycle, u32 reserved, const void *input, void
-  // *output, void *user} and bs_frame_header {i32 resume, i32 state, u32
-  // last_call} as a C compiler lays them out for each target.
-  const uint64_t InputOffset[] = {8, 8}, OutputOffset[] = {12, 16},
-                 UserOffset[] = {16, 24};
+  // bs_state_header {u32 cycle, const void *input, void *output, void
+  // *user} as a C compiler lays it out for each target (the host's is
+  // bscript.h's own); every frame starts with its task's u32 last call.
+  const uint64_t InputOffset[] = {4, 8}, OutputOffset[] = {8, 16},
+                 UserOffset[] = {12, 24};
+  if (sizeof(void *) == 8) {
+    EXPECT_EQ(offsetof(bs_state_header, input), InputOffset[1]);
+    EXPECT_EQ(offsetof(bs_state_header, output), OutputOffset[1]);
+    EXPECT_EQ(offsetof(bs_state_header, user), UserOffset[1]);
+  }
   for (unsigned I = 0; I < 2; ++I) {
     SCOPED_TRACE(Targets[I].Triple);
     llvm::LLVMContext LocalCtx;
@@ -469,20 +482,137 @@ TEST_F(CodeGenTest, StateHeaderMatchesBscriptH) {
     const llvm::StructLayout *SL =
         M->getDataLayout().getStructLayout(State);
     EXPECT_EQ(SL->getElementOffset(0), 0u);
-    EXPECT_EQ(SL->getElementOffset(1), 4u);
-    EXPECT_EQ(SL->getElementOffset(2), InputOffset[I]);
-    EXPECT_EQ(SL->getElementOffset(3), OutputOffset[I]);
-    EXPECT_EQ(SL->getElementOffset(4), UserOffset[I]);
+    EXPECT_EQ(SL->getElementOffset(1), InputOffset[I]);
+    EXPECT_EQ(SL->getElementOffset(2), OutputOffset[I]);
+    EXPECT_EQ(SL->getElementOffset(3), UserOffset[I]);
     ASSERT_EQ(L.Tasks.size(), 2u);
+    uint64_t FramesEnd = 0;
     for (unsigned T = 0; T < L.Tasks.size(); ++T) {
-      auto *Frame = llvm::cast<llvm::StructType>(State->getElementType(5 + T));
-      EXPECT_EQ(L.Tasks[T].FrameOffset, SL->getElementOffset(5 + T));
-      for (unsigned F = 0; F < 3; ++F)
-        EXPECT_TRUE(Frame->getElementType(F)->isIntegerTy(32));
+      auto *Frame = llvm::cast<llvm::StructType>(State->getElementType(4 + T));
+      EXPECT_EQ(L.Tasks[T].FrameOffset, SL->getElementOffset(4 + T));
+      EXPECT_TRUE(Frame->getElementType(0)->isIntegerTy(32));
       EXPECT_EQ(L.Tasks[T].FrameOffset % 4, 0u);
+      FramesEnd = L.Tasks[T].FrameOffset + L.Tasks[T].FrameSize;
     }
+    // Both tasks have few yields and constant states: their resume points
+    // and states take a byte each, after the frames.
+    for (const BehaviorLayout::Task &T : L.Tasks)
+      for (const BehaviorLayout::TaskWord &W : {T.Resume, T.State}) {
+        EXPECT_EQ(W.Bytes, 1u);
+        EXPECT_GE(W.Offset, FramesEnd);
+        EXPECT_LE(W.Offset + W.Bytes, L.StateSize);
+      }
     // Without a name, the first module's name prefixes the exports.
     EXPECT_EQ(L.InfoSymbol, "bs_tasks_info");
+  }
+}
+
+/// The task table's entries are bscript.h's bs_task_info on the host.
+TEST_F(CodeGenTest, TaskInfoMatchesBscriptH) {
+  ASSERT_TRUE(check(getPrograms().at("fib")));
+  BehaviorLayout L;
+  std::unique_ptr<llvm::Module> M = emit(Targets[1], L);
+  llvm::StructType *Info = llvm::StructType::getTypeByName(Ctx, "bs_task_info");
+  ASSERT_TRUE(Info);
+  const llvm::StructLayout *SL = M->getDataLayout().getStructLayout(Info);
+  if (sizeof(void *) == 8) {
+    EXPECT_EQ(SL->getSizeInBytes(), sizeof(bs_task_info));
+    EXPECT_EQ(SL->getElementOffset(1), offsetof(bs_task_info, frame_offset));
+    EXPECT_EQ(SL->getElementOffset(2), offsetof(bs_task_info, resume_offset));
+    EXPECT_EQ(SL->getElementOffset(3), offsetof(bs_task_info, state_offset));
+    EXPECT_EQ(SL->getElementOffset(4), offsetof(bs_task_info, resume_bytes));
+    EXPECT_EQ(SL->getElementOffset(5), offsetof(bs_task_info, state_bytes));
+  }
+  const llvm::GlobalVariable *Tasks = M->getNamedGlobal("bs_B_tasks");
+  ASSERT_TRUE(Tasks && Tasks->hasInitializer());
+  const llvm::Constant *Fib = Tasks->getInitializer()->getAggregateElement(0u);
+  auto Field = [&](unsigned I) {
+    return llvm::cast<llvm::ConstantInt>(Fib->getAggregateElement(I))
+        ->getZExtValue();
+  };
+  EXPECT_EQ(Field(1), L.Tasks[0].FrameOffset);
+  EXPECT_EQ(Field(2), L.Tasks[0].Resume.Offset);
+  EXPECT_EQ(Field(3), L.Tasks[0].State.Offset);
+  EXPECT_EQ(Field(4), L.Tasks[0].Resume.Bytes);
+  EXPECT_EQ(Field(5), L.Tasks[0].State.Bytes);
+}
+
+/// A resume point is as wide as the task's yields need, a state 1 byte
+/// only when every state it can hold fits; the widest narrow headers come
+/// first so that none is padded.
+TEST_F(CodeGenTest, TaskWordsAreAsNarrowAsTheirValues) {
+  std::string Many = "task many()\n";
+  for (int I = 0; I < 300; ++I)
+    Many += "    yield\n";
+  ASSERT_TRUE(check({{"m", Many + R"(
+task big()
+    yield 1000
+task small()
+    yield 127
+    yield -128
+task computed(int v)
+    yield v
+task plain()
+    yield
+)"}}));
+  BehaviorLayout L;
+  std::unique_ptr<llvm::Module> M = emit(Targets[0], L);
+  ASSERT_EQ(L.Tasks.size(), 5u);
+  auto Find = [&](llvm::StringRef Name) -> const BehaviorLayout::Task & {
+    for (const BehaviorLayout::Task &T : L.Tasks)
+      if (T.Decl->getName().Name == Name)
+        return T;
+    ADD_FAILURE() << Name.str();
+    return L.Tasks[0];
+  };
+  auto InFrame = [](const BehaviorLayout::Task &T,
+                    const BehaviorLayout::TaskWord &W) {
+    return W.Offset >= T.FrameOffset && W.Offset < T.FrameOffset + T.FrameSize;
+  };
+  const BehaviorLayout::Task &Many300 = Find("many"), &Big = Find("big"),
+                             &Small = Find("small"),
+                             &Computed = Find("computed"),
+                             &Plain = Find("plain");
+  EXPECT_EQ(Many300.Resume.Bytes, 2u);
+  EXPECT_EQ(Many300.State.Bytes, 1u);
+  EXPECT_EQ(Big.Resume.Bytes, 1u);
+  EXPECT_EQ(Big.State.Bytes, 4u);
+  EXPECT_TRUE(InFrame(Big, Big.State));
+  EXPECT_EQ(Big.State.Offset, Big.FrameOffset + 4); // After the last call.
+  EXPECT_EQ(Small.State.Bytes, 1u);
+  EXPECT_EQ(Computed.State.Bytes, 4u);
+  EXPECT_TRUE(InFrame(Computed, Computed.State));
+  EXPECT_EQ(Plain.Resume.Bytes, 1u);
+  EXPECT_EQ(Plain.State.Bytes, 1u);
+  EXPECT_FALSE(InFrame(Plain, Plain.Resume));
+  // many's 2-byte resume point leads the headers: every word is aligned.
+  for (const BehaviorLayout::Task &T : L.Tasks)
+    for (const BehaviorLayout::TaskWord &W : {T.Resume, T.State})
+      EXPECT_EQ(W.Offset % W.Bytes, 0u) << T.Decl->getName().Name.str();
+  for (const BehaviorLayout::Task &T : L.Tasks) {
+    if (&T != &Many300 && !InFrame(T, T.Resume)) {
+      EXPECT_GT(T.Resume.Offset, Many300.Resume.Offset);
+    }
+  }
+}
+
+/// Optimised code tells the optimiser that a running task whose yields
+/// leave it running or end it is running (its callers' checks fold); at
+/// -O0 nothing would fold, and the load would only cost time.
+TEST_F(CodeGenTest, RunningTasksAssumeTheirStateWhenOptimised) {
+  ASSERT_TRUE(check(getPrograms().at("fib")));
+  for (unsigned OptLevel : {0u, 1u}) {
+    SCOPED_TRACE(OptLevel);
+    CodeGenOptions Opts;
+    Opts.OptLevel = OptLevel;
+    BehaviorLayout L;
+    std::unique_ptr<llvm::Module> M = emit(Targets[0], L, Opts);
+    const llvm::Function *Fib = M->getFunction("bs.fib.fib");
+    ASSERT_TRUE(Fib);
+    bool Assumes = false;
+    for (const llvm::Instruction &I : llvm::instructions(*Fib))
+      Assumes |= llvm::isa<llvm::AssumeInst>(I);
+    EXPECT_EQ(Assumes, OptLevel > 0);
   }
 }
 
@@ -500,16 +630,17 @@ TEST_F(CodeGenTest, FrameFieldTypes) {
   std::unique_ptr<llvm::Module> M = emit(Targets[0], L, Opts);
   llvm::StructType *Frame = llvm::StructType::getTypeByName(Ctx, "bs.frame.m.t");
   ASSERT_TRUE(Frame);
-  // resume, state, last_call, i, f, b (i8), local (i8), s (ptr), st (i32).
-  ASSERT_EQ(Frame->getNumElements(), 9u);
-  EXPECT_TRUE(Frame->getElementType(3)->isIntegerTy(32));
-  EXPECT_TRUE(Frame->getElementType(4)->isFloatTy());
-  EXPECT_TRUE(Frame->getElementType(5)->isIntegerTy(8));
-  EXPECT_TRUE(Frame->getElementType(6)->isIntegerTy(8));
-  EXPECT_TRUE(Frame->getElementType(7)->isPointerTy());
-  EXPECT_TRUE(Frame->getElementType(8)->isIntegerTy(32));
-  // 12 + 4 + 4 + 1 + 1 + 2 (pad) + 4 + 4 on i586.
-  EXPECT_EQ(L.StateSize, 20u + 32u);
+  // last_call, i, f, b (i8), local (i8), s (ptr), st (i32).
+  ASSERT_EQ(Frame->getNumElements(), 7u);
+  EXPECT_TRUE(Frame->getElementType(1)->isIntegerTy(32));
+  EXPECT_TRUE(Frame->getElementType(2)->isFloatTy());
+  EXPECT_TRUE(Frame->getElementType(3)->isIntegerTy(8));
+  EXPECT_TRUE(Frame->getElementType(4)->isIntegerTy(8));
+  EXPECT_TRUE(Frame->getElementType(5)->isPointerTy());
+  EXPECT_TRUE(Frame->getElementType(6)->isIntegerTy(32));
+  // 4 + 4 + 4 + 1 + 1 + 2 (pad) + 4 + 4 on i586, and the narrow header
+  // (2, padded to 4).
+  EXPECT_EQ(L.StateSize, 16u + 24u + 4u);
 }
 
 TEST_F(CodeGenTest, EntriesAndInfo) {

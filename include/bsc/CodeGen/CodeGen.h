@@ -110,10 +110,17 @@ struct BehaviorLayout {
     const Type *Ty;
     uint64_t Offset; ///< From the start of the state.
   };
+  /// A task's resume point or state (bscript.h bs_task_info).
+  struct TaskWord {
+    uint64_t Offset; ///< From the start of the state.
+    unsigned Bytes;  ///< 1, 2 or 4.
+  };
   struct Task {
     const TaskDecl *Decl;
+    /// Of its frame, which starts with its last call (uint32).
     uint64_t FrameOffset;
     uint64_t FrameSize; ///< Of its frame struct, without padding after it.
+    TaskWord Resume, State;
     /// Parameters in order, then locals in declaration order.
     std::vector<FrameField> Fields;
     /// The task's yields leave it running (1) or end it with a constant

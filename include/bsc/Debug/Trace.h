@@ -2,7 +2,8 @@
 //
 // A cycle's activation: the tasks called in it, each with the state it left
 // and the yield it is suspended at. The JIT's debugger reads it from the
-// frames (frame.last_call holds the state's cycle, bit 31 aside); a robot
+// task headers (a task's last call holds the state's cycle, bit 31 aside;
+// bscript.h bs_task_info); a robot
 // reads it from the trace record an instrumented behavior writes
 // (bscript.h, "Trace records"), which the decoder turns into the same
 // activations. So the same lines serve `bsc run --trace`, the REPL's

@@ -8,6 +8,7 @@ info args
 info locals
 print *state->input
 print state->kick.kick
+print state->headers.kick
 print state->kick.main.mode
 break kick.bs:16
 continue
