@@ -335,6 +335,30 @@ void ModuleEmitter::chooseTaskWords(const TaskDecl &T, FrameInfo &FI) {
       Narrow.empty() ? nullptr : llvm::StructType::create(Ctx, Narrow, Name);
 }
 
+void ModuleEmitter::addTaskHeaders(
+    llvm::SmallVectorImpl<llvm::Type *> &StateFields) {
+  // Widest first, so that none needs padding.
+  llvm::SmallVector<const TaskDecl *, 16> Narrow;
+  for (const TaskDecl *T : B.Tasks)
+    if (Frames[T].HeaderTy)
+      Narrow.push_back(T);
+  const llvm::DataLayout &DL = M.getDataLayout();
+  llvm::stable_sort(Narrow, [&](const TaskDecl *A, const TaskDecl *B) {
+    return DL.getABITypeAlign(Frames[A].HeaderTy) >
+           DL.getABITypeAlign(Frames[B].HeaderTy);
+  });
+  HeadersField = 0;
+  if (Narrow.empty())
+    return;
+  llvm::SmallVector<llvm::Type *, 16> Headers;
+  for (const TaskDecl *T : Narrow) {
+    Frames[T].HeaderFieldNo = Headers.size();
+    Headers.push_back(Frames[T].HeaderTy);
+  }
+  HeadersField = StateFields.size();
+  StateFields.push_back(llvm::StructType::create(Ctx, Headers, "bs.headers"));
+}
+
 bool ModuleEmitter::keepsInFrame(const Decl *D) const {
   if (Opts.Probes)
     return true;
@@ -421,26 +445,7 @@ void ModuleEmitter::layoutState() {
     FI.StateFieldNo = StateFields.size();
     StateFields.push_back(FI.Ty);
   }
-  // The narrow headers, widest first, so that none needs padding.
-  llvm::SmallVector<const TaskDecl *, 16> Narrow;
-  for (const TaskDecl *T : B.Tasks)
-    if (Frames[T].HeaderTy)
-      Narrow.push_back(T);
-  const llvm::DataLayout &HeaderDL = M.getDataLayout();
-  llvm::stable_sort(Narrow, [&](const TaskDecl *A, const TaskDecl *B) {
-    return HeaderDL.getABITypeAlign(Frames[A].HeaderTy) >
-           HeaderDL.getABITypeAlign(Frames[B].HeaderTy);
-  });
-  HeadersField = 0;
-  if (!Narrow.empty()) {
-    llvm::SmallVector<llvm::Type *, 16> Headers;
-    for (const TaskDecl *T : Narrow) {
-      Frames[T].HeaderFieldNo = Headers.size();
-      Headers.push_back(Frames[T].HeaderTy);
-    }
-    HeadersField = StateFields.size();
-    StateFields.push_back(llvm::StructType::create(Ctx, Headers, "bs.headers"));
-  }
+  addTaskHeaders(StateFields);
   // `--instrument`: the trace record, after the frames so that the frames
   // sit where they do without it.
   BehaviorLayout::TraceLayout &Trace = Layout.Trace;

@@ -356,6 +356,9 @@ private:
   /// Chooses the width and place of a task's resume point and state
   /// (bscript.h bs_task_info) and builds its narrow header type.
   void chooseTaskWords(const TaskDecl &T, FrameInfo &FI);
+  /// Appends `%bs.headers`, the tasks' narrow headers, to the state's
+  /// fields (none if no task has one).
+  void addTaskHeaders(llvm::SmallVectorImpl<llvm::Type *> &StateFields);
   /// i386: internal functions called only directly use the regcall
   /// convention, whose calls do not set up the GOT pointer.
   void useRegisterCalls();

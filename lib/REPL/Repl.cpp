@@ -204,8 +204,8 @@ std::unique_ptr<Compilation> Repl::compileFiles() {
 }
 
 /// Whether a task's frame has the same fields, in order, in both layouts,
-/// and the task as many yields: then its bytes mean the same in the new
-/// state.
+/// the task as many yields and its resume point and state the same widths:
+/// then its bytes mean the same in the new state.
 static bool sameFrame(const BehaviorLayout::Task &A,
                       const BehaviorLayout::Task &B) {
   // The resume point numbers the yields: a task with more or fewer yields
