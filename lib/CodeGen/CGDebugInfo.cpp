@@ -280,6 +280,74 @@ llvm::DIType *DebugInfoEmitter::getType(const Type *T) {
   return nullptr;
 }
 
+/// The bytes a task's narrow resume point and state take, [first, end);
+/// empty if both are in its frame.
+static std::pair<uint64_t, uint64_t>
+getNarrowSpan(const BehaviorLayout::Task &Task) {
+  uint64_t Start = ~0ull, End = 0;
+  for (const BehaviorLayout::TaskWord &W : {Task.Resume, Task.State})
+    if (!inFrame(Task, W)) {
+      Start = std::min(Start, W.Offset);
+      End = std::max(End, W.Offset + W.Bytes);
+    }
+  return {Start, End};
+}
+
+llvm::DIDerivedType *
+DebugInfoEmitter::createTaskHeadersMember(llvm::DICompositeType *State) {
+  const BehaviorLayout &Layout = CGM.getLayout();
+  uint64_t HeadersStart = ~0ull, HeadersEnd = 0;
+  for (const BehaviorLayout::Task &Task : Layout.Tasks) {
+    auto [Start, End] = getNarrowSpan(Task);
+    HeadersStart = std::min(HeadersStart, Start);
+    HeadersEnd = std::max(HeadersEnd, End);
+  }
+  if (HeadersStart >= HeadersEnd)
+    return nullptr;
+  auto Member = [&](llvm::DIScope *Scope, llvm::StringRef Name, uint64_t Bits,
+                    uint64_t Offset, llvm::DIType *Ty) {
+    return DIB.createMemberType(Scope, Name, nullptr, 0, Bits, 0, Offset * 8,
+                                llvm::DINode::FlagZero, Ty);
+  };
+  auto *Headers = DIB.createStructType(
+      State, "task_headers", nullptr, 0, (HeadersEnd - HeadersStart) * 8, 0,
+      llvm::DINode::FlagZero, nullptr, llvm::DINodeArray());
+  llvm::SmallVector<llvm::Metadata *, 16> PerTask;
+  for (const BehaviorLayout::Task &Task : Layout.Tasks) {
+    auto [Start, End] = getNarrowSpan(Task);
+    if (Start >= End)
+      continue;
+    // The task's name, with its module's where another module has a task
+    // of that name.
+    std::string TaskName = Task.Decl->getName().Name.str();
+    if (llvm::count_if(Layout.Tasks, [&](const BehaviorLayout::Task &O) {
+          return O.Decl->getName().Name == Task.Decl->getName().Name;
+        }) > 1 &&
+        Task.Decl->Module)
+      TaskName = Task.Decl->Module->Name + "_" + TaskName;
+    auto *Header = DIB.createStructType(
+        Headers, TaskName + "_header", nullptr, 0, (End - Start) * 8, 0,
+        llvm::DINode::FlagZero, nullptr, llvm::DINodeArray());
+    llvm::SmallVector<llvm::Metadata *, 2> Words;
+    // A bit field of an unsigned int: gdb prints a one-byte integer type as
+    // a character too.
+    if (!inFrame(Task, Task.Resume))
+      Words.push_back(DIB.createBitFieldMemberType(
+          Header, "resume", nullptr, 0, Task.Resume.Bytes * 8,
+          (Task.Resume.Offset - Start) * 8, 0, llvm::DINode::FlagZero,
+          getBasicType("unsigned int", 32, llvm::dwarf::DW_ATE_unsigned)));
+    if (!inFrame(Task, Task.State))
+      Words.push_back(Member(Header, "state", 8, Task.State.Offset - Start,
+                             getTaskStateType(8)));
+    DIB.replaceArrays(Header, DIB.getOrCreateArray(Words));
+    PerTask.push_back(Member(Headers, TaskName, (End - Start) * 8,
+                             Start - HeadersStart, Header));
+  }
+  DIB.replaceArrays(Headers, DIB.getOrCreateArray(PerTask));
+  return Member(State, "headers", (HeadersEnd - HeadersStart) * 8,
+                HeadersStart, Headers);
+}
+
 llvm::DIType *DebugInfoEmitter::getStatePointerType() {
   if (StatePtrTy)
     return StatePtrTy;
@@ -369,61 +437,8 @@ llvm::DIType *DebugInfoEmitter::getStatePointerType() {
                              ModStruct));
     I = End;
   }
-  // The narrow resume points and states, in one structure `headers` with
-  // a member per task that has any (bscript.h bs_task_info).
-  uint64_t HeadersStart = ~0ull, HeadersEnd = 0;
-  for (const BehaviorLayout::Task &Task : Layout.Tasks)
-    for (const BehaviorLayout::TaskWord &W : {Task.Resume, Task.State})
-      if (!inFrame(Task, W)) {
-        HeadersStart = std::min(HeadersStart, W.Offset);
-        HeadersEnd = std::max(HeadersEnd, W.Offset + W.Bytes);
-      }
-  if (HeadersStart < HeadersEnd) {
-    auto *Headers = DIB.createStructType(
-        State, "task_headers", nullptr, 0, (HeadersEnd - HeadersStart) * 8, 0,
-        llvm::DINode::FlagZero, nullptr, llvm::DINodeArray());
-    llvm::SmallVector<llvm::Metadata *, 16> PerTask;
-    for (const BehaviorLayout::Task &Task : Layout.Tasks) {
-      bool NarrowResume = !inFrame(Task, Task.Resume),
-           NarrowState = !inFrame(Task, Task.State);
-      if (!NarrowResume && !NarrowState)
-        continue;
-      uint64_t Start = ~0ull, End = 0;
-      for (const BehaviorLayout::TaskWord &W : {Task.Resume, Task.State})
-        if (!inFrame(Task, W)) {
-          Start = std::min(Start, W.Offset);
-          End = std::max(End, W.Offset + W.Bytes);
-        }
-      // The task's name, with its module's where another module has a
-      // task of that name.
-      std::string TaskName = Task.Decl->getName().Name.str();
-      if (llvm::count_if(Layout.Tasks, [&](const BehaviorLayout::Task &O) {
-            return O.Decl->getName().Name == Task.Decl->getName().Name;
-          }) > 1 &&
-          Task.Decl->Module)
-        TaskName = Task.Decl->Module->Name + "_" + TaskName;
-      auto *Header = DIB.createStructType(
-          Headers, TaskName + "_header", nullptr, 0, (End - Start) * 8, 0,
-          llvm::DINode::FlagZero, nullptr, llvm::DINodeArray());
-      llvm::SmallVector<llvm::Metadata *, 2> Words;
-      // A bit field of an unsigned int: gdb prints a one-byte integer type
-      // as a character too.
-      if (NarrowResume)
-        Words.push_back(DIB.createBitFieldMemberType(
-            Header, "resume", nullptr, 0, Task.Resume.Bytes * 8,
-            (Task.Resume.Offset - Start) * 8, 0, llvm::DINode::FlagZero, U32));
-      if (NarrowState)
-        Words.push_back(Member(Header, "state", 8, Task.State.Offset - Start,
-                               getTaskStateType(8)));
-      DIB.replaceArrays(Header, DIB.getOrCreateArray(Words));
-      PerTask.push_back(Member(Headers, TaskName, (End - Start) * 8,
-                               Start - HeadersStart, Header));
-    }
-    DIB.replaceArrays(Headers, DIB.getOrCreateArray(PerTask));
-    Members.push_back(Member(State, "headers",
-                             (HeadersEnd - HeadersStart) * 8, HeadersStart,
-                             Headers));
-  }
+  if (llvm::DIDerivedType *Headers = createTaskHeadersMember(State))
+    Members.push_back(Headers);
   DIB.replaceArrays(State, DIB.getOrCreateArray(Members));
   StatePtrTy = DIB.createPointerType(State, PtrBits);
   return StatePtrTy;

@@ -122,8 +122,7 @@ llvm::Value *FunctionEmitter::getFrameFieldPtr(const TaskDecl *T,
   return Addr;
 }
 
-llvm::Value *FunctionEmitter::getTaskWordPtr(const TaskDecl *T,
-                                             TaskWord W) {
+llvm::Value *FunctionEmitter::getTaskWordPtr(const TaskDecl *T, TaskWord W) {
   const FrameInfo &FI = CGM.getFrame(T);
   const TaskWordInfo &Word = FI.getWord(W);
   if (Word.InFrame)

@@ -181,6 +181,9 @@ private:
   llvm::DIType *getClassType(const NativeClass *C);
   llvm::DIType *getStringType();
   llvm::DIType *getStatePointerType();
+  /// The state's member `headers`: per task with a narrow resume point or
+  /// state (bscript.h bs_task_info), a structure of them; null if none.
+  llvm::DIDerivedType *createTaskHeadersMember(llvm::DICompositeType *State);
   llvm::DISubroutineType *getSubroutineType(const CallableDecl &D);
   llvm::DILocalVariable *createVariable(const Decl &D, const Type *Ty,
                                         llvm::DIScope *Scope, unsigned ArgNo);
