@@ -13,7 +13,6 @@
 #include "llvm/Support/Endian.h"
 #include "llvm/Support/Path.h"
 #include "llvm/Support/SourceMgr.h"
-#include <cstring>
 #include <functional>
 #include <set>
 
