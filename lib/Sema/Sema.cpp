@@ -467,6 +467,7 @@ LookupResult Sema::lookupEnumValue(const Type *ValueTy,
       R.Kind = LookupKind::EnumValue;
       R.Ty = ValueTy;
       R.Value = V;
+      R.BuiltinState = true;
       return R;
     }
   } else {

@@ -195,8 +195,10 @@ const Type *Sema::applyLookup(NameExpr *E, const LookupResult &L, Access A) {
   case LookupKind::Local:
     E->Kind = NameKind::Local;
     E->Local = L.Var;
-    if (L.Var->Owner != CurCallable)
+    if (L.Var->Owner != CurCallable) {
       L.Var->UsedByNestedFunc = true;
+      TaskLocalsUsed[CurCallable].push_back(L.Var);
+    }
     return L.Var->Ty ? L.Var->Ty : Types.getError();
   case LookupKind::Param:
     E->Kind = NameKind::Param;
@@ -209,6 +211,7 @@ const Type *Sema::applyLookup(NameExpr *E, const LookupResult &L, Access A) {
   case LookupKind::EnumValue:
     E->Kind = NameKind::EnumValue;
     E->EnumValue = L.Value;
+    E->BuiltinState = L.BuiltinState;
     return L.Ty;
   case LookupKind::Constant:
     if (A != Access::Read && A != Access::MethodBase) {
@@ -383,12 +386,13 @@ const TaskDecl *Sema::getNamedTask(const Expr *E) {
 
 /// `taskState(t) == TaskState::running` asks whether t is running, whatever
 /// running state (> 0) its `yield N` set; `== TaskState::failure` likewise
-/// for any failure (< 0). Other states compare by number.
+/// for any failure (< 0). Only those names, written so, are kind tests: a
+/// named state of the same number (`Button::pressed`, 1) or a constant
+/// (`const TaskState GAVE_UP = TaskState::failure`) compares by number.
 void Sema::markStateKindTest(BinaryExpr *E) {
   auto NamedState = [](const Expr *Side) -> std::optional<int32_t> {
     const auto *N = llvm::dyn_cast<NameExpr>(Side);
-    if (!N || N->Kind != NameKind::EnumValue || !N->Ty ||
-        !N->Ty->isTaskState())
+    if (!N || N->Kind != NameKind::EnumValue || !N->BuiltinState)
       return std::nullopt;
     return N->EnumValue;
   };

@@ -52,6 +52,9 @@ struct LookupResult {
   const NativeFunction *NativeFn = nullptr;
   const Type *Ty = nullptr;
   int32_t Value = 0;
+  /// For EnumValue: `TaskState::done|running|failure` itself, not a named
+  /// state of the same number.
+  bool BuiltinState = false;
   ConstDecl *Const = nullptr;
 };
 
@@ -89,6 +92,9 @@ struct ModuleInfo {
 struct CallEdge {
   CallableDecl *Callee;
   llvm::SMLoc Loc;
+  /// Sema::ScopeClock at the call: a local of the caller with a larger
+  /// ScopeBegin is declared after it.
+  unsigned Clock = 0;
 };
 
 /// The checker. See Sema.cpp for the rules it implements.
@@ -161,6 +167,9 @@ public:
   void checkTopLevelCallable(CallableDecl *C);
   void checkCallableBody(CallableDecl *C);
   void checkNestedFunc(FuncDecl *F);
+  /// Marks the locals of CurTask that a nested func may use before their
+  /// declarations run (VarDecl::ReadBeforeDeclared).
+  void markLocalsUsedBeforeDeclared();
   void pushScope() { Scopes.emplace_back(); }
   /// Closes the innermost scope: its locals' ScopeEnd.
   void popScope();
@@ -308,6 +317,9 @@ public:
 
   /// Call sites of each func and task, in source order.
   llvm::DenseMap<const CallableDecl *, std::vector<CallEdge>> Calls;
+  /// The enclosing task's locals each nested func uses itself.
+  llvm::DenseMap<const CallableDecl *, llvm::SmallVector<VarDecl *, 4>>
+      TaskLocalsUsed;
 };
 
 } // namespace sema

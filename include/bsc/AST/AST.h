@@ -173,6 +173,9 @@ public:
   /// task's frame.
   bool LivesAcrossYield = false;
   bool UsedByNestedFunc = false;
+  /// Sema: a nested func that uses it may be called before its declaration
+  /// runs, so the task's reset zeroes it (docs/language.md).
+  bool ReadBeforeDeclared = false;
   /// Sema: its scope as an interval of the owner's declarations and scope
   /// ends, in source order. Two locals whose intervals do not overlap are
   /// never alive at once, so they may share storage.
@@ -517,6 +520,9 @@ public:
   CallableDecl *Callable = nullptr;      ///< Sema, for Callable.
   const NativeFunction *NativeFn = nullptr; ///< Sema, for NativeFunction.
   int32_t EnumValue = 0;                 ///< Sema, for EnumValue.
+  /// Sema, for EnumValue: written as `TaskState::done|running|failure`
+  /// (a named state or a constant of the same number is not).
+  bool BuiltinState = false;
   const ConstDecl *Const = nullptr;      ///< Sema, for Constant.
   static bool classof(const Node *N) {
     return N->getKind() == NodeKind::NameExpr;
