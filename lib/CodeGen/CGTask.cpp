@@ -68,8 +68,10 @@
 // with a single yield that keeps it running (most loops) gets that resume
 // point at the reset too, and the yield itself stores nothing: it is a
 // `ret`. A scalar local gets its value where it is declared, before any
-// use, so the reset does not zero it. The frame holds only what a later
-// call or a nested func reads (ModuleEmitter::keepsInFrame): the body
+// use, so the reset does not zero it, unless a nested func may read it
+// before its declaration (VarDecl::ReadBeforeDeclared). The frame holds
+// only what a later call or a nested func reads
+// (ModuleEmitter::keepsInFrame): the body
 // reads its parameters from the arguments, and a local that is in scope
 // at no yield is an alloca. The JIT's debugger (CodeGenOptions::Probes)
 // shows frames between cycles, so there every field is kept exact: all
@@ -271,8 +273,8 @@ void FunctionEmitter::emitTaskPrologue() {
   // Fresh class values, constructed (parameters first: they are assigned
   // at every call), after destroying what a running task left behind (a
   // missed cycle) through the frame's destroy function. Scalars need no
-  // store (above), except in exact frames: one store per field, never
-  // memset (no libc).
+  // store (above), except in exact frames and those a nested func may read
+  // before their declaration: one store per field, never memset (no libc).
   Builder.SetInsertPoint(ResetBB);
   bool ExactFrames = CGM.getOptions().Probes;
   if (FI.Destroy)
@@ -291,7 +293,7 @@ void FunctionEmitter::emitTaskPrologue() {
     if (V->Ty->isClass())
       emitClassInit(V->Ty->getClass(),
                     getFrameFieldPtr(Task, FI.Fields.lookup(V)));
-    else if (ExactFrames)
+    else if (ExactFrames || V->ReadBeforeDeclared)
       createStore(Access::State, CGM.getZeroValue(V->Ty),
                   getFrameFieldPtr(Task, FI.Fields.lookup(V)));
   }

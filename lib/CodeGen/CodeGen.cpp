@@ -398,7 +398,9 @@ void ModuleEmitter::layoutState() {
       if (keepsInFrame(P))
         Add(P, P->Ty);
     // Scalar locals whose scopes do not overlap (`for(int j...)` after
-    // `for(int i...)`) share a field; the debugger's exact frames do not.
+    // `for(int i...)`) share a field; the debugger's exact frames do not,
+    // nor a local that a nested func may read before its declaration (it
+    // must read the zero of the reset, not an earlier local's value).
     struct SharedField {
       unsigned Field;
       llvm::Type *Ty;
@@ -410,7 +412,7 @@ void ModuleEmitter::layoutState() {
         continue;
       llvm::Type *Ty = getMemoryType(V->Ty);
       unsigned End = V->ScopeEnd ? V->ScopeEnd : ~0u;
-      if (!Opts.Probes && !V->Ty->isClass()) {
+      if (!Opts.Probes && !V->Ty->isClass() && !V->ReadBeforeDeclared) {
         auto It = llvm::find_if(Shared, [&](const SharedField &S) {
           return S.Ty == Ty && S.FreeFrom <= V->ScopeBegin;
         });

@@ -262,6 +262,7 @@ void Sema::checkTopLevelCallable(CallableDecl *C) {
       checkCallableBody(F);
       popScope();
     }
+    markLocalsUsedBeforeDeclared();
   }
   CurTask = nullptr;
   CurCallable = nullptr;

@@ -14,6 +14,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "SemaImpl.h"
+#include "llvm/ADT/SmallPtrSet.h"
 #include <algorithm>
 #include <deque>
 
@@ -61,7 +62,41 @@ const Type *Sema::checkTaskState(TaskStateExpr *E) {
 
 void Sema::recordCall(CallableDecl *Callee, llvm::SMLoc Loc) {
   if (CurCallable)
-    Calls[CurCallable].push_back({Callee, Loc});
+    Calls[CurCallable].push_back({Callee, Loc, ScopeClock});
+}
+
+/// A nested func may be called before the task's locals it uses are
+/// declared (docs/language.md: it then reads them as the reset left them,
+/// zero). Those locals are zeroed at the reset and keep a frame field of
+/// their own (no earlier local's leftover value), in every configuration;
+/// all other scalars get their values where they are declared.
+void Sema::markLocalsUsedBeforeDeclared() {
+  // The locals each nested func may reach, through the nested funcs it
+  // calls too (funcs do not recurse, so this settles in a few rounds).
+  llvm::DenseMap<const CallableDecl *, llvm::SmallPtrSet<VarDecl *, 4>> Reach;
+  for (FuncDecl *F : CurTask->NestedFuncs)
+    Reach[F].insert(TaskLocalsUsed[F].begin(), TaskLocalsUsed[F].end());
+  for (bool Changed = true; Changed;) {
+    Changed = false;
+    for (FuncDecl *F : CurTask->NestedFuncs)
+      for (const CallEdge &Edge : Calls[F]) {
+        auto It = Reach.find(Edge.Callee);
+        if (It == Reach.end() || Edge.Callee == F)
+          continue;
+        llvm::SmallVector<VarDecl *, 8> More(It->second.begin(),
+                                             It->second.end());
+        for (VarDecl *V : More)
+          Changed |= Reach[F].insert(V).second;
+      }
+  }
+  for (const CallEdge &Edge : Calls[CurTask]) {
+    auto It = Reach.find(Edge.Callee);
+    if (It == Reach.end())
+      continue;
+    for (VarDecl *V : It->second)
+      if (Edge.Clock < V->ScopeBegin)
+        V->ReadBeforeDeclared = true;
+  }
 }
 
 void Sema::exportCalls() {
