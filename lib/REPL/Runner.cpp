@@ -118,9 +118,13 @@ bsc::startSession(Compilation &C, LoadedBehavior &L) {
 bool bsc::attachWorldLibrary(Compilation &C, const LoadedBehavior &L,
                              BehaviorSession &S, llvm::StringRef Path,
                              unsigned LimitMs) {
+  // By absolute path, as --bind loads a library: dlopen looks for a bare
+  // name in the library path, not in the current folder.
+  llvm::SmallString<256> Abs(Path);
+  llvm::sys::fs::make_absolute(Abs);
   std::string Err;
   llvm::sys::DynamicLibrary Lib =
-      llvm::sys::DynamicLibrary::getPermanentLibrary(Path.str().c_str(), &Err);
+      llvm::sys::DynamicLibrary::getPermanentLibrary(Abs.c_str(), &Err);
   if (!Lib.isValid()) {
     C.Diags.report(llvm::SMLoc(), diag::err_world_load) << Path << Err;
     return false;
