@@ -86,9 +86,11 @@ struct BoundType {
            Code != TypeCode::Context;
   }
   /// A non-const scalar reference parameter (int&, float&, bool&): the
-  /// argument is a pointer to storage of StorageSize bytes.
+  /// argument is a pointer to storage of StorageSize bytes. Classes and the
+  /// context travel as pointers too, and are not out-parameters.
   bool isOutPointer() const {
-    return Code != TypeCode::Class && (Flags & TF_Pointer);
+    return Code != TypeCode::Class && Code != TypeCode::Context &&
+           (Flags & TF_Pointer);
   }
 };
 
