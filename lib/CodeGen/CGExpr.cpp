@@ -292,7 +292,8 @@ llvm::Value *FunctionEmitter::emitNativeCallWithValues(
         if (NM->findFunction(NF.Name) == &NF)
           Name = NM->Name + "::" + NF.Name;
     emitProbe(NativeProbeSymbol,
-              CGM.addSite({DebugSite::NativeCall, &D, CurStmtLoc, Name}));
+              CGM.addSite({DebugSite::NativeCall, &D, CurStmtLoc, Name,
+                           NF.TakesContext}));
   }
   llvm::CallInst *Call = Builder.CreateCall(
       Callee, Args, FTy->getReturnType()->isVoidTy() || Out ? "" : NF.Name);

@@ -408,6 +408,7 @@ BehaviorSession::runGuardedBody(llvm::function_ref<void()> Body,
   Result.LoopSite = LoopProbe ? *LoopProbe : 0;
   Result.NativeSite = NativeProbe ? *NativeProbe : 0;
   Result.WorldHook = CurrentHook;
+  Result.NullUser = !bs_state_user(State);
   CurrentHook = nullptr;
   std::fflush(stdout);
   return Result;

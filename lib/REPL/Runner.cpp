@@ -189,10 +189,14 @@ bool bsc::reportOutcome(Compilation &C, const LoadedBehavior &L,
           << Cycle << LimitMs << "a constructor or destructor";
     return false;
   case BehaviorSession::Outcome::Crashed:
-    if (const DebugSite *N = Site(O.NativeSite))
+    if (const DebugSite *N = Site(O.NativeSite)) {
       C.Diags.report(N->Loc, diag::err_cycle_crash_native)
           << Cycle << describeSignal(O.Signal) << N->Native;
-    else
+      // The likeliest cause when C++ that reads bs::Context::user() runs
+      // without a world: nothing attached a user pointer.
+      if (N->TakesContext && O.NullUser)
+        C.Diags.report(N->Loc, diag::note_null_user_pointer) << N->Native;
+    } else
       C.Diags.report(llvm::SMLoc(), diag::err_cycle_crash_native)
           << Cycle << describeSignal(O.Signal) << "a constructor or destructor";
     return false;

@@ -94,6 +94,9 @@ struct DebugSite {
   const CallableDecl *In; ///< The func or task whose body holds it.
   llvm::SMLoc Loc;        ///< The `for`, or the statement making the call.
   std::string Native;     ///< NativeCall: the registered C++ (`Math::fabs`).
+  /// NativeCall: it takes the context (bs::Context&), so a crash in it may
+  /// come from a null user pointer.
+  bool TakesContext = false;
 };
 
 /// The probe globals of CodeGenOptions::Probes.

@@ -159,6 +159,9 @@ public:
     /// The world library's hook that was running (`bs_world_begin`...),
     /// or null if the behavior was.
     const char *WorldHook = nullptr;
+    /// The state's user pointer (bs::Context::user()) was null: a crash in
+    /// C++ that takes the context may have read through it.
+    bool NullUser = false;
   };
   /// Begins the next cycle and calls the entry; a cycle still running after
   /// `LimitMs` milliseconds (0: no limit) is stopped.
