@@ -215,11 +215,13 @@ cl::opt<bool> DumpBindings("dump-bindings",
                            cl::desc("Print what the standard modules and the "
                                     "--bind objects register, and exit"),
                            cl::cat(BscCategory));
+/// -W's help, from the diagnostics' table of warning groups. Defined before
+/// WarningOptions, whose description refers to it.
+const std::string WarningHelp =
+    "-Wno-<group>: silence a group of warnings (" +
+    DiagnosticEngine::getWarningGroupList() + ")";
 cl::list<std::string>
-    WarningOptions("W", cl::Prefix,
-                   cl::desc("-Wno-<group>: silence a group of warnings "
-                            "(yield-loop, unreachable-code, "
-                            "duplicate-require)"),
+    WarningOptions("W", cl::Prefix, cl::desc(WarningHelp),
                    cl::value_desc("no-group"), cl::cat(BscCategory), BSC_BOTH);
 cl::opt<bool> DebugInfo("g",
                         cl::desc("Emit DWARF debug information (for `run` "
@@ -787,6 +789,107 @@ bool checkSubcommandOptions(DiagnosticEngine &Diags, cl::SubCommand &Sub) {
   return OK;
 }
 
+/// The option `Name` (without dashes and `=value`) as `Sub` parses it: its
+/// own, else the top level's (llvm::cl falls back to them, and
+/// checkSubcommandOptions names those a subcommand does not take), else a
+/// Prefix option written with its value attached (`-O2`, `-Ifolder`).
+/// `Attached` says whether the value is part of `Name`.
+cl::Option *findOption(cl::SubCommand &Sub, llvm::StringRef Name,
+                       bool &Attached) {
+  Attached = false;
+  for (cl::SubCommand *S : {&Sub, &cl::SubCommand::getTopLevel()}) {
+    const auto &Options = cl::getRegisteredOptions(*S);
+    if (cl::Option *O = Options.lookup(Name))
+      return O;
+    for (const auto &[Key, O] : Options)
+      if (O->getFormattingFlag() == cl::Prefix && Name.starts_with(Key)) {
+        Attached = true;
+        return O;
+      }
+  }
+  return nullptr;
+}
+
+/// The name of bsc's own option nearest to a misspelt `Name`, if one is
+/// at most a third of its length away.
+std::optional<std::string> findNearOption(cl::SubCommand &Sub,
+                                          llvm::StringRef Name) {
+  std::optional<std::string> Best;
+  unsigned BestDistance = std::max<size_t>(1, Name.size() / 3) + 1;
+  for (const auto &[Key, O] : cl::getRegisteredOptions(Sub)) {
+    if (!llvm::is_contained(O->Categories, &BscCategory) || Key.size() < 2)
+      continue;
+    unsigned D = Name.edit_distance(Key, true, BestDistance);
+    if (D < BestDistance) {
+      BestDistance = D;
+      Best = "--" + Key.str();
+    }
+  }
+  return Best;
+}
+
+/// Checks the words of the command line before llvm::cl parses them, which
+/// would take an unknown `--check` for the one-letter options `-c -h -e -c
+/// -k` grouped, print the help at `-h` and exit 0. A word in the
+/// subcommand's place that is neither a subcommand nor a file, and an
+/// option no subcommand has, are errors. Reports and returns false.
+bool checkCommandLine(DiagnosticEngine &Diags,
+                      llvm::ArrayRef<const char *> Args) {
+  cl::SubCommand *Sub = &cl::SubCommand::getTopLevel();
+  size_t I = 1;
+  std::vector<std::string> SubNames;
+  for (cl::SubCommand *S : cl::getRegisteredSubcommands()) {
+    if (S->getName().empty())
+      continue; // The top level and "all".
+    SubNames.push_back("'" + S->getName().str() + "'");
+    if (Args.size() > 1 && S->getName() == Args[1]) {
+      Sub = S;
+      I = 2;
+    }
+  }
+  if (I == 1 && Args.size() > 1) {
+    llvm::StringRef First = Args[1];
+    bool Word = !First.empty() && llvm::all_of(First, [](char Ch) {
+      return llvm::isAlnum(Ch) || Ch == '-' || Ch == '_';
+    });
+    if (Word && First[0] != '-' && !llvm::sys::fs::exists(First)) {
+      llvm::sort(SubNames);
+      Diags.report(llvm::SMLoc(), diag::err_unknown_subcommand)
+          << First << llvm::join(SubNames, ", ");
+      return false;
+    }
+  }
+  bool OK = true;
+  for (; I < Args.size(); ++I) {
+    llvm::StringRef Arg = Args[I];
+    if (Arg == "--")
+      break;
+    if (Arg.size() < 2 || Arg[0] != '-')
+      continue;
+    auto [Name, Value] = Arg.drop_front(Arg.starts_with("--") ? 2 : 1).split('=');
+    // `-h` is llvm::cl's alias of --help, registered while it parses.
+    if (Name == "h")
+      continue;
+    bool Attached;
+    cl::Option *O = findOption(*Sub, Name, Attached);
+    if (!O) {
+      std::string Command = Sub->getName().empty()
+                                ? std::string("bsc")
+                                : ("bsc " + Sub->getName()).str();
+      Diags.report(llvm::SMLoc(), diag::err_unknown_option) << Arg << Command;
+      if (std::optional<std::string> Near = findNearOption(*Sub, Name))
+        Diags.report(llvm::SMLoc(), diag::note_did_you_mean) << *Near;
+      OK = false;
+      continue;
+    }
+    // `-o FILE`: the next word is the value, whatever it looks like.
+    if (O->getValueExpectedFlag() == cl::ValueRequired && !Attached &&
+        !Arg.contains('='))
+      ++I;
+  }
+  return OK;
+}
+
 /// Reports options that ask for two different outputs.
 bool checkConflicts(DiagnosticEngine &Diags) {
   llvm::SmallVector<const char *, 4> Modes;
@@ -825,10 +928,12 @@ int main(int argc, char **argv) {
   cl::HideUnrelatedOptions(BscCategory, ReplCmd);
   Argv0ForVersion = argv[0];
   cl::SetVersionPrinter(printVersion);
+  Compilation C;
+  if (!checkCommandLine(C.Diags, llvm::ArrayRef(argv, argc)))
+    return finish(C);
   cl::ParseCommandLineOptions(argc, argv,
                               "bsc: the b-script compiler for robot behaviors\n");
 
-  Compilation C;
   if (!applyWarningOptions(C.Diags))
     return finish(C);
   FrontendOptions Opts;
