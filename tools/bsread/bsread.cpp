@@ -1,9 +1,11 @@
 //===- bsread.cpp - print what binding objects register -------------------===//
 //
 // A stand-alone reader for binding objects and archives: prints the model
-// that bsc would compile against (the text of `bsc --dump-bindings`), or
-// the reader's errors. Used by test/Bindings and for debugging a binding
-// build without a b-script program at hand.
+// that bsc would compile against (the text of `bsc --dump-bindings --bind
+// OBJ`, without the standard modules), or the reader's errors. Used by
+// test/Bindings and for debugging a binding build without a b-script
+// program at hand. The target is bsc's: `-target` as bsc takes it, the
+// host by default (resolveTargetTriple, the driver's one target policy).
 //
 //   bsread [-target i586|x86_64|TRIPLE] OBJ...
 //
@@ -21,8 +23,10 @@ using namespace llvm;
 static cl::list<std::string> Inputs(cl::Positional, cl::desc("<object|archive>..."),
                                     cl::OneOrMore);
 static cl::opt<std::string>
-    TargetName("target", cl::desc("i586 (default), x86_64 or a triple, as bsc -target"),
-               cl::init("i586"));
+    TargetName("target",
+               cl::desc("i586, x86_64 or an LLVM triple, as bsc -target "
+                        "(default: the host, as bsc)"),
+               cl::value_desc("target"));
 
 int main(int Argc, char **Argv) {
   InitLLVM X(Argc, Argv);
