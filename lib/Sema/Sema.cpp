@@ -278,11 +278,57 @@ LookupResult Sema::lookupUnqualified(const Ident &Id, LookupMode Mode) {
   diag(Id.Loc, Mode == LookupMode::Type ? diag::err_unknown_type
                                         : diag::err_undeclared_name)
       << Name << Id.getRange();
-  if (Mode == LookupMode::Value)
+  if (Mode != LookupMode::Value)
+    return R;
+  // An enumerator written without its enum (`playDead` for
+  // `SoccerState::playDead`): enumerators are always qualified
+  // (docs/language.md, Enums), so name the spellings that are.
+  std::vector<std::pair<std::string, std::string>> Enums =
+      findEnumsWithValue(Name);
+  for (const auto &[Enum, Spelling] : Enums)
+    diag(Id.Loc, diag::note_enumerator_unqualified)
+        << Name << Enum << Spelling << llvm::SMFixIt(Id.getRange(), Spelling);
+  if (Enums.empty())
     if (std::optional<std::string> Near = findNearValueName(Name))
       diag(Id.Loc, diag::note_did_you_mean)
           << *Near << llvm::SMFixIt(Id.getRange(), *Near);
   return R;
+}
+
+std::vector<std::pair<std::string, std::string>>
+Sema::findEnumsWithValue(llvm::StringRef Name) {
+  std::vector<std::pair<std::string, std::string>> Found;
+  // `Prefix` is how this module spells the enum's qualifier.
+  auto Consider = [&](const std::string &Prefix, const NativeEnum &E) {
+    for (const NativeEnum::Value &V : E.Values)
+      if (V.Name == Name)
+        Found.push_back({Prefix + E.Name, Prefix + E.Name + "::" + V.Name});
+  };
+  for (const auto &Entry : CurModule->Enums)
+    Consider("", Entry.getValue()->Values);
+  for (const auto &Entry : CurModule->Requires) {
+    const RequireDecl *R = Entry.getValue();
+    std::string Prefix = R->Name + "::";
+    if (R->Native)
+      for (const NativeEnum &E : R->Native->Enums)
+        Consider(Prefix, E);
+    else if (ModuleInfo *Info = R->Script ? InfoOf.lookup(R->Script) : nullptr)
+      for (const auto &E : Info->Enums)
+        Consider(Prefix, E.getValue()->Values);
+  }
+  // The world module's enums are visible unqualified (bindings.md), unless
+  // a name of this module hides them.
+  if (World && !CurModule->Requires.count(World->Name))
+    for (const NativeEnum &E : World->Enums) {
+      bool Hidden = CurModule->Decls.count(E.Name) ||
+                    CurModule->Consts.count(E.Name) ||
+                    CurModule->Enums.count(E.Name);
+      Consider(Hidden ? World->Name + "::" : "", E);
+    }
+  for (llvm::StringRef State : {"done", "running", "failure"})
+    if (Name == State)
+      Found.push_back({"TaskState", "TaskState::" + State.str()});
+  return Found;
 }
 
 LookupResult Sema::findUnqualified(llvm::StringRef Name, LookupMode Mode) {

@@ -307,6 +307,15 @@ const Type *Sema::checkIndex(IndexExpr *E, Access A) {
         << getText(E->Base) << BaseTy->getName() << E->Base->getRange();
     return Types.getError();
   }
+  if (IndexTy->isEnum() || IndexTy->isTaskState()) {
+    // `pressed[Key::chest]`: no implicit conversion, but `int(e)` gives
+    // the number (docs/language.md, Enums).
+    std::string Converted = "int(" + getText(E->Index) + ")";
+    diag(E->Index->getLoc(), diag::err_index_enum)
+        << IndexTy->getName() << Converted << E->Index->getRange()
+        << llvm::SMFixIt(E->Index->getRange(), Converted);
+    return Types.getError();
+  }
   if (!IndexTy->isInt()) {
     diag(E->Index->getLoc(), diag::err_index_type)
         << IndexTy->getName() << E->Index->getRange();

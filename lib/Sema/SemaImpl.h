@@ -116,6 +116,11 @@ public:
   /// The visible value name closest to `Name` by edit distance, if one is
   /// close enough to suggest (`did you mean`).
   std::optional<std::string> findNearValueName(llvm::StringRef Name);
+  /// The enums visible here that have a value `Name`, as {the enum, the
+  /// value} spelled from this module (`SoccerState`,
+  /// `SoccerState::playDead`), for an enumerator written unqualified.
+  std::vector<std::pair<std::string, std::string>>
+  findEnumsWithValue(llvm::StringRef Name);
   /// Adds note_did_you_mean at `Id` for the candidate nearest to its name
   /// (NearestName's rule), if one is near enough.
   void suggestNearest(const Ident &Id,
