@@ -5,6 +5,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "bsc/Debug/Trace.h"
+#include "bsc/Basic/JSON.h"
 #include "bsc/CodeGen/CodeGen.h"
 #include "llvm/ADT/DenseMap.h"
 #include "llvm/ADT/SetVector.h"
@@ -147,7 +148,7 @@ static llvm::Error badTables(const llvm::Twine &Why) {
 }
 
 llvm::Expected<DebugTables> debug::parseDebugTables(llvm::StringRef Text) {
-  llvm::Expected<llvm::json::Value> Parsed = llvm::json::parse(Text);
+  llvm::Expected<llvm::json::Value> Parsed = parseJSON(Text);
   if (!Parsed)
     return badTables(llvm::toString(Parsed.takeError()));
   const llvm::json::Object *Root = Parsed->getAsObject();

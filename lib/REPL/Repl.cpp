@@ -806,8 +806,11 @@ void Repl::cmdReplay(llvm::StringRef Args, llvm::SMLoc Loc) {
   rebaseWatches();
   bool OK = runBehavior(*C, *L, *S, R, OS);
   flushDiagnostics();
-  OS << "replayed cycles " << Before + 1 << " to " << S->getCycle()
-     << (OK ? "; no recorded output differs" : "") << "\n";
+  if (S->getCycle() == Before) // The file was refused before a cycle ran.
+    OS << "replayed no cycle\n";
+  else
+    OS << "replayed cycles " << Before + 1 << " to " << S->getCycle()
+       << (OK ? "; no recorded output differs" : "") << "\n";
   if (!Why.empty())
     reportStop(Why);
 }

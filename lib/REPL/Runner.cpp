@@ -8,6 +8,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "bsc/REPL/Debugger.h"
+#include "bsc/Basic/JSON.h"
 #include "bsc/Bind/Bind.h"
 #include "bsc/CodeGen/Target.h"
 #include "bsc/Debug/Values.h"
@@ -229,21 +230,14 @@ bool readReplay(Compilation &C, const LoadedBehavior &L, llvm::StringRef Path,
     llvm::SMLoc Loc = llvm::SMLoc::getFromPointer(R.data());
     if (R.trim().empty())
       continue;
-    llvm::Expected<llvm::json::Value> V = llvm::json::parse(R);
+    llvm::Expected<llvm::json::Value> V = parseJSON(R);
     if (!V) {
-      // llvm::json says "[line:col, byte=N]: what"; point the caret there.
-      std::string Msg = llvm::toString(V.takeError());
-      llvm::StringRef Rest = Msg;
-      size_t Byte = 0;
-      if (Rest.consume_front("[") && Rest.contains("byte=")) {
-        Rest = Rest.split("byte=").second;
-        auto [Num, What] = Rest.split("]: ");
-        if (!Num.getAsInteger(10, Byte) && Byte <= R.size()) {
-          Loc = llvm::SMLoc::getFromPointer(R.data() + Byte);
-          Msg = What.str();
-        }
-      }
-      C.Diags.report(Loc, diag::err_replay_json) << Msg;
+      // The caret goes under the byte the error is at.
+      llvm::handleAllErrors(V.takeError(), [&](const JSONReadError &E) {
+        C.Diags.report(llvm::SMLoc::getFromPointer(R.data() + E.Offset),
+                       diag::err_replay_json)
+            << E.Message;
+      });
       OK = false;
       continue;
     }

@@ -247,6 +247,16 @@ TEST(DebugTraceTest, TablesSurviveJSON) {
   }
 }
 
+TEST(DebugTraceTest, DeeplyNestedTablesAreDamaged) {
+  // A damaged object's tables: refused, not parsed (the parser recurses).
+  // `{"tasks":` is level 1 and 9 bytes; the 256th '[' is level 257.
+  llvm::Expected<DebugTables> T =
+      parseDebugTables("{\"tasks\":" + std::string(100000, '['));
+  ASSERT_FALSE(bool(T));
+  EXPECT_EQ("damaged debug tables: 1:265: nesting deeper than 256 levels",
+            llvm::toString(T.takeError()));
+}
+
 TEST(DebugTraceTest, TraceRecordsDecodeToActivations) {
   DebugTables T = makeTables();
   // Cycle 5: walk stopped at its second yield with the state 7 (its

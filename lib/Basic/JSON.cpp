@@ -1,0 +1,93 @@
+//===- JSON.cpp - reading JSON text with a bounded nesting depth ----------===//
+//
+// The depth scan runs before llvm::json::parse, not inside it: the parser
+// is LLVM's, and its recursion is what must not be reached. The scan only
+// needs to know which brackets are outside strings; everything else about
+// the text is left for the parser to judge.
+//
+//===----------------------------------------------------------------------===//
+#include "bsc/Basic/JSON.h"
+#include "llvm/Support/raw_ostream.h"
+
+using namespace bsc;
+
+char JSONReadError::ID;
+
+void JSONReadError::log(llvm::raw_ostream &OS) const {
+  OS << Line << ':' << Column << ": " << Message;
+}
+
+/// The offset of the first `[` or `{` outside strings that opens level
+/// `Limit + 1`; npos if the text never nests that deep.
+static size_t findTooDeep(llvm::StringRef Text, unsigned Limit) {
+  unsigned Depth = 0;
+  bool InString = false;
+  for (size_t I = 0, E = Text.size(); I < E; ++I) {
+    char C = Text[I];
+    if (InString) {
+      if (C == '\\')
+        ++I; // The escaped byte (a quote, a backslash) ends nothing.
+      else if (C == '"')
+        InString = false;
+      continue;
+    }
+    switch (C) {
+    case '"':
+      InString = true;
+      break;
+    case '[':
+    case '{':
+      if (++Depth > Limit)
+        return I;
+      break;
+    case ']':
+    case '}':
+      // A stray closer is the parser's error to report; never let it buy
+      // room for deeper nesting later.
+      if (Depth)
+        --Depth;
+      break;
+    default:
+      break;
+    }
+  }
+  return llvm::StringRef::npos;
+}
+
+/// A JSONReadError at byte `Offset` of `Text`.
+static llvm::Error makeError(llvm::StringRef Text, size_t Offset,
+                             std::string Message) {
+  llvm::StringRef Before = Text.take_front(Offset);
+  unsigned Line = 1 + Before.count('\n');
+  size_t LineStart = Before.rfind('\n');
+  unsigned Column =
+      Offset - (LineStart == llvm::StringRef::npos ? 0 : LineStart + 1) + 1;
+  return llvm::make_error<JSONReadError>(std::move(Message), Offset, Line,
+                                         Column);
+}
+
+/// llvm::json's error as a JSONReadError. Its fields are private; its text
+/// is `[LINE:COLUMN, byte=OFFSET]: MESSAGE`.
+static llvm::Error convertParseError(llvm::StringRef Text, llvm::Error E) {
+  std::string Full = llvm::toString(std::move(E));
+  llvm::StringRef Rest = Full;
+  size_t Offset = 0;
+  auto [Place, What] = Rest.split("]: ");
+  if (!What.empty() && Place.contains("byte=") &&
+      !Place.split("byte=").second.getAsInteger(10, Offset) &&
+      Offset <= Text.size())
+    return makeError(Text, Offset, What.str());
+  return makeError(Text, 0, Full);
+}
+
+llvm::Expected<llvm::json::Value> bsc::parseJSON(llvm::StringRef Text) {
+  size_t Deep = findTooDeep(Text, MaxJSONDepth);
+  if (Deep != llvm::StringRef::npos)
+    return makeError(Text, Deep,
+                     "nesting deeper than " + std::to_string(MaxJSONDepth) +
+                         " levels");
+  llvm::Expected<llvm::json::Value> V = llvm::json::parse(Text);
+  if (!V)
+    return convertParseError(Text, V.takeError());
+  return V;
+}
