@@ -15,8 +15,10 @@
 #include "llvm/Support/MemAlloc.h"
 #include "llvm/Support/raw_ostream.h"
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <utility>
 
 using namespace bsc;
 using namespace bsc::debug;
@@ -402,6 +404,26 @@ static const char *describe(const NativeType &NT) {
   return "a value";
 }
 
+/// The ints a member of `Size` bytes gives back as b-script reads it: the
+/// storage's own range below 4 bytes, int32 from 4 up (readNative reads an
+/// int32). A value outside would be stored as another number, so a replay
+/// would feed the behavior what the file does not say.
+static std::pair<int64_t, int64_t> getIntRange(unsigned Size, bool Unsigned) {
+  if (Size >= 4)
+    return {INT32_MIN, INT32_MAX};
+  unsigned Bits = 8 * Size;
+  if (Unsigned)
+    return {0, (int64_t(1) << Bits) - 1};
+  return {-(int64_t(1) << (Bits - 1)), (int64_t(1) << (Bits - 1)) - 1};
+}
+
+/// A JSON number a float cannot hold (1e39 would become infinity: a
+/// recording says "Infinity" for that).
+static bool isBeyondFloat(const Value &V) {
+  std::optional<double> D = V.getAsNumber();
+  return D && !std::isfinite(float(*D));
+}
+
 llvm::Error ValueIO::writeNative(const NativeType &NT, void *Addr,
                                  const Value &V, llvm::StringRef Path,
                                  size_t Dim) {
@@ -435,18 +457,23 @@ llvm::Error ValueIO::writeNative(const NativeType &NT, void *Addr,
     }
     return Mismatch();
   case NativeType::Int:
-    if (std::optional<int64_t> I = V.getAsInteger()) {
-      storeInt(Addr, Size ? Size : 4, *I);
-      return llvm::Error::success();
-    }
-    return Mismatch();
-  case NativeType::Enum:
-    if (std::optional<int64_t> I = enumFromJSON(NT.TheEnum, V)) {
-      storeInt(Addr, Size ? Size : 4, *I);
-      return llvm::Error::success();
-    }
-    return Mismatch();
+  case NativeType::Enum: {
+    std::optional<int64_t> I = NT.TheCode == NativeType::Int
+                                   ? V.getAsInteger()
+                                   : enumFromJSON(NT.TheEnum, V);
+    if (!I)
+      return Mismatch();
+    auto [Min, Max] = getIntRange(Size ? Size : 4, NT.Unsigned);
+    if (*I < Min || *I > Max)
+      return makeError(Path + " must be from " + llvm::Twine(Min) + " to " +
+                       llvm::Twine(Max) + ", not " + toJSONString(V));
+    storeInt(Addr, Size ? Size : 4, *I);
+    return llvm::Error::success();
+  }
   case NativeType::Float:
+    if (isBeyondFloat(V))
+      return makeError(Path + " must be a number within a float's range " +
+                       "(or \"Infinity\"), not " + toJSONString(V));
     if (std::optional<double> D = floatFromJSON(V)) {
       if (Size == 8) {
         double X = float(*D);
@@ -461,6 +488,12 @@ llvm::Error ValueIO::writeNative(const NativeType &NT, void *Addr,
   case NativeType::String:
     if (std::optional<llvm::StringRef> S = V.getAsString()) {
       const char *P = Strings.insert(S->str()).first->c_str();
+      std::memcpy(Addr, &P, sizeof P);
+      return llvm::Error::success();
+    }
+    if (V.kind() == Value::Null) {
+      // A null pointer reads as null (readNative): it replays as one.
+      const char *P = nullptr;
       std::memcpy(Addr, &P, sizeof P);
       return llvm::Error::success();
     }

@@ -96,6 +96,73 @@ TEST(DebugValuesTest, FieldsByOffset) {
             llvm::toString(std::move(E)));
 }
 
+/// Numbers a member cannot hold are refused: written, they would become
+/// another number (or infinity), and the replay would feed the behavior
+/// what the recording does not say.
+TEST(DebugValuesTest, NumbersBeyondTheMemberAreRefused) {
+  struct Obj {
+    int32_t I;
+    uint8_t U;
+    int16_t S;
+    float F;
+  } O = {};
+  NativeClass C;
+  C.Name = "Obj";
+  C.QualifiedName = "M::Obj";
+  addField(C, "i", NativeType::Int, offsetof(Obj, I), 4);
+  addField(C, "u", NativeType::Int, offsetof(Obj, U), 1);
+  C.Members.back().Result.Unsigned = true;
+  addField(C, "s", NativeType::Int, offsetof(Obj, S), 2);
+  addField(C, "f", NativeType::Float, offsetof(Obj, F), 4);
+  ValueIO IO([](llvm::StringRef) -> void * { return nullptr; });
+  auto Write = [&](llvm::StringRef Key, llvm::json::Value V) {
+    return llvm::toString(
+        IO.writeClass(C, &O, llvm::json::Object{{Key, std::move(V)}}, "in"));
+  };
+  EXPECT_EQ("", Write("i", int64_t(INT32_MIN)));
+  EXPECT_EQ("", Write("u", 255));
+  EXPECT_EQ("", Write("s", -32768));
+  EXPECT_EQ("", Write("f", 3.4028234663852886e38)); // FLT_MAX
+  EXPECT_EQ(3.4028234663852886e38f, O.F);
+  EXPECT_EQ("", Write("f", "-Infinity"));
+  EXPECT_EQ(INT32_MIN, O.I);
+  EXPECT_EQ(255, O.U);
+  EXPECT_EQ(-32768, O.S);
+  EXPECT_EQ(-HUGE_VALF, O.F);
+  EXPECT_EQ("in.i must be from -2147483648 to 2147483647, not 4294967296",
+            Write("i", int64_t(1) << 32));
+  EXPECT_EQ("in.u must be from 0 to 255, not 256", Write("u", 256));
+  EXPECT_EQ("in.u must be from 0 to 255, not -1", Write("u", -1));
+  EXPECT_EQ("in.s must be from -32768 to 32767, not 32768", Write("s", 32768));
+  EXPECT_EQ("in.f must be a number within a float's range (or \"Infinity\"), "
+            "not 1e+39",
+            Write("f", 1e39));
+  // Nothing refused was stored.
+  EXPECT_EQ(INT32_MIN, O.I);
+  EXPECT_EQ(255, O.U);
+  EXPECT_EQ(-32768, O.S);
+  EXPECT_EQ(-HUGE_VALF, O.F);
+}
+
+/// A null string pointer reads as null, so it must write back as one: a
+/// recording of it replays.
+TEST(DebugValuesTest, NullStringsRoundTrip) {
+  struct Obj {
+    const char *S;
+  } O = {nullptr};
+  NativeClass C;
+  C.Name = "Obj";
+  C.QualifiedName = "M::Obj";
+  addField(C, "s", NativeType::String, offsetof(Obj, S), sizeof(char *));
+  ValueIO IO([](llvm::StringRef) -> void * { return nullptr; });
+  llvm::json::Value Recorded = IO.readClass(C, &O);
+  EXPECT_EQ("{\"s\":null}", toJSONString(Recorded));
+  ASSERT_FALSE(bool(IO.writeClass(C, &O, llvm::json::Object{{"s", "x"}}, "in")));
+  ASSERT_STREQ("x", O.S);
+  ASSERT_FALSE(bool(IO.writeClass(C, &O, Recorded, "in")));
+  EXPECT_EQ(nullptr, O.S);
+}
+
 /// Array fields: `int16_t s[3]` and `double m[2][2]` (a b-script float
 /// each), as nested JSON arrays; a write must give every element.
 TEST(DebugValuesTest, ArrayFieldsAreJSONArrays) {
