@@ -5,7 +5,7 @@
 #   ./dev.sh test   install what is missing, build, run the whole test suite
 #   ./dev.sh sanitize  the same suite with bsc built with ASan and UBSan
 #                   (in build-sanitize/)
-#   ./dev.sh fuzz frontend|binding [SECONDS]
+#   ./dev.sh fuzz frontend|binding|jsonl [SECONDS]
 #                   a libFuzzer campaign on one target (fuzz/README.md)
 # Both work on a fresh Debian 12 machine as root (apt), and are what CI runs.
 set -euo pipefail
@@ -76,8 +76,8 @@ sanitize() {
 # from the test suite, and crashing inputs written to build-fuzz/.
 fuzz() {
   local target=${1:-} seconds=${2:-3600}
-  [[ $target == frontend || $target == binding ]] ||
-    { echo "usage: $0 fuzz frontend|binding [SECONDS]" >&2; exit 2; }
+  [[ $target == frontend || $target == binding || $target == jsonl ]] ||
+    { echo "usage: $0 fuzz frontend|binding|jsonl [SECONDS]" >&2; exit 2; }
   PACKAGES+=(libclang-rt-19-dev)
   install_missing
   BUILD=${BSC_BUILD_DIR:-$ROOT/build-fuzz}
@@ -87,6 +87,9 @@ fuzz() {
   if [[ $target == binding ]]; then
     cmake --build "$BUILD" --target bsc-fuzz-binding LitBindObjects BindTestObjects
     seeds=("$BUILD/test/bind-objects" "$BUILD/unittests/Bind/objects")
+  elif [[ $target == jsonl ]]; then
+    cmake --build "$BUILD" --target bsc-fuzz-jsonl
+    seeds=("$ROOT/fuzz/corpus/jsonl")
   else
     cmake --build "$BUILD" --target bsc-fuzz-frontend
   fi
