@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Differential testing: random programs through six configurations of bsc.
 
-usage: diff-test.py [--bsc PATH] [--seeds A:B] [--cycles N] [--jobs J]
-                    [--keep DIR] [--timeout S] [--campaign [--minutes M]]
+usage: diff-test.py [--bsc PATH] [--bind-objs DIR] [--seeds A:B]
+                    [--cycles N] [--jobs J] [--keep DIR] [--timeout S]
+                    [--campaign [--minutes M]]
 
 For each seed in A:B (A inclusive, B exclusive, as Python's range),
 utils/gen-program.py makes a well-typed program, and this script runs it
@@ -14,12 +15,16 @@ utils/gen-program.py makes a well-typed program, and this script runs it
   i586-O0  bsc -target i586 -O0 --cycles N P.bs -o prog; utils/run-i586 prog
   i586-O2  bsc -target i586 -O2 --cycles N P.bs -o prog; utils/run-i586 prog
 
-and compares their standard output and exit status. The language defines
+each with `--bind DIR/GenWorld.<host|i586>.o` (the world module `Gen` of
+utils/GenWorld.cpp, which test/CMakeLists.txt builds into
+build/test/bind-objects, the default DIR beside the default bsc), and
+compares their standard output and exit status. The language defines
 every result (docs/language.md: division by zero, saturating int(float),
 IEEE singles on every target), so all six must agree. A failure is a
 mismatch, a compile error (the generator promises well-typed programs), a
-crash (exit by signal, "LLVM ERROR", an assertion) or a run that takes longer
-than --timeout seconds. For each, the seed, the configurations and a diff
+crash (exit by signal, "LLVM ERROR", an assertion), a run that takes longer
+than --timeout seconds, or a program that reports "SELF-CHECK FAILED" (a
+module constant that differs from its expression computed at run time). For each, the seed, the configurations and a diff
 against jit-O0 are printed and the program and its outputs are kept in
 --keep DIR/seed-S/. The last line is `N seeds, 6 configurations, M failures`
 and the exit status is 1 if M > 0.
@@ -84,12 +89,14 @@ def check_seed(seed, args, workdir):
     problems = []
     for cfg in CONFIGS:
         kind, opt = cfg.split("-")
+        bind = ["--bind", os.path.join(args.bind_objs,
+                                       "GenWorld.i586.o" if kind == "i586" else "GenWorld.host.o")]
         if kind == "jit":
-            st, out, err = run([args.bsc, "run", "-" + opt] + cyc + [src], args.timeout)
+            st, out, err = run([args.bsc, "run", "-" + opt] + cyc + bind + [src], args.timeout)
         else:
             exe = os.path.join(d, cfg)
             target = ["-target", "i586"] if kind == "i586" else []
-            st, out, err = run([args.bsc] + target + ["-" + opt] + cyc + [src, "-o", exe],
+            st, out, err = run([args.bsc] + target + ["-" + opt] + cyc + bind + [src, "-o", exe],
                                args.timeout)
             if st == 0:
                 runner = ([sys.executable, os.path.join(HERE, "run-i586")]
@@ -101,6 +108,10 @@ def check_seed(seed, args, workdir):
         if crashed(st, err):
             problems.append(f"{cfg}: " + ("timeout" if st == "timeout" else f"status {st}")
                             + "\n" + err.decode(errors="replace")[-2000:])
+        if b"SELF-CHECK FAILED" in out:
+            problems.append(f"{cfg}: a constant differs from its expression at run time:\n"
+                            + "\n".join(l.decode(errors="replace") for l in out.splitlines()
+                                         if b"SELF-CHECK FAILED" in l)[:2000])
         outputs[cfg] = (st, out, err)
     ref_st, ref_out, _ = outputs[CONFIGS[0]]
     for cfg in CONFIGS[1:]:
@@ -152,6 +163,8 @@ def parse_seeds(text, campaign):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--bsc", default=os.path.join(HERE, "..", "build", "bin", "bsc"))
+    ap.add_argument("--bind-objs", help="the folder of GenWorld.host.o and GenWorld.i586.o "
+                    "(default: test/bind-objects in bsc's build folder)")
     ap.add_argument("--seeds", default="0:100", help="A:B, A inclusive, B exclusive")
     ap.add_argument("--cycles", type=int, default=8)
     ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
@@ -168,6 +181,14 @@ def main():
     if not os.access(args.bsc, os.X_OK):
         sys.stderr.write(f"diff-test.py: no bsc at {args.bsc}\n")
         return 2
+    if not args.bind_objs:
+        args.bind_objs = os.path.join(os.path.dirname(os.path.realpath(args.bsc)), "..",
+                                      "test", "bind-objects")
+    for obj in ("GenWorld.host.o", "GenWorld.i586.o"):
+        if not os.path.isfile(os.path.join(args.bind_objs, obj)):
+            sys.stderr.write(f"diff-test.py: no {obj} in {args.bind_objs} "
+                             "(build the lit tests' binding objects, or give --bind-objs)\n")
+            return 2
     start, stop = parse_seeds(args.seeds, args.campaign)
     deadline = time.time() + args.minutes * 60 if args.minutes else None
 

@@ -135,6 +135,8 @@ void Dumper::dumpDecl(const Decl *D) {
     auto *V = llvm::cast<VarDecl>(D);
     OS << " '" << V->TypeName.str() << "'";
     type(V->Ty);
+    if (V->ReadBeforeDeclared)
+      OS << " zeroed-at-reset";
     loc(D->getLoc());
     if (V->Init)
       child(V->Init);
@@ -367,6 +369,10 @@ void Dumper::dumpExpr(const Expr *E) {
     OS << " '" << getSpelling(B->Op) << "'";
     if (B->Operator)
       OS << " -> " << (B->NegateOperator ? "!" : "") << B->Operator->Name;
+    if (B->StateTest == BinaryExpr::StateKindTest::Running)
+      OS << " kind running";
+    else if (B->StateTest == BinaryExpr::StateKindTest::Failure)
+      OS << " kind failure";
     break;
   }
   case NodeKind::TaskStateExpr:
