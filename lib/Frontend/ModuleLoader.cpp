@@ -134,6 +134,12 @@ private:
       }
       if ((R.Native = C.Natives.find(R.Name)))
         continue;
+      // Without --bind a module no file defines is likely a binding's.
+      if (Opts.BindObjects.empty() &&
+          !llvm::is_contained(StandardModuleNames, R.Name)) {
+        C.Unbound.push_back({UnboundName::Module, R.Name, R.Range, Searched});
+        continue;
+      }
       C.Diags.report(R.Range.Start, diag::err_unknown_module)
           << R.Name << Searched << R.Range;
       if (Opts.StandardModules.empty() &&
@@ -195,7 +201,75 @@ bool bsc::readBindingObjects(Compilation &C, const FrontendOptions &Opts) {
   return true;
 }
 
-bool bsc::loadModules(Compilation &C, const FrontendOptions &Opts) {
+/// Reports the one name collected in C.Unbound with its own error.
+static void reportUnboundName(Compilation &C, const UnboundName &N) {
+  switch (N.K) {
+  case UnboundName::Module:
+    C.Diags.report(N.Range.Start, diag::err_unknown_module)
+        << N.Name << N.SearchedIn << N.Range;
+    break;
+  case UnboundName::Input:
+  case UnboundName::Output:
+    C.Diags.report(N.Range.Start, N.K == UnboundName::Input
+                                      ? diag::err_no_input_type
+                                      : diag::err_no_output_type)
+        << N.Range;
+    break;
+  case UnboundName::Qualifier:
+    C.Diags.report(N.Range.Start, diag::err_unknown_qualifier)
+        << N.Name << N.Range;
+    C.Diags.report(N.Range.Start, diag::note_maybe_unbound) << N.Name;
+    break;
+  }
+}
+
+/// Reports the names collected in C.Unbound and clears them: one name with
+/// its own error, several (one cause: no --bind) as one error at the first
+/// with a note at each, in the reader's order (files as loaded, then
+/// position). Returns false if there were any.
+static bool reportUnbound(Compilation &C) {
+  if (C.Unbound.empty())
+    return true;
+  if (C.Unbound.size() == 1) {
+    reportUnboundName(C, C.Unbound.front());
+    C.Unbound.clear();
+    return false;
+  }
+  auto Place = [&](const UnboundName &N) {
+    llvm::SMLoc L = N.Range.Start;
+    return std::pair(C.SM.FindBufferContainingLoc(L), L.getPointer());
+  };
+  llvm::stable_sort(C.Unbound, [&](const UnboundName &A, const UnboundName &B) {
+    return Place(A) < Place(B);
+  });
+  C.Diags.report(C.Unbound.front().Range.Start, diag::err_needs_binding)
+      << C.Unbound.front().Range;
+  for (const UnboundName &N : C.Unbound) {
+    switch (N.K) {
+    case UnboundName::Module:
+      C.Diags.report(N.Range.Start, diag::note_unbound_module)
+          << N.Name << N.SearchedIn << N.Range;
+      break;
+    case UnboundName::Input:
+    case UnboundName::Output:
+      C.Diags.report(N.Range.Start, diag::note_unbound_world)
+          << N.Name
+          << (N.K == UnboundName::Input ? "registerInput" : "registerOutput")
+          << N.Range;
+      break;
+    case UnboundName::Qualifier:
+      C.Diags.report(N.Range.Start, diag::note_unbound_qualifier)
+          << N.Name << N.Range;
+      break;
+    }
+  }
+  C.Unbound.clear();
+  return false;
+}
+
+/// loadModules without reporting C.Unbound, which runFrontend reports with
+/// what checkBehavior adds.
+static bool loadModulesCollecting(Compilation &C, const FrontendOptions &Opts) {
   unsigned ErrorsBefore = C.Diags.getNumErrors();
   if (Opts.Inputs.empty()) {
     C.Diags.report(llvm::SMLoc(), diag::err_no_input_files);
@@ -204,21 +278,31 @@ bool bsc::loadModules(Compilation &C, const FrontendOptions &Opts) {
   if (!readBindingObjects(C, Opts))
     return false;
   ModuleLoader(C, Opts).loadInputs();
-  return C.Diags.getNumErrors() == ErrorsBefore;
+  return C.Diags.getNumErrors() == ErrorsBefore && C.Unbound.empty();
+}
+
+bool bsc::loadModules(Compilation &C, const FrontendOptions &Opts) {
+  bool Loaded = loadModulesCollecting(C, Opts);
+  return reportUnbound(C) && Loaded;
 }
 
 bool bsc::runFrontend(Compilation &C, const FrontendOptions &Opts) {
-  bool Loaded = loadModules(C, Opts);
-  if (C.Modules.empty() || C.Diags.tooManyErrors())
+  bool Loaded = loadModulesCollecting(C, Opts);
+  if (C.Modules.empty() || C.Diags.tooManyErrors()) {
+    reportUnbound(C);
     return false;
+  }
   // Sema runs even after parse errors (they left error nodes, which are
   // poison) so that one run reports as many independent mistakes as it can.
   auto FindModuleFile = [&](const ModuleAST &From, llvm::StringRef Name) {
     std::string Searched;
     return !findScriptModule(From, Name, Opts.IncludeDirs, Searched).empty();
   };
-  bool Checked = checkBehavior(C.Modules, C.Ctx, C.Diags, C.Checked,
-                               &C.Natives, FindModuleFile);
+  bool Checked =
+      checkBehavior(C.Modules, C.Ctx, C.Diags, C.Checked, &C.Natives,
+                    FindModuleFile,
+                    Opts.BindObjects.empty() ? &C.Unbound : nullptr);
+  Checked &= reportUnbound(C);
   C.Diags.sortBySource(C.SM);
   return Loaded && Checked;
 }

@@ -719,6 +719,12 @@ LookupResult Sema::lookupQualified(const QualifiedName &N) {
   // One error per unknown qualifier: its other uses have the same cause.
   if (!ReportedQualifiers.insert(Q.Name).second)
     return R;
+  // Without any native module from a file, the likeliest cause is a
+  // missing --bind, not a typo.
+  if (Unbound && !hasBindingModules()) {
+    noteUnbound({UnboundName::Qualifier, Q.Name.str(), Q.getRange(), ""});
+    return R;
+  }
   diag(Q.Loc, diag::err_unknown_qualifier) << Q.Name << Q.getRange();
   // Without any native module from a file, the likeliest cause is a
   // missing --bind, not a typo.
@@ -753,6 +759,11 @@ void Sema::reportRedefinition(const Decl &New, const Decl &Prev) {
   diag(Prev.getName().Loc, diag::note_previous_definition);
 }
 
+void Sema::noteUnbound(UnboundName N) {
+  Unbound->push_back(std::move(N));
+  HadError = true; // The front end reports it.
+}
+
 bool Sema::hasBindingModules() const {
   // The required native modules and the world module (which may be the
   // only one given).
@@ -763,9 +774,11 @@ bool Sema::hasBindingModules() const {
 bool bsc::checkBehavior(llvm::ArrayRef<ModuleAST *> Modules, ASTContext &Ctx,
                         DiagnosticEngine &Diags, Behavior &Out,
                         const NativeRegistry *Natives,
-                        ModuleFileFinder FindModuleFile) {
+                        ModuleFileFinder FindModuleFile,
+                        std::vector<UnboundName> *Unbound) {
   Sema S(Ctx, Diags, Out, Natives);
   S.FindModuleFile = FindModuleFile;
+  S.Unbound = Unbound;
   return S.run(Modules);
 }
 

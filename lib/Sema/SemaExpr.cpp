@@ -166,7 +166,10 @@ const Type *Sema::checkIO(NameExpr *E, bool IsInput, Access A) {
   if (!C) {
     // Once per compilation: every later use has the same cause.
     bool &Reported = IsInput ? ReportedNoInput : ReportedNoOutput;
-    if (!Reported)
+    if (!Reported && Unbound)
+      noteUnbound({IsInput ? UnboundName::Input : UnboundName::Output,
+                   IsInput ? "input" : "output", E->getRange(), ""});
+    else if (!Reported)
       diag(E->getLoc(),
            IsInput ? diag::err_no_input_type : diag::err_no_output_type)
           << E->getRange();

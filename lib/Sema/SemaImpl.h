@@ -294,6 +294,11 @@ public:
   llvm::StringSet<> ReportedQualifiers;
   /// note_maybe_unbound was given (once is enough).
   bool NotedUnbound = false;
+  /// checkBehavior's Unbound: set when the compilation has no binding
+  /// object.
+  std::vector<UnboundName> *Unbound = nullptr;
+  /// Adds a use to Unbound (instead of an error) and fails the check.
+  void noteUnbound(UnboundName N);
   /// err_redefinition at `New`, with a note at `Prev`.
   void reportRedefinition(const Decl &New, const Decl &Prev);
   /// Whether some native module came from a --bind object.

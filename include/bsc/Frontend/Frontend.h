@@ -67,6 +67,9 @@ struct Compilation {
   bind::BindingModel Bindings;
   /// Every module, the inputs first, then required ones as found.
   std::vector<ModuleAST *> Modules;
+  /// Without binding objects: the names only they could define, reported
+  /// together by loadModules or runFrontend (err_needs_binding).
+  std::vector<UnboundName> Unbound;
   Behavior Checked;
 };
 

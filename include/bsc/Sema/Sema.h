@@ -48,6 +48,18 @@ struct Behavior {
   bool UsesClasses = false;
 };
 
+/// A name that only a binding object can define (`input`, `output`, a
+/// required module or a qualifier no script declares), used in a behavior
+/// compiled without any: the front end collects them instead of reporting
+/// each, and says once that binding objects are missing
+/// (err_needs_binding), with a note at each.
+struct UnboundName {
+  enum Kind { Module, Input, Output, Qualifier } K;
+  std::string Name;
+  llvm::SMRange Range;
+  std::string SearchedIn; ///< Module: the folders searched for its file.
+};
+
 /// Checks the modules (their `requires` already resolved by the module
 /// loader): names, types, the task rules and the call graph. Fills in the
 /// "Sema:" fields of the AST and `Out`. Returns false if it reported an
@@ -63,12 +75,18 @@ struct Behavior {
 /// `FindModuleFile` tells whether `requires "Name"` in a module would find
 /// a file (the module loader's search): a qualifier naming such a module
 /// without the `requires` is then err_module_not_required.
+///
+/// `Unbound`, given when the compilation has no binding object, receives
+/// the uses of `input`, `output` and (when no required module comes from
+/// a file) unknown qualifiers, each name once, instead of their errors;
+/// checkBehavior then returns false.
 using ModuleFileFinder =
     llvm::function_ref<bool(const ModuleAST &From, llvm::StringRef Name)>;
 bool checkBehavior(llvm::ArrayRef<ModuleAST *> Modules, ASTContext &Ctx,
                    DiagnosticEngine &Diags, Behavior &Out,
                    const NativeRegistry *Natives = nullptr,
-                   ModuleFileFinder FindModuleFile = nullptr);
+                   ModuleFileFinder FindModuleFile = nullptr,
+                   std::vector<UnboundName> *Unbound = nullptr);
 
 /// Whether C can call a func or task as an entry of the compiled object:
 /// every parameter is int, float or bool, and the result is not a class
