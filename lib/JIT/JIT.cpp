@@ -30,6 +30,7 @@
 #include "llvm/MC/TargetRegistry.h"
 #include "llvm/Support/MemAlloc.h"
 #include <csetjmp>
+#include <dlfcn.h>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -40,6 +41,13 @@ using namespace bsc;
 
 char StaleBindingError::ID;
 char BindingLoadError::ID;
+char MissingSymbolsError::ID;
+
+void MissingSymbolsError::log(llvm::raw_ostream &OS) const {
+  OS << "symbols not found:";
+  for (const std::string &S : Symbols)
+    OS << " " << S;
+}
 
 void BindingLoadError::log(llvm::raw_ostream &OS) const {
   OS << "cannot load '" << Path << "': " << Message;
@@ -93,6 +101,10 @@ BehaviorJIT::create(unsigned OptLevel, bool Debuggable) {
   if (!J)
     return J.takeError();
   Result->J = std::move(*J);
+  // Link failures become errors of ours rather than LLJIT's "JIT session
+  // error" on stderr followed by a lookup that may still succeed.
+  Result->J->getExecutionSession().setErrorReporter(
+      [R = Result.get()](llvm::Error E) { R->recordLinkError(std::move(E)); });
   if (Debuggable)
     if (llvm::Error E = registerWithDebugger(*Result->J))
       return E;
@@ -173,6 +185,19 @@ llvm::Error BehaviorJIT::addSharedLibrary(llvm::StringRef Path) {
   // not in the current directory.
   llvm::SmallString<256> Abs(Path);
   llvm::sys::fs::make_absolute(Abs);
+  // Every symbol bound now (RTLD_NOW; the handle stays open, as the
+  // generator's does): with lazy binding, a function the library needs and
+  // nothing defines would make the dynamic loader end bsc at its first call
+  // ("symbol lookup error", status 127).
+  if (!dlopen(Abs.c_str(), RTLD_NOW | RTLD_GLOBAL)) {
+    std::string Message = dlerror();
+    llvm::StringRef Undefined = "undefined symbol: ";
+    size_t At = Message.find(Undefined.str());
+    if (At != std::string::npos)
+      return llvm::make_error<MissingSymbolsError>(std::vector<std::string>{
+          Message.substr(At + Undefined.size())});
+    return llvm::make_error<BindingLoadError>(Path.str(), Message);
+  }
   auto G = llvm::orc::DynamicLibrarySearchGenerator::Load(
       Abs.c_str(), J->getDataLayout().getGlobalPrefix());
   if (!G)
@@ -188,6 +213,44 @@ llvm::Error BehaviorJIT::addArchive(llvm::StringRef Path) {
   if (!G)
     return G.takeError();
   J->getMainJITDylib().addGenerator(std::move(*G));
+  return llvm::Error::success();
+}
+
+void BehaviorJIT::recordLinkError(llvm::Error E) {
+  llvm::handleAllErrors(
+      std::move(E),
+      [&](const llvm::orc::SymbolsNotFound &NF) {
+        for (const llvm::orc::SymbolStringPtr &S : NF.getSymbols())
+          MissingSymbols.push_back((*S).str());
+      },
+      [&](const llvm::ErrorInfoBase &Other) {
+        OtherLinkErrors.push_back(Other.message());
+      });
+}
+
+llvm::Error BehaviorJIT::takeLinkErrors() {
+  auto Clear = llvm::make_scope_exit([&] {
+    MissingSymbols.clear();
+    OtherLinkErrors.clear();
+  });
+  if (!MissingSymbols.empty())
+    return llvm::make_error<MissingSymbolsError>(MissingSymbols);
+  if (!OtherLinkErrors.empty())
+    return llvm::createStringError(OtherLinkErrors.front());
+  return llvm::Error::success();
+}
+
+llvm::Error BehaviorJIT::link(llvm::ArrayRef<std::string> Symbols) {
+  for (const std::string &S : Symbols) {
+    auto Addr = J->lookup(S);
+    llvm::Error Reported = takeLinkErrors();
+    if (Reported) {
+      llvm::consumeError(Addr.takeError());
+      return Reported;
+    }
+    if (!Addr)
+      return Addr.takeError();
+  }
   return llvm::Error::success();
 }
 
@@ -293,6 +356,10 @@ BehaviorSession::start(BehaviorJIT &JIT, llvm::StringRef InfoSymbol,
   auto EntryAddr = JIT.J->lookup(EntrySymbol);
   if (!EntryAddr)
     return EntryAddr.takeError();
+  // Never run code whose linking failed somewhere (its addresses may be
+  // dangling): loadBehavior's link() reports what it can first.
+  if (llvm::Error E = JIT.takeLinkErrors())
+    return E;
   std::unique_ptr<BehaviorSession> S(new BehaviorSession(JIT));
   S->Info = InfoAddr->toPtr<const bs_behavior_info *>();
   // Entries without parameters: a func's result (if any) is returned in a

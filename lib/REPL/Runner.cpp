@@ -23,8 +23,9 @@
 
 using namespace bsc;
 
-bool bsc::checkBindingImports(Compilation &C, const llvm::Module &M,
-                                llvm::ArrayRef<std::string> BindObjects) {
+/// The thunks and descriptors `M` imports from the binding modules.
+static std::vector<std::string> getBindingImports(Compilation &C,
+                                                  const llvm::Module &M) {
   llvm::StringSet<> BindingSymbols;
   for (const std::string &S : bind::getBindingSymbols(C.Checked.BindingModules))
     BindingSymbols.insert(S);
@@ -32,12 +33,33 @@ bool bsc::checkBindingImports(Compilation &C, const llvm::Module &M,
   for (const llvm::GlobalValue &GV : M.global_values())
     if (GV.isDeclaration() && BindingSymbols.contains(GV.getName()))
       Imports.push_back(GV.getName().str());
+  return Imports;
+}
+
+bool bsc::checkBindingImports(Compilation &C, const llvm::Module &M,
+                                llvm::ArrayRef<std::string> BindObjects) {
   std::vector<std::string> Missing =
-      bind::findUndefinedSymbols(BindObjects, Imports);
+      bind::findUndefinedSymbols(BindObjects, getBindingImports(C, M));
   for (const std::string &S : Missing)
     C.Diags.report(llvm::SMLoc(), diag::err_stale_binding_symbol)
         << llvm::demangle(S);
   return Missing.empty();
+}
+
+/// Reports the link errors that are the user's to fix (a library the loader
+/// refuses, a function no --bind file defines) and returns the rest.
+static llvm::Error reportBindingLinkErrors(Compilation &C, llvm::Error E) {
+  return llvm::handleErrors(
+      std::move(E),
+      [&](const BindingLoadError &BL) {
+        C.Diags.report(llvm::SMLoc(), diag::err_bind_load)
+            << BL.Path << BL.Message;
+      },
+      [&](const MissingSymbolsError &MS) {
+        for (const std::string &S : MS.Symbols)
+          C.Diags.report(llvm::SMLoc(), diag::err_jit_undefined_symbol)
+              << llvm::demangle(S);
+      });
 }
 
 llvm::Expected<std::unique_ptr<LoadedBehavior>>
@@ -78,15 +100,19 @@ bsc::loadBehavior(Compilation &C, const CallableDecl &Entry,
       return E;
   for (const std::string &Path : Opts.BindObjects)
     if (llvm::Error E = JIT.addObjectFile(Path)) {
-      // A library the loader refuses is the user's to fix.
-      E = llvm::handleErrors(std::move(E), [&](const BindingLoadError &BL) {
-        C.Diags.report(llvm::SMLoc(), diag::err_bind_load)
-            << BL.Path << BL.Message;
-      });
-      if (E)
-        return E;
+      if (llvm::Error Internal = reportBindingLinkErrors(C, std::move(E)))
+        return Internal;
       return nullptr;
     }
+  // Link the bindings the behavior calls before its own code: a function
+  // that a binding object calls and no --bind file defines (it is in
+  // another object of the robot build) is the user's to fix, and the
+  // behavior must never run with it unresolved.
+  if (llvm::Error E = JIT.link(getBindingImports(C, *M))) {
+    if (llvm::Error Internal = reportBindingLinkErrors(C, std::move(E)))
+      return Internal;
+    return nullptr;
+  }
   if (llvm::Error E = JIT.addModule(std::move(M), std::move(Ctx), Opts.OptLevel))
     return E;
   if (const NativeModule *World = C.Checked.World) {

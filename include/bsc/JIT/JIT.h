@@ -56,6 +56,21 @@ public:
   }
 };
 
+/// Symbols that linking the binding objects into the JIT needed and nothing
+/// defined (an object given with --bind calls a function another object
+/// defines). A user-facing error, not an internal one.
+class MissingSymbolsError : public llvm::ErrorInfo<MissingSymbolsError> {
+public:
+  static char ID;
+  std::vector<std::string> Symbols; ///< Mangled, in the order found.
+  explicit MissingSymbolsError(std::vector<std::string> Symbols)
+      : Symbols(std::move(Symbols)) {}
+  void log(llvm::raw_ostream &OS) const override;
+  std::error_code convertToErrorCode() const override {
+    return llvm::inconvertibleErrorCode();
+  }
+};
+
 /// One JIT session on the host: a DataLayout to generate code for, then one
 /// module to run.
 class BehaviorJIT {
@@ -86,7 +101,8 @@ public:
   llvm::Error addObjectFile(llvm::StringRef Path);
 
   /// Loads shared library `Path` into this process and resolves generated
-  /// code's references from what it exports.
+  /// code's references from what it exports. All its symbols are bound as
+  /// it loads: one that nothing defines is a MissingSymbolsError.
   llvm::Error addSharedLibrary(llvm::StringRef Path);
 
   /// Adds the members of archive `Path` on demand, as a static linker does,
@@ -106,9 +122,24 @@ public:
   /// The address of `Symbol` in the JIT, or null if nothing defines it.
   void *lookup(llvm::StringRef Symbol);
 
+  /// Links what defines `Symbols` (the binding objects' thunks and
+  /// descriptors a behavior imports) and everything that needs in turn.
+  /// A symbol nothing defines on the way gives a MissingSymbolsError.
+  llvm::Error link(llvm::ArrayRef<std::string> Symbols);
+
+  /// The errors linking reported beside a lookup's result (ORC reports a
+  /// failed link to the session, not always to the lookup that caused it),
+  /// taken: a MissingSymbolsError for symbols nothing defines, else the
+  /// first error, else success.
+  llvm::Error takeLinkErrors();
+
 private:
   friend class BehaviorSession;
   BehaviorJIT() = default;
+  /// The session's error reporter: keeps the errors for takeLinkErrors.
+  void recordLinkError(llvm::Error E);
+  std::vector<std::string> MissingSymbols;
+  std::vector<std::string> OtherLinkErrors;
 
   std::unique_ptr<llvm::orc::LLJIT> J;
   llvm::Triple Triple;
