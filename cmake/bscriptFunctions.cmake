@@ -56,6 +56,19 @@ function(bscript_add_behavior)
   if(NOT BS_BEHAVIOR_NAME)
     set(BS_BEHAVIOR_NAME ${BS_TARGET})
   endif()
+  # The library holds only bsc's object; CMake archives it with the tools
+  # of a language the project enabled (C or C++, both archive alike). A
+  # project with neither cannot link the robot program either.
+  get_property(languages GLOBAL PROPERTY ENABLED_LANGUAGES)
+  if("C" IN_LIST languages)
+    set(archive_language C)
+  elseif("CXX" IN_LIST languages)
+    set(archive_language CXX)
+  else()
+    message(FATAL_ERROR "bscript_add_behavior(${BS_TARGET}): the project "
+      "enables neither C nor C++ (project(${PROJECT_NAME} ...)); add CXX or "
+      "C to its project() line, as in project(${PROJECT_NAME} CXX)")
+  endif()
   if(NOT DEFINED BS_TARGET_TRIPLE)
     if(CMAKE_SIZEOF_VOID_P EQUAL 4)
       set(BS_TARGET_TRIPLE i586)
@@ -135,7 +148,8 @@ function(bscript_add_behavior)
     EXTERNAL_OBJECT TRUE GENERATED TRUE)
 
   add_library(${BS_TARGET} STATIC ${object} ${header})
-  set_target_properties(${BS_TARGET} PROPERTIES LINKER_LANGUAGE C)
+  set_target_properties(${BS_TARGET} PROPERTIES
+    LINKER_LANGUAGE ${archive_language})
   target_include_directories(${BS_TARGET} INTERFACE ${out}/include)
   target_link_libraries(${BS_TARGET} INTERFACE ${runtime} ${bind_targets})
 endfunction()
