@@ -1,24 +1,28 @@
 # `cmake --install build [--prefix P]`: what a robot project needs, laid out
 # so that bsc finds its runtimes relative to itself (ToolChain.h):
-#   P/bin/bsc
+#   P/bin/bsc, bsread
 #   P/lib/bscript/libbscript_rt.a, libbscript_rt_i586.a
 #   P/include/bscript/Bind.h, bscript.h, descriptor.h
 #   P/lib/cmake/bscript/  the package: find_package(bscript 0.1 REQUIRED)
-#   P/share/doc/bscript/  the user documentation
+#   P/share/doc/bscript/  README.md, docs/ and examples/embedding, in the
+#                         source tree's layout so that their links work
 include(CMakePackageConfigHelpers)
 
 set(BSC_PACKAGE_DIR lib/cmake/bscript)
 set_target_properties(bsc PROPERTIES EXPORT_NAME bsc)
-install(TARGETS bsc bscript_rt bscript_rt_i586 bscript_bind
+install(TARGETS bsc bsread bscript_rt bscript_rt_i586 bscript_bind
   EXPORT bscriptTargets
   RUNTIME DESTINATION bin
   ARCHIVE DESTINATION lib/bscript)
 install(FILES include/bscript/Bind.h include/bscript/bscript.h
               include/bscript/descriptor.h
   DESTINATION include/bscript)
-install(FILES README.md docs/language.md docs/bindings.md docs/embedding.md
-              docs/repl.md docs/cmake.md
-  DESTINATION share/doc/bscript)
+# Every document the README links to, and the example embedding.md links
+# to, where the links expect them (test/Install/installed-docs.test).
+install(FILES README.md DESTINATION share/doc/bscript)
+install(DIRECTORY docs/ DESTINATION share/doc/bscript/docs
+  FILES_MATCHING PATTERN "*.md")
+install(DIRECTORY examples/embedding DESTINATION share/doc/bscript/examples)
 install(EXPORT bscriptTargets NAMESPACE bscript::
   DESTINATION ${BSC_PACKAGE_DIR})
 configure_package_config_file(cmake/bscriptConfig.cmake.in
