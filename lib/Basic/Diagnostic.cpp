@@ -25,6 +25,7 @@ const struct {
     {"yield-loop", diag::warn_endless_loop_in_func},
     {"unreachable-code", diag::warn_unreachable_code},
     {"double-yield", diag::warn_double_yield},
+    {"skipped-yield", diag::warn_loop_skips_yield},
     {"duplicate-require", diag::warn_duplicate_require},
 };
 } // namespace
@@ -34,6 +35,16 @@ bool DiagnosticEngine::ignoreWarningGroup(llvm::StringRef Group) {
   for (const auto &G : WarningGroups)
     if (Group == G.Name) {
       Ignored[G.Kind] = true;
+      Found = true;
+    }
+  return Found;
+}
+
+bool DiagnosticEngine::promoteWarningGroup(llvm::StringRef Group) {
+  bool Found = false;
+  for (const auto &G : WarningGroups)
+    if (Group == G.Name) {
+      Promoted[G.Kind] = true;
       Found = true;
     }
   return Found;
@@ -82,6 +93,12 @@ void DiagnosticEngine::record(diag::Kind K, llvm::SMLoc Loc,
                               llvm::ArrayRef<llvm::SMRange> Ranges,
                               llvm::ArrayRef<llvm::SMFixIt> FixIts) {
   Severity Sev = getSeverity(K);
+  // -Werror: an error like any other, which says why (as clang does).
+  if (Sev == Severity::Warning && !Ignored[K] &&
+      (AllWarningsAreErrors || Promoted[K])) {
+    Sev = Severity::Error;
+    Message += " [-Werror]";
+  }
   switch (Sev) {
   case Severity::Error:
     if (NumErrors >= MaxErrors) {

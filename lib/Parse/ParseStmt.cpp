@@ -182,9 +182,11 @@ Stmt *Parser::parseIf() {
   }
   BlockStmt *Then = parseBlock("'if'");
   Stmt *Else = nullptr;
+  llvm::SMLoc ElseLoc;
   if (Tok.is(tok::kw_else)) {
     InError = false;
     Heights.clear();
+    ElseLoc = Tok.Loc;
     consume();
     // An `else if` chain nests in the tree, so it counts as nesting too.
     NestingScope Scope(*this);
@@ -196,7 +198,9 @@ Stmt *Parser::parseIf() {
     else
       Else = parseBlock("'else'");
   }
-  return make<IfStmt>(rangeFrom(Start), Cond, Then, Else);
+  auto *If = make<IfStmt>(rangeFrom(Start), Cond, Then, Else);
+  If->ElseLoc = ElseLoc;
+  return If;
 }
 
 /// for-stmt  ::= 'for' '(' for-init? ';' expr? ';' for-step? ')' block

@@ -195,8 +195,12 @@ public:
   /// The value of a constant expression already checked, or nothing if
   /// it is not one.
   std::optional<ConstDecl::ValueFields> evaluateConstant(const Expr *E);
+  //--- SemaLoops.cpp --------------------------------------------------------
   /// warn_yield_loop: a loop that certainly never ends once entered.
   void warnIfEndless(const ForStmt *S);
+  /// warn_loop_skips_yield: a task's loop with a path around it that
+  /// passes none of its yields (after its body is checked).
+  void checkLoopYields(const ForStmt *S);
   void checkVarDecl(VarDecl *V);
 
   //--- SemaStmt.cpp ---------------------------------------------------------

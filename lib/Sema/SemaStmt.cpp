@@ -61,49 +61,6 @@ void Sema::checkIf(IfStmt *S) {
     checkStmt(S->Else);
 }
 
-/// Whether running `S` can leave the loop it is in: a `yield` or `return`
-/// anywhere in it, or a `break` of this loop (not of a loop inside).
-static bool canLeaveLoop(const Stmt *S, bool InInnerLoop) {
-  if (!S)
-    return false;
-  switch (S->getKind()) {
-  case NodeKind::YieldStmt:
-  case NodeKind::ReturnStmt:
-    return true;
-  case NodeKind::BreakStmt:
-    return !InInnerLoop;
-  case NodeKind::BlockStmt:
-    return llvm::any_of(llvm::cast<BlockStmt>(S)->Stmts, [&](const Stmt *C) {
-      return canLeaveLoop(C, InInnerLoop);
-    });
-  case NodeKind::IfStmt: {
-    const auto *If = llvm::cast<IfStmt>(S);
-    return canLeaveLoop(If->Then, InInnerLoop) ||
-           canLeaveLoop(If->Else, InInnerLoop);
-  }
-  case NodeKind::ForStmt: {
-    const auto *F = llvm::cast<ForStmt>(S);
-    return canLeaveLoop(F->Step, true) || canLeaveLoop(F->Body, true);
-  }
-  case NodeKind::ErrorStmt:
-    return true; // Already reported; say nothing more about it.
-  default:
-    return false;
-  }
-}
-
-void Sema::warnIfEndless(const ForStmt *S) {
-  // Only where it is certain: no condition, or `true`.
-  if (S->Cond && !(llvm::isa<BoolLiteralExpr>(S->Cond) &&
-                   llvm::cast<BoolLiteralExpr>(S->Cond)->Value))
-    return;
-  if (canLeaveLoop(S->Step, false) || canLeaveLoop(S->Body, false))
-    return;
-  diag(S->getLoc(), llvm::isa<TaskDecl>(CurCallable)
-                        ? diag::warn_yield_loop
-                        : diag::warn_endless_loop_in_func);
-}
-
 void Sema::checkFor(ForStmt *S) {
   warnIfEndless(S);
   // `for(;; yield)` whose body also yields on every pass: two steps per
@@ -126,6 +83,7 @@ void Sema::checkFor(ForStmt *S) {
   if (S->Body)
     checkBlock(S->Body);
   --LoopDepth;
+  checkLoopYields(S);
   popScope();
 }
 

@@ -218,11 +218,13 @@ cl::opt<bool> DumpBindings("dump-bindings",
 /// -W's help, from the diagnostics' table of warning groups. Defined before
 /// WarningOptions, whose description refers to it.
 const std::string WarningHelp =
-    "-Wno-<group>: silence a group of warnings (" +
+    "-Wno-<group>: silence a group of warnings; -Werror: warnings are "
+    "errors; -Werror=<group>: that group's are (groups: " +
     DiagnosticEngine::getWarningGroupList() + ")";
 cl::list<std::string>
     WarningOptions("W", cl::Prefix, cl::desc(WarningHelp),
-                   cl::value_desc("no-group"), cl::cat(BscCategory), BSC_BOTH);
+                   cl::value_desc("no-group|error[=group]"),
+                   cl::cat(BscCategory), BSC_BOTH);
 cl::opt<bool> DebugInfo("g",
                         cl::desc("Emit DWARF debug information (for `run` "
                                  "and `repl`: register the JIT's code with "
@@ -307,13 +309,21 @@ bool parseBackendOptions(DiagnosticEngine &Diags, BackendOptions &Out) {
   return OK;
 }
 
-/// Applies the -Wno-<group> options; reports and returns false on one
-/// that names no group (or is not a `no-`).
+/// Applies the -Wno-<group>, -Werror and -Werror=<group> options; reports
+/// and returns false on one that names no group.
 bool applyWarningOptions(DiagnosticEngine &Diags) {
   bool OK = true;
   for (const std::string &Option : WarningOptions) {
     llvm::StringRef Group = Option;
-    if (!Group.consume_front("no-") || !Diags.ignoreWarningGroup(Group)) {
+    if (Group == "error") {
+      Diags.promoteAllWarnings();
+      continue;
+    }
+    bool Known = Group.consume_front("no-") ? Diags.ignoreWarningGroup(Group)
+                 : Group.consume_front("error=")
+                     ? Diags.promoteWarningGroup(Group)
+                     : false;
+    if (!Known) {
       Diags.report(llvm::SMLoc(), diag::err_unknown_warning_option)
           << Option << DiagnosticEngine::getWarningGroupList();
       OK = false;

@@ -366,6 +366,7 @@ public:
   Expr *Cond;
   BlockStmt *Then;
   Stmt *Else; ///< Null, a BlockStmt, or an IfStmt for `else if`.
+  llvm::SMLoc ElseLoc; ///< The `else` keyword, if any.
   static bool classof(const Node *N) {
     return N->getKind() == NodeKind::IfStmt;
   }

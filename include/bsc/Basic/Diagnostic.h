@@ -120,6 +120,11 @@ public:
   /// `-Wno-<group>`: drops the warnings of a group (and their notes).
   /// Returns false if there is no such group.
   bool ignoreWarningGroup(llvm::StringRef Group);
+  /// `-Werror=<group>`: the warnings of a group are errors. Returns false
+  /// if there is no such group.
+  bool promoteWarningGroup(llvm::StringRef Group);
+  /// `-Werror`: every warning is an error.
+  void promoteAllWarnings() { AllWarningsAreErrors = true; }
   /// The names `-Wno-` takes, for messages.
   static std::string getWarningGroupList();
 
@@ -150,6 +155,8 @@ private:
   unsigned NumWarnings = 0;
   bool DroppingNotes = false;
   bool Ignored[diag::NumKinds] = {};
+  bool Promoted[diag::NumKinds] = {};
+  bool AllWarningsAreErrors = false;
 };
 
 /// Prints diagnostics the way clang does: `file:line:col: error: message`,
