@@ -15,6 +15,8 @@
 #    (and, second figure, the cycle's record copied into a log ring).
 # 3. Steps.bs, a parent task driving a child state machine, against the same
 #    state machines written in C (steps_reference.c).
+# 4. The cycle budget: the -O2 programs with the behavior compiled with
+#    --cycle-budget (a charge per loop pass; never running out here).
 #
 #   bench/run.sh [BUILD_DIR]        (default: build)
 #   BENCH_CYCLES=N                  cycles per callgrind run (default 100000)
@@ -105,6 +107,22 @@ for b in soccer wide; do
   traced=$(per_cycle "$OUT/trace-$b/$b" "$b")
   logged=$(per_cycle "$OUT/log-$b/$b" "$b")
   echo "$b: $plain -> $traced instructions per cycle with the record ($(pct "$plain" "$traced"); issue 10's budget: +10%), $logged with a copy of it into a log ring ($(pct "$plain" "$logged")); state bytes $(field state_bytes "$got")"
+done
+
+echo "== the cycle budget (-O2, --cycle-budget=1000000: a load, compare and store per loop pass)"
+for t in i586 x86_64; do
+  for b in soccer wide; do
+    shared/build.sh "$BUILD" "$SHARED" "$t" "$b" -O2 "$OUT/budget-$t-$b" -DBENCH_BUDGET
+    ref=$(field checksum "$("$OUT/proto-$t" "$b" verify)")
+    got=$("$OUT/budget-$t-$b/$b" "$b" verify)
+    if [[ $(field checksum "$got") != "$ref" ]]; then
+      echo "bench: $b $t with --cycle-budget: checksum $(field checksum "$got"), protothreads $ref" >&2
+      status=1
+    fi
+    plain=$(per_cycle "$OUT/bsc-$t-$b-O2" "$b")
+    budget=$(per_cycle "$OUT/budget-$t-$b/$b" "$b")
+    echo "$b $t: $plain -> $budget instructions per cycle ($(pct "$plain" "$budget")); state bytes $(field state_bytes "$got")"
+  done
 done
 
 echo "== Steps.bs against hand-written C (host)"

@@ -36,7 +36,7 @@ extern "C" {
 #endif
 
 /** Bumped whenever the layout below changes; bs_behavior_info carries it. */
-#define BS_ABI_VERSION 8
+#define BS_ABI_VERSION 9
 
 /** Task states (language.md): > 0 running, 0 done, < 0 failure. */
 #define BS_TASK_DONE 0
@@ -118,6 +118,43 @@ typedef struct bs_trace_layout {
   uint32_t offset;      /**< Of the record inside the state. */
 } bs_trace_layout;
 
+/** Cycle budgets (`bsc --cycle-budget=N`). Every pass of a loop of a task
+ *  or func, at the jump back to its head, costs one of the cycle's N
+ *  passes; a task's loop that yields on every way round is free (it takes
+ *  one pass per call of its task, and the calls are counted where they
+ *  loop). When none is left, the loop ends its func (which returns its
+ *  result's zero) or its task (which fails: TaskState::failure, and starts
+ *  from the top at its next call), and so does every loop that runs
+ *  after it in the same cycle: the cycle returns. The budget starts again
+ *  with the next cycle (at the first entry call whose bs_state_header.cycle
+ *  differs). The state holds a bs_budget_record at `offset` that says
+ *  which loop ran out first; behaviors compiled without the option have
+ *  none (budget 0). */
+typedef struct bs_loop_info {
+  const char *owner; /**< "Module::task" or "Module::func" */
+  uint32_t line;     /**< Of the loop's `for`, in the owner's file. */
+  uint32_t column;
+  int32_t task;      /**< The owner's index in bs_behavior_info.tasks, or -1
+                          for a func (which returns its result's zero). */
+} bs_loop_info;
+
+typedef struct bs_budget_layout {
+  uint32_t budget;           /**< N loop passes per cycle; 0: none. */
+  uint32_t offset;           /**< Of the bs_budget_record in the state. */
+  uint32_t num_loops;        /**< The loops the budget counts, in order. */
+  const bs_loop_info *loops;
+} bs_budget_layout;
+
+typedef struct bs_budget_record {
+  uint32_t cycle;      /**< The cycle `used` counts in. */
+  uint32_t used;       /**< Loop passes run in that cycle (at most budget). */
+  uint32_t ran_out;    /**< Cycles whose budget ran out, since bs_state_init. */
+  uint32_t loop;       /**< 1 + the index in bs_budget_layout.loops of the
+                            loop that ran out first in the last such cycle;
+                            0: never ran out. */
+  uint32_t loop_cycle; /**< That cycle. */
+} bs_budget_record;
+
 typedef struct bs_behavior_info {
   uint32_t abi_version; /**< BS_ABI_VERSION of the compiler that made it. */
   uint32_t state_size;  /**< Bytes of state the embedding must provide... */
@@ -138,6 +175,9 @@ typedef struct bs_behavior_info {
   /** `bsc --instrument`: where the behavior writes its trace record ("Trace
    *  records" below); all zero otherwise. */
   bs_trace_layout trace;
+  /** `bsc --cycle-budget=N`: the budget, its record and the loop table
+   *  ("Cycle budgets" above); all zero otherwise. */
+  bs_budget_layout budget;
 } bs_behavior_info;
 
 /** Zeroes a state: every task reports done and starts from the top at its
@@ -252,6 +292,35 @@ static inline uint32_t bs_task_last_call_at(const void *state,
   return *(const uint32_t *)((const unsigned char *)state +
                              task->frame_offset);
 }
+
+/** The budget record of a behavior compiled with `--cycle-budget`, or NULL
+ *  ("Cycle budgets" above). */
+static inline const bs_budget_record *
+bs_budget_record_at(const void *state, const bs_behavior_info *info) {
+  if (!info->budget.budget)
+    return NULL;
+  return (const bs_budget_record *)((const unsigned char *)state +
+                                    info->budget.offset);
+}
+
+/** The loop whose budget ran out in the state's current cycle (after the
+ *  cycle's entry calls), or NULL if none did: for a robot's log line such
+ *  as "cycle 812: loop of Striker::approach (line 40) ran out of budget". */
+static inline const bs_loop_info *
+bs_budget_ran_out(const void *state, const bs_behavior_info *info) {
+  const bs_budget_record *record = bs_budget_record_at(state, info);
+  if (!record || !record->loop ||
+      record->loop_cycle != ((const bs_state_header *)state)->cycle ||
+      record->loop > info->budget.num_loops)
+    return NULL;
+  return &info->budget.loops[record->loop - 1];
+}
+
+/** Prints on stderr which loop ran out of its budget in the state's current
+ *  cycle, if one did (bs_budget_ran_out), and returns 1 then, else 0.
+ *  Programs that bsc links with `--cycle-budget` call it after each cycle;
+ *  it uses stdio, like the io module. */
+int bs_report_budget(const void *state, const bs_behavior_info *info);
 
 /** The state that task `name` ("Module::task") left at its most recent call
  *  (BS_TASK_DONE if never called); `found` (may be NULL) tells whether the

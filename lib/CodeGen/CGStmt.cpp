@@ -303,6 +303,9 @@ void FunctionEmitter::emitFor(const ForStmt &S) {
   Builder.SetInsertPoint(StepBB);
   if (S.Step)
     emitStmt(S.Step);
+  if (CGM.getOptions().CycleBudget && !S.YieldsEveryPass &&
+      !Builder.GetInsertBlock()->getTerminator())
+    emitBudgetCharge(S);
   emitBranch(CondBB);
 
   EndBB->insertInto(Fn);

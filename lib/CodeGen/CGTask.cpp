@@ -321,16 +321,19 @@ void FunctionEmitter::emitTaskPrologue() {
   Builder.SetInsertPoint(StartBB);
 }
 
-void FunctionEmitter::emitTaskFinish() {
+void FunctionEmitter::emitTaskFinish(int32_t State) {
   // A finished task's values are dead: the next call resets the frame.
   if (llvm::Function *Destroy = CGM.getFrame(Task).Destroy)
     Builder.CreateCall(Destroy, {StatePtr});
   if (CGM.getOptions().Probes)
     storeResume(Task, 0);
-  storeTaskState(Task, Builder.getInt32(TaskDone));
+  storeTaskState(Task, Builder.getInt32(State));
   markEnded();
-  recordTraceExit(CGM.getLayout().Trace.finishedSlot(), nullptr);
-  emitTaskReturn(Builder.getInt32(TaskDone));
+  const BehaviorLayout::TraceLayout &Trace = CGM.getLayout().Trace;
+  recordTraceExit(State == TaskDone ? Trace.finishedSlot()
+                                    : Trace.budgetFailedSlot(),
+                  nullptr);
+  emitTaskReturn(Builder.getInt32(State));
 }
 
 void FunctionEmitter::emitTaskReturn(llvm::Value *State) {

@@ -66,6 +66,7 @@ ModuleEmitter::ModuleEmitter(const Behavior &B, llvm::Module &M,
   AccessTags[unsigned(Access::State)] = Tag("behavior state");
   AccessTags[unsigned(Access::Native)] = Tag("registered C++ field");
   AccessTags[unsigned(Access::TraceRecord)] = Tag("trace record");
+  AccessTags[unsigned(Access::Budget)] = Tag("budget record");
 }
 
 llvm::Type *ModuleEmitter::getValueType(const Type *T) {
@@ -453,14 +454,20 @@ void ModuleEmitter::layoutState() {
   BehaviorLayout::TraceLayout &Trace = Layout.Trace;
   Trace = {};
   if (Opts.Instrument) {
-    // Wide enough for every resume point and the finished value.
+    // Wide enough for every resume point and the finished value (and with
+    // a budget the value below it).
     size_t MostYields = 0;
     for (const TaskDecl *T : B.Tasks)
       MostYields = std::max(MostYields, T->Yields.size());
     Trace.SlotBytes = 1;
-    while (MostYields >= Trace.finishedSlot())
+    while (MostYields >= (Opts.CycleBudget ? Trace.budgetFailedSlot()
+                                           : Trace.finishedSlot()))
       Trace.SlotBytes *= 2;
     Trace.ClearSize = llvm::alignTo(B.Tasks.size() * Trace.SlotBytes, 4);
+    if (Opts.CycleBudget) {
+      Trace.BudgetWord = Trace.ClearSize;
+      Trace.ClearSize += 4;
+    }
     Trace.RecordSize = Trace.ClearSize;
     for (const TaskDecl *T : B.Tasks) {
       std::optional<uint64_t> Word;
@@ -475,6 +482,13 @@ void ModuleEmitter::layoutState() {
     TraceRecordField = StateFields.size();
     StateFields.push_back(llvm::ArrayType::get(I32, Trace.RecordSize / 4));
   }
+  // `--cycle-budget`: its record last (bscript.h bs_budget_record).
+  Layout.Budget = {};
+  if (Opts.CycleBudget) {
+    Layout.Budget.Budget = Opts.CycleBudget;
+    BudgetRecordField = StateFields.size();
+    StateFields.push_back(llvm::ArrayType::get(I32, BudgetRecordWords));
+  }
   StateTy = llvm::StructType::create(Ctx, StateFields, "bs.state");
 
   const llvm::DataLayout &DL = M.getDataLayout();
@@ -483,6 +497,8 @@ void ModuleEmitter::layoutState() {
   Layout.StateAlign = DL.getABITypeAlign(StateTy).value();
   if (Opts.Instrument)
     Trace.Offset = SL->getElementOffset(TraceRecordField);
+  if (Opts.CycleBudget)
+    Layout.Budget.Offset = SL->getElementOffset(BudgetRecordField);
   Layout.Tasks.clear();
   for (const TaskDecl *T : B.Tasks) {
     const FrameInfo &FI = Frames[T];
@@ -713,6 +729,7 @@ void ModuleEmitter::emitEntries() {
     F->getArg(0)->setName("state");
 
     llvm::IRBuilder<> IRB(llvm::BasicBlock::Create(Ctx, "entry", F));
+    emitBudgetStart(IRB, F->getArg(0));
     llvm::SmallVector<llvm::Value *, 4> Args = {F->getArg(0)};
     for (const ParamDecl *P : D->Params) {
       llvm::Value *A = F->getArg(P->Index + 1);
@@ -746,8 +763,12 @@ void ModuleEmitter::emitInfo() {
       llvm::StructType::create(Ctx, {Ptr, Ptr, I64}, "bs_binding_module");
   auto *TraceTy =
       llvm::StructType::create(Ctx, {I32, I32, I32, I32}, "bs_trace_layout");
+  auto *LoopTy =
+      llvm::StructType::create(Ctx, {Ptr, I32, I32, I32}, "bs_loop_info");
+  auto *BudgetTy = llvm::StructType::create(Ctx, {I32, I32, I32, Ptr},
+                                            "bs_budget_layout");
   auto *InfoTy = llvm::StructType::create(
-      Ctx, {I32, I32, I32, I32, Ptr, I32, Ptr, Ptr, Ptr, TraceTy},
+      Ctx, {I32, I32, I32, I32, Ptr, I32, Ptr, Ptr, Ptr, TraceTy, BudgetTy},
       "bs_behavior_info");
 
   // A private constant array, or null when there is nothing to list.
@@ -805,7 +826,8 @@ void ModuleEmitter::emitInfo() {
                BehaviorDestroy ? static_cast<llvm::Constant *>(BehaviorDestroy)
                                : llvm::ConstantPointerNull::get(
                                      llvm::PointerType::getUnqual(Ctx)),
-               getDebugTables(), TraceInit});
+               getDebugTables(), TraceInit,
+               getBudgetInfo(BudgetTy, LoopTy)});
   Info = new llvm::GlobalVariable(M, InfoTy, /*isConstant=*/true,
                                   llvm::GlobalValue::ExternalLinkage, Init,
                                   Layout.InfoSymbol);
@@ -914,14 +936,22 @@ void ModuleEmitter::emitProgramMain() {
 
   IRB.SetInsertPoint(Body);
   IRB.CreateCall(Begin, {State, WorldObjects[0], WorldObjects[1]});
+  emitBudgetStart(IRB, State);
   llvm::Function *Callee = getFunction(Entry);
   llvm::SmallVector<llvm::Value *, 4> Args = {State};
   // The driver refuses entries with parameters; zeros keep the IR valid.
   for (unsigned A = 1; A < Callee->arg_size(); ++A)
     Args.push_back(llvm::Constant::getNullValue(Callee->getArg(A)->getType()));
   IRB.CreateCall(Callee, Args);
+  // `--cycle-budget`: a cycle that ran out says where, on stderr.
+  if (Opts.CycleBudget)
+    IRB.CreateCall(M.getOrInsertFunction(
+                       "bs_report_budget",
+                       llvm::FunctionType::get(I32, {Ptr, Ptr}, false)),
+                   {State, Info});
+  // The budget's start split the cycle's block: the edge back is from here.
   I->addIncoming(IRB.CreateAdd(I, llvm::ConstantInt::get(I32, 1), "i.next"),
-                 Body);
+                 IRB.GetInsertBlock());
   IRB.CreateBr(Cond);
 
   // The end of the behavior: the class values running tasks still hold,
@@ -1108,22 +1138,25 @@ void FunctionEmitter::emitFuncPrologue() {
 }
 
 void FunctionEmitter::emitFuncEpilogue() {
-  if (!Builder.GetInsertBlock()->getTerminator()) {
-    // Sema makes every path of a func with a result return; should a path
-    // still end here, it returns the zero value rather than anything
-    // undefined (runtime safety).
-    const Type *ResultTy = llvm::cast<FuncDecl>(D).ResultTy;
-    emitLiveCleanups(0, /*Forget=*/false);
-    if (ResultTy->isClass()) {
-      emitClassInit(ResultTy->getClass(), Fn->getArg(1));
-      Builder.CreateRetVoid();
-    } else if (ResultTy->isVoid())
-      Builder.CreateRetVoid();
-    else if (ResultTy->isString())
-      Builder.CreateRet(CGM.getString(""));
-    else
-      Builder.CreateRet(llvm::Constant::getNullValue(Fn->getReturnType()));
-  }
+  // Sema makes every path of a func with a result return; should a path
+  // still end here, it returns the zero value rather than anything
+  // undefined (runtime safety).
+  if (!Builder.GetInsertBlock()->getTerminator())
+    emitFuncZeroReturn();
+}
+
+void FunctionEmitter::emitFuncZeroReturn() {
+  const Type *ResultTy = llvm::cast<FuncDecl>(D).ResultTy;
+  emitLiveCleanups(0, /*Forget=*/false);
+  if (ResultTy->isClass()) {
+    emitClassInit(ResultTy->getClass(), Fn->getArg(1));
+    Builder.CreateRetVoid();
+  } else if (ResultTy->isVoid())
+    Builder.CreateRetVoid();
+  else if (ResultTy->isString())
+    Builder.CreateRet(CGM.getString(""));
+  else
+    Builder.CreateRet(llvm::Constant::getNullValue(Fn->getReturnType()));
 }
 
 //===----------------------------------------------------------------------===//

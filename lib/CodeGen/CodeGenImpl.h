@@ -53,6 +53,7 @@ constexpr unsigned FrameLastCall = 0;
 /// Values of a task's state (bscript.h BS_TASK_*).
 constexpr int32_t TaskDone = 0;
 constexpr int32_t TaskRunning = 1;
+constexpr int32_t TaskFailure = -1;
 /// The bit of a task's last call that marks a call that ended the task
 /// (bscript.h BS_LAST_CALL_ENDED).
 constexpr uint32_t LastCallEnded = 0x80000000u;
@@ -298,7 +299,7 @@ public:
   /// passed to C++ without a tag (they may alias anything). An
   /// instrumented behavior's trace record overlaps neither, so that
   /// writing it reloads nothing.
-  enum class Access { State, Native, TraceRecord };
+  enum class Access { State, Native, TraceRecord, Budget };
   llvm::MDNode *getAccessTag(Access A) const { return AccessTags[unsigned(A)]; }
 
   /// With CodeGenOptions::DebugInfo, the DWARF being built; else null.
@@ -319,6 +320,26 @@ public:
   /// With CodeGenOptions::Instrument: the field of %bs.state that holds
   /// the cycle's trace record.
   unsigned getTraceRecordField() const { return TraceRecordField; }
+
+  // Cycle budgets (CodeGenOptions::CycleBudget, CGBudget.cpp) ---------------
+
+  /// The words of bs_budget_record: cycle, used, ran_out, loop, loop_cycle.
+  enum BudgetWord { BudgetCycle, BudgetUsed, BudgetRanOut, BudgetLoop,
+                    BudgetLoopCycle, BudgetRecordWords };
+  /// A pointer to a word of the state's budget record.
+  llvm::Value *getBudgetWordPtr(llvm::IRBuilderBase &IRB, llvm::Value *State,
+                                BudgetWord W);
+  /// Adds a loop to the budget's loop table; returns its number (from 1).
+  unsigned addBudgetLoop(const CallableDecl *Owner, llvm::SMLoc Loc);
+  /// `bs.budget.ran_out(ptr state, i32 loop)`: records that the cycle ran
+  /// out in `loop` unless another loop already did in this cycle.
+  llvm::Function *getBudgetRanOut();
+  /// At an entry: a new cycle (the header's cycle differs from the
+  /// record's) starts with no pass used.
+  void emitBudgetStart(llvm::IRBuilderBase &IRB, llvm::Value *State);
+  /// bs_behavior_info.budget's initializer.
+  llvm::Constant *getBudgetInfo(llvm::StructType *LayoutTy,
+                                llvm::StructType *LoopTy);
   /// The field of %bs.state holding the tasks' narrow headers (FrameInfo),
   /// 0 if no task has one.
   unsigned getHeadersField() const { return HeadersField; }
@@ -374,6 +395,8 @@ private:
 
   llvm::StructType *StateTy = nullptr;
   unsigned TraceRecordField = 0;
+  unsigned BudgetRecordField = 0;
+  llvm::Function *BudgetRanOutFn = nullptr;
   unsigned HeadersField = 0;
   llvm::DenseMap<const TaskDecl *, FrameInfo> Frames;
   llvm::DenseMap<const CallableDecl *, llvm::Function *> Functions;
@@ -382,7 +405,7 @@ private:
   llvm::Function *StringEquals = nullptr;
   llvm::GlobalVariable *Info = nullptr;
   llvm::Function *BehaviorDestroy = nullptr; ///< Null: nothing to destroy.
-  llvm::MDNode *AccessTags[3] = {};
+  llvm::MDNode *AccessTags[4] = {};
   /// emitReplLine: the REPL's variables at their addresses.
   const llvm::DenseMap<const Decl *, uint64_t> *ReplSlots = nullptr;
   std::unique_ptr<DebugInfoEmitter> DebugInfo;
@@ -404,12 +427,15 @@ private:
   llvm::AllocaInst *createSlot(const Type *T, const llvm::Twine &Name);
   void emitFuncPrologue();
   void emitFuncEpilogue();
+  /// Returns the zero value of the func's result, after its cleanups.
+  void emitFuncZeroReturn();
 
   // CGTask.cpp: everything a generator needs.
   void emitTaskPrologue();
   void emitTaskEpilogue();
-  /// The task's state = done; ret [done].
-  void emitTaskFinish();
+  /// The task ends: its state = `State` (done, or failure when its cycle
+  /// ran out of budget); ret [State].
+  void emitTaskFinish(int32_t State = TaskDone);
   /// Marks the task's last call as ended (CGTask.cpp, "The last call").
   void markEnded();
   /// Returns from a task's call with its state, or void (CGTask.cpp, "The
@@ -442,6 +468,10 @@ private:
   void emitAssign(const AssignStmt &S);
   void emitIf(const IfStmt &S);
   void emitFor(const ForStmt &S);
+  /// With CodeGenOptions::CycleBudget, at a loop's jump back to its head:
+  /// one pass of the budget, or the end of this func or task when none is
+  /// left (CGBudget.cpp).
+  void emitBudgetCharge(const ForStmt &S);
   void emitBreak(const BreakStmt &S);
   void emitContinue(const ContinueStmt &S);
   void emitReturn(const ReturnStmt &S);

@@ -69,6 +69,11 @@ DebugTables debug::buildDebugTables(const Behavior &B,
   };
   T.RecordSize = Layout.Trace.RecordSize;
   T.SlotBytes = Layout.Trace.SlotBytes;
+  T.Budget = Layout.Budget.Budget;
+  T.BudgetWord = Layout.Trace.BudgetWord;
+  for (const BehaviorLayout::BudgetLayout::Loop &L : Layout.Budget.Loops)
+    T.Loops.push_back(
+        {L.Owner->getQualifiedName(), FileOf(L.Loc), LineOf(L.Loc)});
   for (const BehaviorLayout::Task &LT : Layout.Tasks) {
     const TaskDecl *D = LT.Decl;
     DebugTables::Task Task;
@@ -109,7 +114,7 @@ DebugTables debug::buildDebugTables(const Behavior &B,
 //===----------------------------------------------------------------------===//
 
 /// Bumped when the JSON form of the tables changes.
-static constexpr int64_t TablesVersion = 2;
+static constexpr int64_t TablesVersion = 3;
 
 llvm::json::Value debug::toJSON(const DebugTables &T) {
   llvm::json::Array Tasks;
@@ -135,11 +140,23 @@ llvm::json::Value debug::toJSON(const DebugTables &T) {
       O["stateWord"] = *Task.StateWord;
     Tasks.push_back(std::move(O));
   }
-  return llvm::json::Object{
+  llvm::json::Object Root{
       {"version", TablesVersion},
       {"record", llvm::json::Object{{"size", T.RecordSize},
                                     {"slotBytes", T.SlotBytes}}},
       {"tasks", std::move(Tasks)}};
+  if (T.Budget) {
+    llvm::json::Array Loops;
+    for (const DebugTables::Loop &L : T.Loops)
+      Loops.push_back(llvm::json::Object{
+          {"owner", L.Owner}, {"file", L.File}, {"line", L.Line}});
+    llvm::json::Object Budget{{"passes", T.Budget},
+                              {"loops", std::move(Loops)}};
+    if (T.BudgetWord)
+      Budget["word"] = *T.BudgetWord;
+    Root["budget"] = std::move(Budget);
+  }
+  return Root;
 }
 
 static llvm::Error badTables(const llvm::Twine &Why) {
@@ -241,6 +258,28 @@ llvm::Expected<DebugTables> debug::parseDebugTables(llvm::StringRef Text) {
                              FO->getBoolean("param").value_or(false)});
     }
     T.Tasks.push_back(std::move(Task));
+  }
+  if (const llvm::json::Object *Budget = Root->getObject("budget")) {
+    std::optional<int64_t> Passes = Budget->getInteger("passes");
+    const llvm::json::Array *Loops = Budget->getArray("loops");
+    if (!Passes || *Passes <= 0 || *Passes > int64_t(UINT32_MAX) || !Loops)
+      return badTables("no valid budget");
+    T.Budget = *Passes;
+    for (const llvm::json::Value &V : *Loops) {
+      const llvm::json::Object *O = V.getAsObject();
+      auto Owner = O ? O->getString("owner") : std::nullopt;
+      auto File = O ? O->getString("file") : std::nullopt;
+      auto Line = O ? O->getInteger("line") : std::nullopt;
+      if (!Owner || !File || !Line)
+        return badTables("a loop lacks its owner, file or line");
+      T.Loops.push_back({Owner->str(), File->str(), unsigned(*Line)});
+    }
+    if (std::optional<int64_t> Word = Budget->getInteger("word")) {
+      if (*Word < int64_t(T.Tasks.size() * T.SlotBytes) || *Word % 4 != 0 ||
+          *Word + 4 > int64_t(T.RecordSize))
+        return badTables("the budget word is outside the record");
+      T.BudgetWord = *Word;
+    }
   }
   return T;
 }
@@ -381,6 +420,11 @@ debug::decodeTraceRecord(const DebugTables &T,
       Records.push_back({I, 0, BS_TASK_DONE});
       continue;
     }
+    // Failed because the cycle ran out of budget (bscript.h).
+    if (T.BudgetWord && Value == Finished - 1) {
+      Records.push_back({I, 0, BS_TASK_FAILURE});
+      continue;
+    }
     if (Value > Task.YieldValues.size())
       return llvm::createStringError(
           llvm::inconvertibleErrorCode(),
@@ -417,8 +461,26 @@ debug::parseTraceLog(llvm::StringRef Bytes, const DebugTables &T) {
       return Fail("cycle " + llvm::Twine(C.Cycle) + ": " +
                   llvm::toString(Records.takeError()));
     C.Records = std::move(*Records);
+    if (T.BudgetWord) {
+      C.BudgetLoop = endian::read32le(Record.data() + *T.BudgetWord);
+      if (C.BudgetLoop > T.Loops.size())
+        return Fail("cycle " + llvm::Twine(C.Cycle) + ": the budget ran out "
+                    "in loop " + llvm::Twine(C.BudgetLoop) + ", but there are " +
+                    llvm::Twine(T.Loops.size()));
+    }
     Cycles.push_back(std::move(C));
     Pos += 4 + T.RecordSize;
   }
   return Cycles;
+}
+
+std::string debug::formatBudgetLine(const DebugTables &T,
+                                    const LoggedCycle &C) {
+  if (!C.BudgetLoop || C.BudgetLoop > T.Loops.size())
+    return "";
+  const DebugTables::Loop &L = T.Loops[C.BudgetLoop - 1];
+  return ("cycle " + llvm::Twine(C.Cycle) + " ran out of its budget of " +
+          llvm::Twine(T.Budget) + " loop passes in the loop of '" + L.Owner +
+          "' at " + L.File + ":" + llvm::Twine(L.Line))
+      .str();
 }

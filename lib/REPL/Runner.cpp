@@ -79,6 +79,7 @@ bsc::loadBehavior(Compilation &C, const CallableDecl &Entry,
   CGOpts.DebugInfo = Opts.DebugInfo;
   CGOpts.Sources = &C.SM;
   CGOpts.OptLevel = Opts.OptLevel;
+  CGOpts.CycleBudget = Opts.CycleBudget;
   // The JIT calls the entry only.
   CGOpts.Exports.emplace();
   if (isCallableFromC(Entry))
@@ -308,6 +309,22 @@ llvm::json::Value bsc::recordCycle(debug::ValueIO &Values,
   return Rec;
 }
 
+/// `--cycle-budget`: a warning at the loop that ran out first (the
+/// behavior went on: its task failed), with how many cycles ran out.
+static void reportBudgetRanOut(Compilation &C, const LoadedBehavior &L,
+                               const BehaviorSession &S, uint32_t Cycle,
+                               const bs_loop_info &Loop, unsigned RanOut) {
+  const bs_budget_layout &Budget = S.getInfo().budget;
+  size_t Index = &Loop - Budget.loops;
+  const BehaviorLayout::BudgetLayout::Loop &Where = L.Layout.Budget.Loops[Index];
+  C.Diags.report(Where.Loc, llvm::isa<TaskDecl>(Where.Owner)
+                                ? diag::warn_budget_ran_out_task
+                                : diag::warn_budget_ran_out_func)
+      << Cycle << Budget.budget << Where.Owner->getQualifiedName();
+  if (RanOut > 1)
+    C.Diags.report(Where.Loc, diag::note_budget_ran_out_count) << RanOut;
+}
+
 bool bsc::runBehavior(Compilation &C, LoadedBehavior &L, BehaviorSession &S,
                       const RunOptions &Opts, llvm::raw_ostream &OS) {
   std::vector<ReplayLine> Replay;
@@ -340,6 +357,9 @@ bool bsc::runBehavior(Compilation &C, LoadedBehavior &L, BehaviorSession &S,
     if (L.Layout.Tasks[T].Decl == EntryTask)
       EntryIndex = T;
   bool ReportedFailure = false;
+  // `--cycle-budget`: the first cycle that ran out, and how many did.
+  std::optional<std::pair<uint32_t, const bs_loop_info *>> FirstRanOut;
+  unsigned RanOut = 0;
 
   unsigned Cycles = Replay.empty() ? Opts.Cycles : Replay.size();
   for (unsigned I = 0; I < Cycles; ++I) {
@@ -355,6 +375,11 @@ bool bsc::runBehavior(Compilation &C, LoadedBehavior &L, BehaviorSession &S,
     BehaviorSession::Outcome O = S.runCycle(Opts.CycleLimitMs);
     if (!reportOutcome(C, L, O, Cycle, Opts.CycleLimitMs))
       return false;
+    if (const bs_loop_info *Loop = bs_budget_ran_out(S.getState(), &S.getInfo())) {
+      ++RanOut;
+      if (!FirstRanOut)
+        FirstRanOut = {Cycle, Loop};
+    }
 
     // The objects are read as JSON only for what asks for them: a plain
     // run of many cycles does no more than the robot would.
@@ -400,6 +425,9 @@ bool bsc::runBehavior(Compilation &C, LoadedBehavior &L, BehaviorSession &S,
     if (Opts.StopAfterCycle && Opts.StopAfterCycle())
       break;
   }
+  if (FirstRanOut)
+    reportBudgetRanOut(C, L, S, FirstRanOut->first, *FirstRanOut->second,
+                       RanOut);
   if (Record)
     Record->keep();
   return true;

@@ -1,9 +1,10 @@
-/*===- report.c - why a program cannot start its behavior -----------------===*
+/*===- report.c - what a program tells about its behavior -----------------===*
  *
- * The message a program that bsc links prints when bs_state_init refuses
- * its state. Like io.c it uses stdio, so it is kept out of bscript.c; an
- * embedding that has no stderr calls bs_check_bindings and reports in its
- * own way.
+ * The messages a program that bsc links prints when bs_state_init refuses
+ * its state, and when a cycle ran out of its budget (`--cycle-budget`).
+ * Like io.c it uses stdio, so it is kept out of bscript.c; an embedding
+ * that has no stderr calls bs_check_bindings and bs_budget_ran_out and
+ * reports in its own way.
  *===----------------------------------------------------------------------===*/
 #include "bscript/bscript.h"
 #include <stdio.h>
@@ -26,5 +27,18 @@ int bs_report_init_failure(const bs_behavior_info *info, int code) {
     fprintf(stderr, "bscript: error: cannot initialise the behavior state "
                     "(ABI version or alignment, code %d)\n",
             code);
+  return 1;
+}
+
+int bs_report_budget(const void *state, const bs_behavior_info *info) {
+  const bs_loop_info *loop = bs_budget_ran_out(state, info);
+  if (!loop)
+    return 0;
+  fprintf(stderr,
+          "bscript: warning: cycle %u ran out of its budget of %u loop "
+          "passes in the loop of '%s' at line %u, which %s\n",
+          (unsigned)((const bs_state_header *)state)->cycle,
+          (unsigned)info->budget.budget, loop->owner, (unsigned)loop->line,
+          loop->task >= 0 ? "failed the task" : "returned its zero");
   return 1;
 }

@@ -200,7 +200,7 @@ public:
   void warnIfEndless(const ForStmt *S);
   /// warn_loop_skips_yield: a task's loop with a path around it that
   /// passes none of its yields (after its body is checked).
-  void checkLoopYields(const ForStmt *S);
+  void checkLoopYields(ForStmt *S);
   void checkVarDecl(VarDecl *V);
 
   //--- SemaStmt.cpp ---------------------------------------------------------

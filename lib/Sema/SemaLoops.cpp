@@ -377,20 +377,25 @@ std::optional<uint64_t> countPasses(Sema &S, const ForStmt *F) {
 }
 } // namespace
 
-void Sema::checkLoopYields(const ForStmt *F) {
+void Sema::checkLoopYields(ForStmt *F) {
   if (!llvm::isa<TaskDecl>(CurCallable) || !F->Body)
     return;
   // Only a cycle loop: one that yields itself, in its step or body.
   if (!containsYield(F->Body) && !(F->Step && containsYield(F->Step)))
     return;
-  if (F->Step && llvm::isa<YieldStmt>(F->Step))
-    return; // Every way around passes the step's yield.
-  if (countPasses(*this, F))
+  // Every way round passes the step's yield.
+  if (F->Step && llvm::isa<YieldStmt>(F->Step)) {
+    F->YieldsEveryPass = true;
     return;
+  }
   SkipPaths Paths = SkipFinder(*this).visit(F->Body);
   std::optional<Witness> Round =
       Paths.FallsThrough ? Paths.FallsThrough : Paths.Continues;
-  if (!Round)
+  if (!Round) {
+    F->YieldsEveryPass = true;
+    return;
+  }
+  if (countPasses(*this, F))
     return;
   diag(F->getLoc(), diag::warn_loop_skips_yield);
   const Witness &W = *Round;

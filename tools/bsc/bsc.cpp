@@ -148,6 +148,12 @@ cl::opt<bool> InstrumentFlag(
              "the debugger's tables (task names, yield lines) in the object, "
              "for `bsc trace-decode` of robot trace logs"),
     cl::cat(BscCategory));
+cl::opt<std::string> CycleBudgetArg(
+    "cycle-budget",
+    cl::desc("Give each cycle N loop passes: a task whose loop runs past them "
+             "fails and the cycle returns; the state records the loop "
+             "(bscript.h, \"Cycle budgets\")"),
+    cl::value_desc("N"), BSC_BOTH, cl::cat(BscCategory));
 cl::opt<std::string> TraceObject(
     "object", cl::desc("The object compiled with --instrument"),
     cl::value_desc("file.o"), cl::cat(BscCategory), cl::sub(TraceDecodeCmd),
@@ -330,6 +336,20 @@ bool applyWarningOptions(DiagnosticEngine &Diags) {
     }
   }
   return OK;
+}
+
+/// Checks --cycle-budget (1 to 2^32 - 1 loop passes; unset is 0, none);
+/// reports and returns false if it is bad.
+bool parseCycleBudget(DiagnosticEngine &Diags, uint32_t &Passes) {
+  Passes = 0;
+  if (CycleBudgetArg.getNumOccurrences() == 0)
+    return true;
+  if (llvm::StringRef(CycleBudgetArg).getAsInteger(10, Passes) || !Passes) {
+    Diags.report(llvm::SMLoc(), diag::err_bad_option_value)
+        << CycleBudgetArg.getValue() << "--cycle-budget";
+    return false;
+  }
+  return true;
 }
 
 /// Checks --cycle-limit; reports and returns false if it is bad.
@@ -560,6 +580,8 @@ int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
     return finish(C);
   CodeGenOptions CGOpts;
   CGOpts.Instrument = InstrumentFlag;
+  if (!parseCycleBudget(C.Diags, CGOpts.CycleBudget))
+    return finish(C);
   CGOpts.NarrowX87Floats = usesX87Floats(*TM);
   CGOpts.DebugInfo = DebugInfo;
   CGOpts.Sources = &C.SM;
@@ -680,6 +702,8 @@ int runJIT(Compilation &C, const FrontendOptions &FOpts) {
   ROpts.Trace = TraceFlag;
   ROpts.PrintOutput = PrintOutputFlag;
   OptionsOK &= parseCycleLimit(C.Diags, ROpts.CycleLimitMs);
+  uint32_t CycleBudget = 0;
+  OptionsOK &= parseCycleBudget(C.Diags, CycleBudget);
   if (!runFrontend(C, FOpts) || !OptionsOK)
     return finish(C);
   const CallableDecl *Entry = findProgramEntry(C, EntryName);
@@ -690,6 +714,7 @@ int runJIT(Compilation &C, const FrontendOptions &FOpts) {
   LOpts.StandardModules = FOpts.StandardModules;
   LOpts.BindObjects = FOpts.BindObjects;
   LOpts.DebugInfo = DebugInfo;
+  LOpts.CycleBudget = CycleBudget;
   auto Loaded = loadBehavior(C, *Entry, LOpts);
   if (!Loaded)
     return finishWithInternalError(C, Loaded.takeError());
@@ -776,9 +801,13 @@ int decodeTrace(Compilation &C) {
       debug::parseTraceLog((*Log)->getBuffer(), *Tables);
   if (!Cycles)
     return Fail(TraceLog, llvm::toString(Cycles.takeError()));
-  for (const debug::LoggedCycle &Cycle : *Cycles)
+  for (const debug::LoggedCycle &Cycle : *Cycles) {
     llvm::outs() << "cycle " << Cycle.Cycle << ": "
                  << debug::formatTraceLine(*Tables, Cycle.Records) << "\n";
+    std::string Budget = debug::formatBudgetLine(*Tables, Cycle);
+    if (!Budget.empty())
+      llvm::outs() << Budget << "\n";
+  }
   return finish(C);
 }
 

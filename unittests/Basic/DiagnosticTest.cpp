@@ -108,7 +108,33 @@ TEST(DiagnosticTest, WarningGroupsSilenceTheirWarningsAndNotes) {
   EXPECT_EQ(D.getDiagnostics()[0].Kind, diag::warn_unreachable_code);
   EXPECT_EQ(D.getNumWarnings(), 1u);
   EXPECT_EQ(DiagnosticEngine::getWarningGroupList(),
-            "'yield-loop', 'unreachable-code', 'double-yield', 'duplicate-require'");
+            "'yield-loop', 'unreachable-code', 'double-yield', "
+            "'skipped-yield', 'duplicate-require'");
+}
+
+/// -Werror makes every warning an error (and says so); -Werror=<group>
+/// one group's; a silenced group stays silent.
+TEST(DiagnosticTest, WerrorPromotesWarnings) {
+  DiagnosticEngine D;
+  EXPECT_FALSE(D.promoteWarningGroup("no-such-group"));
+  EXPECT_TRUE(D.promoteWarningGroup("skipped-yield"));
+  D.report(llvm::SMLoc(), diag::warn_loop_skips_yield);
+  D.report(llvm::SMLoc(), diag::warn_unreachable_code) << "return";
+  ASSERT_EQ(D.getDiagnostics().size(), 2u);
+  EXPECT_EQ(D.getDiagnostics()[0].Sev, Severity::Error);
+  EXPECT_TRUE(llvm::StringRef(D.getDiagnostics()[0].Message)
+                  .ends_with(" [-Werror]"));
+  EXPECT_EQ(D.getDiagnostics()[1].Sev, Severity::Warning);
+  EXPECT_EQ(D.getNumErrors(), 1u);
+
+  DiagnosticEngine All;
+  All.promoteAllWarnings();
+  EXPECT_TRUE(All.ignoreWarningGroup("unreachable-code"));
+  All.report(llvm::SMLoc(), diag::warn_unreachable_code) << "return";
+  All.report(llvm::SMLoc(), diag::warn_double_yield);
+  ASSERT_EQ(All.getDiagnostics().size(), 1u);
+  EXPECT_EQ(All.getDiagnostics()[0].Kind, diag::warn_double_yield);
+  EXPECT_TRUE(All.hasErrors());
 }
 
 } // namespace

@@ -537,6 +537,45 @@ TEST_F(CodeGenTest, TaskInfoMatchesBscriptH) {
   EXPECT_EQ(Field(5), L.Tasks[0].State.Bytes);
 }
 
+/// bs_budget_layout, bs_loop_info and bs_budget_record as the IR lays them
+/// out, and the layout's figures as BehaviorLayout has them.
+TEST_F(CodeGenTest, BudgetInfoMatchesBscriptH) {
+  ASSERT_TRUE(check({{"m", R"(
+func sum(int n) : int
+    int s = 0
+    for(int i = 0; i < n; i += 1)
+        s += i
+    return s
+task spin()
+    for(;;)
+        if(sum(3) > 2)
+            yield
+)"}}));
+  CodeGenOptions Opts;
+  Opts.CycleBudget = 77;
+  BehaviorLayout L;
+  std::unique_ptr<llvm::Module> M = emit(Targets[1], L, Opts);
+  const llvm::DataLayout &DL = M->getDataLayout();
+  auto *Loop = llvm::StructType::getTypeByName(Ctx, "bs_loop_info");
+  auto *Budget = llvm::StructType::getTypeByName(Ctx, "bs_budget_layout");
+  ASSERT_TRUE(Loop && Budget);
+  if (sizeof(void *) == 8) {
+    EXPECT_EQ(DL.getTypeAllocSize(Loop), sizeof(bs_loop_info));
+    EXPECT_EQ(DL.getStructLayout(Loop)->getElementOffset(3),
+              offsetof(bs_loop_info, task));
+    EXPECT_EQ(DL.getTypeAllocSize(Budget), sizeof(bs_budget_layout));
+    EXPECT_EQ(DL.getStructLayout(Budget)->getElementOffset(3),
+              offsetof(bs_budget_layout, loops));
+  }
+  EXPECT_EQ(5 * 4u, sizeof(bs_budget_record));
+  EXPECT_EQ(77u, L.Budget.Budget);
+  ASSERT_EQ(2u, L.Budget.Loops.size());
+  EXPECT_EQ("m::sum", L.Budget.Loops[0].Owner->getQualifiedName());
+  EXPECT_EQ("m::spin", L.Budget.Loops[1].Owner->getQualifiedName());
+  EXPECT_LE(L.Budget.Offset + sizeof(bs_budget_record), L.StateSize);
+  EXPECT_EQ(0u, L.Budget.Offset % 4);
+}
+
 /// A resume point is as wide as the task's yields need, a state 1 byte
 /// only when every state it can hold fits; the widest narrow headers come
 /// first so that none is padded.

@@ -285,7 +285,7 @@ TEST(DebugTraceTest, TablesSurviveJSON) {
                      "\"line\":1,\"yields\":[3],\"callers\":[],"
                      "\"fields\":[],";
   auto Tables = [](const std::string &Record, const std::string &Task) {
-    return "{\"version\":2,\"record\":" + Record + ",\"tasks\":[" + Task +
+    return "{\"version\":3,\"record\":" + Record + ",\"tasks\":[" + Task +
            "]}";
   };
   std::string Layout = "{\"size\":8,\"slotBytes\":1}";
@@ -364,6 +364,60 @@ TEST(DebugTraceTest, TraceRecordsDecodeToActivations) {
   ASSERT_FALSE(bool(R));
   EXPECT_EQ("byte 0: cycle 1: task M::walk stopped at yield 3, but it has 2",
             llvm::toString(R.takeError()));
+}
+
+/// `--cycle-budget` with `--instrument`: the record's budget word names the
+/// loop that ran out (1 + its index), and a task the budget failed has the
+/// slot one below "finished"; the tables carry both through JSON.
+TEST(DebugTraceTest, BudgetWordNamesTheLoopThatRanOut) {
+  DebugTables T = makeTables();
+  T.RecordSize = 12;
+  T.Budget = 1000;
+  T.BudgetWord = 8;
+  T.Loops = {{"M::walk", "M.bs", 13}, {"M::main", "M.bs", 33}};
+  auto Back = parseDebugTables(toJSONString(toJSON(T)));
+  ASSERT_TRUE(bool(Back)) << llvm::toString(Back.takeError());
+  EXPECT_EQ(1000u, Back->Budget);
+  EXPECT_EQ(std::optional<uint64_t>(8), Back->BudgetWord);
+  ASSERT_EQ(2u, Back->Loops.size());
+  EXPECT_EQ("M::main", Back->Loops[1].Owner);
+  EXPECT_EQ(33u, Back->Loops[1].Line);
+  // Cycle 9: walk failed by the budget (0xfe), main waits at its first
+  // yield; loop 1 (walk's) ran out. Cycle 10: nothing ran out.
+  const char Log[] = "\x09\0\0\0"
+                     "\xfe\0\1\0\0\0\0\0\1\0\0\0"
+                     "\x0a\0\0\0"
+                     "\0\0\1\0\0\0\0\0\0\0\0\0";
+  auto Cycles = parseTraceLog(llvm::StringRef(Log, 32), *Back);
+  ASSERT_TRUE(bool(Cycles)) << llvm::toString(Cycles.takeError());
+  ASSERT_EQ(2u, Cycles->size());
+  EXPECT_EQ("main > walk [failure]",
+            formatTraceLine(*Back, (*Cycles)[0].Records));
+  EXPECT_EQ(1u, (*Cycles)[0].BudgetLoop);
+  EXPECT_EQ("cycle 9 ran out of its budget of 1000 loop passes in the loop "
+            "of 'M::walk' at M.bs:13",
+            formatBudgetLine(*Back, (*Cycles)[0]));
+  EXPECT_EQ("", formatBudgetLine(*Back, (*Cycles)[1]));
+  // A word naming a loop the tables do not have.
+  const char Bad[] = "\x09\0\0\0\0\0\0\0\0\0\0\0\3\0\0\0";
+  auto R = parseTraceLog(llvm::StringRef(Bad, 16), *Back);
+  ASSERT_FALSE(bool(R));
+  EXPECT_EQ("byte 0: cycle 9: the budget ran out in loop 3, but there are 2",
+            llvm::toString(R.takeError()));
+  // Damaged budgets: no passes, a loop without its line, a word outside.
+  std::string JSON = toJSONString(toJSON(T));
+  for (auto [From, To] : {std::pair<std::string, std::string>{
+                              "\"passes\":1000", "\"passes\":0"},
+                          {"\"line\":13", "\"lines\":13"},
+                          {"\"word\":8", "\"word\":12"}}) {
+    std::string Damaged = JSON;
+    size_t At = Damaged.find(From);
+    ASSERT_NE(std::string::npos, At) << From;
+    Damaged.replace(At, From.size(), To);
+    auto D = parseDebugTables(Damaged);
+    EXPECT_FALSE(bool(D)) << Damaged;
+    llvm::consumeError(D.takeError());
+  }
 }
 
 } // namespace

@@ -385,6 +385,10 @@ public:
   Expr *Cond;
   Stmt *Step;
   BlockStmt *Body;
+  /// Sema: a task's loop whose every way round passes one of its yields,
+  /// so it takes at most one pass per call of its task and cannot run
+  /// away by itself: a cycle budget need not count it (CGBudget.cpp).
+  bool YieldsEveryPass = false;
   static bool classof(const Node *N) {
     return N->getKind() == NodeKind::ForStmt;
   }

@@ -57,6 +57,12 @@ struct CodeGenOptions {
   /// graph, the record's layout; bsc/Debug/Trace.h) as JSON, in the section
   /// DebugTablesSection, so that a robot's trace log can be decoded offline.
   bool Instrument = false;
+  /// `--cycle-budget=N` (bscript.h "Cycle budgets"): every pass of a loop,
+  /// at its jump back to the head, costs one of N per cycle; when none is
+  /// left the loop fails its task (or returns its func's zero) and the
+  /// record after the frames (BehaviorLayout::Budget) names it. Each entry
+  /// starts the budget of a new cycle. 0: no budget, and no code for it.
+  uint32_t CycleBudget = 0;
   /// Floats on the x87 unit (usesX87Floats): every float that an operation
   /// computes (arithmetic, conversion from int, a result of registered C++)
   /// goes through a float in memory before it is used, so that it has a
@@ -159,12 +165,32 @@ struct BehaviorLayout {
     /// holds a state computed at run time, if it yields one.
     std::vector<std::optional<uint64_t>> StateWords;
     uint32_t finishedSlot() const { return getFinishedSlot(SlotBytes); }
+    /// The slot value of a call that failed because its cycle ran out of
+    /// budget (CodeGenOptions::CycleBudget): one below finished.
+    uint32_t budgetFailedSlot() const { return finishedSlot() - 1; }
+    /// With a cycle budget: the word, cleared with the slots, that holds 1
+    /// + the loop that ran out of budget in the cycle (0: none).
+    std::optional<uint64_t> BudgetWord;
     /// The slot value of a call that finished its task: all ones.
     static uint32_t getFinishedSlot(unsigned SlotBytes) {
       return uint32_t(~0ull >> (64 - 8 * SlotBytes));
     }
   };
   TraceLayout Trace;
+  /// With CodeGenOptions::CycleBudget (bscript.h bs_budget_layout).
+  struct BudgetLayout {
+    uint32_t Budget = 0; ///< 0: none.
+    uint64_t Offset = 0; ///< Of the bs_budget_record in the state.
+    /// The loops the budget counts (all but the tasks' loops that yield on
+    /// every way round), in the order the code was emitted (source order):
+    /// loop k is bs_budget_record.loop k + 1.
+    struct Loop {
+      const CallableDecl *Owner;
+      llvm::SMLoc Loc; ///< Of its `for`.
+    };
+    std::vector<Loop> Loops;
+  };
+  BudgetLayout Budget;
 };
 
 /// Defines the debug tables an instrumented module declares

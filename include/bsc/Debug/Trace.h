@@ -74,6 +74,17 @@ struct DebugTables {
   std::vector<Task> Tasks; ///< In bs_behavior_info.tasks order.
   uint64_t RecordSize = 0; ///< Of a trace record (bscript.h).
   unsigned SlotBytes = 1;
+  /// `--cycle-budget`: the passes per cycle (0: none), the loops in
+  /// bs_budget_layout.loops order, and the trace record's word that names
+  /// the loop that ran out in a cycle (1 + its index; 0: none).
+  struct Loop {
+    std::string Owner; ///< `Module::task` or `Module::func`.
+    std::string File;
+    unsigned Line = 0;
+  };
+  uint32_t Budget = 0;
+  std::vector<Loop> Loops;
+  std::optional<uint64_t> BudgetWord;
 };
 
 /// One task that ran in a cycle, and where its last call stopped.
@@ -133,7 +144,12 @@ decodeTraceRecord(const DebugTables &T, llvm::ArrayRef<uint8_t> Record);
 struct LoggedCycle {
   uint32_t Cycle;
   std::vector<Activation> Records;
+  /// With a cycle budget: 1 + the loop that ran out in this cycle; 0: none.
+  uint32_t BudgetLoop = 0;
 };
+/// `cycle 7 ran out of its budget of 1000 loop passes in the loop of
+/// 'Kick::approach' at Kick.bs:12`: a logged cycle's budget, or "".
+std::string formatBudgetLine(const DebugTables &T, const LoggedCycle &C);
 llvm::Expected<std::vector<LoggedCycle>> parseTraceLog(llvm::StringRef Bytes,
                                                        const DebugTables &T);
 

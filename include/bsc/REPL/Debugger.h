@@ -37,6 +37,8 @@ struct LoadOptions {
   bool ExternalFunctions = false;
   /// `-g`: DWARF for the behavior, registered with gdb's JIT interface.
   bool DebugInfo = false;
+  /// `--cycle-budget=N` (CodeGenOptions::CycleBudget); 0: none.
+  uint32_t CycleBudget = 0;
 };
 
 /// Reports every thunk or descriptor that `M` imports from the binding
