@@ -30,24 +30,24 @@ const struct {
 };
 } // namespace
 
-bool DiagnosticEngine::ignoreWarningGroup(llvm::StringRef Group) {
+/// Sets the flag of every warning kind of `Group`; false if there is none.
+static bool markWarningGroup(llvm::StringRef Group,
+                             bool (&Flags)[diag::NumKinds]) {
   bool Found = false;
   for (const auto &G : WarningGroups)
     if (Group == G.Name) {
-      Ignored[G.Kind] = true;
+      Flags[G.Kind] = true;
       Found = true;
     }
   return Found;
 }
 
+bool DiagnosticEngine::ignoreWarningGroup(llvm::StringRef Group) {
+  return markWarningGroup(Group, Ignored);
+}
+
 bool DiagnosticEngine::promoteWarningGroup(llvm::StringRef Group) {
-  bool Found = false;
-  for (const auto &G : WarningGroups)
-    if (Group == G.Name) {
-      Promoted[G.Kind] = true;
-      Found = true;
-    }
-  return Found;
+  return markWarningGroup(Group, Promoted);
 }
 
 std::string DiagnosticEngine::getWarningGroupList() {
