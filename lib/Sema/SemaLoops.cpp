@@ -60,9 +60,18 @@ static bool canLeaveLoop(const Stmt *S, bool InInnerLoop) {
   }
   case NodeKind::ErrorStmt:
     return true; // Already reported; say nothing more about it.
-  default:
+  case NodeKind::DeclStmt:
+  case NodeKind::FuncDeclStmt:
+  case NodeKind::AssignStmt:
+  case NodeKind::ExprStmt:
+  case NodeKind::ContinueStmt:
     return false;
+#define STMT(Class)
+#define NODE(Class) case NodeKind::Class:
+#include "bsc/AST/ASTNodes.def"
+    llvm_unreachable("not a statement");
   }
+  llvm_unreachable("unknown node kind");
 }
 
 void Sema::warnIfEndless(const ForStmt *S) {
@@ -141,9 +150,21 @@ bool containsYield(const Stmt *S) {
     const auto *F = llvm::cast<ForStmt>(S);
     return containsYield(F->Step) || containsYield(F->Body);
   }
-  default:
+  case NodeKind::DeclStmt:
+  case NodeKind::FuncDeclStmt:
+  case NodeKind::AssignStmt:
+  case NodeKind::ExprStmt:
+  case NodeKind::BreakStmt:
+  case NodeKind::ContinueStmt:
+  case NodeKind::ReturnStmt:
+  case NodeKind::ErrorStmt:
     return false;
+#define STMT(Class)
+#define NODE(Class) case NodeKind::Class:
+#include "bsc/AST/ASTNodes.def"
+    llvm_unreachable("not a statement");
   }
+  llvm_unreachable("unknown node kind");
 }
 
 /// The paths through S that pass no `yield`.
@@ -175,9 +196,17 @@ public:
       return visitIf(llvm::cast<IfStmt>(St));
     case NodeKind::ForStmt:
       return visitInnerLoop(llvm::cast<ForStmt>(St));
-    default:
+    case NodeKind::DeclStmt:
+    case NodeKind::FuncDeclStmt:
+    case NodeKind::AssignStmt:
+    case NodeKind::ExprStmt:
       return SkipPaths::fallThrough();
+#define STMT(Class)
+#define NODE(Class) case NodeKind::Class:
+#include "bsc/AST/ASTNodes.def"
+      llvm_unreachable("not a statement");
     }
+    llvm_unreachable("unknown node kind");
   }
 
 private:
@@ -267,9 +296,21 @@ bool assigns(const Stmt *S, const VarDecl *V) {
     const auto *F = llvm::cast<ForStmt>(S);
     return assigns(F->Init, V) || assigns(F->Step, V) || assigns(F->Body, V);
   }
-  default:
+  case NodeKind::DeclStmt:
+  case NodeKind::FuncDeclStmt:
+  case NodeKind::ExprStmt:
+  case NodeKind::BreakStmt:
+  case NodeKind::ContinueStmt:
+  case NodeKind::ReturnStmt:
+  case NodeKind::YieldStmt:
+  case NodeKind::ErrorStmt:
     return false;
+#define STMT(Class)
+#define NODE(Class) case NodeKind::Class:
+#include "bsc/AST/ASTNodes.def"
+    llvm_unreachable("not a statement");
   }
+  llvm_unreachable("unknown node kind");
 }
 
 /// `for(int i = A; i OP B; ...)` with A and B constant (the counter on
@@ -303,7 +344,10 @@ std::optional<CounterHead> matchCounterHead(Sema &S, const ForStmt *F) {
     case BinaryOp::Gt: Op = BinaryOp::Lt; break;
     case BinaryOp::Ge: Op = BinaryOp::Le; break;
     case BinaryOp::Eq: case BinaryOp::Ne: break;
-    default: return std::nullopt;
+    case BinaryOp::Mul: case BinaryOp::Div: case BinaryOp::Rem:
+    case BinaryOp::Add: case BinaryOp::Sub: case BinaryOp::And:
+    case BinaryOp::Or:
+      return std::nullopt;
     }
   } else {
     return std::nullopt;
@@ -334,8 +378,12 @@ bool runsFirstPass(Sema &S, const ForStmt *F) {
   case BinaryOp::Ge: return H->From >= H->Bound;
   case BinaryOp::Eq: return H->From == H->Bound;
   case BinaryOp::Ne: return H->From != H->Bound;
-  default: return false;
+  case BinaryOp::Mul: case BinaryOp::Div: case BinaryOp::Rem:
+  case BinaryOp::Add: case BinaryOp::Sub: case BinaryOp::And:
+  case BinaryOp::Or:
+    return false; // Not a comparison: matchCounterHead's Bound is no bound.
   }
+  llvm_unreachable("unknown operator");
 }
 
 std::optional<uint64_t> countPasses(Sema &S, const ForStmt *F) {
