@@ -60,7 +60,10 @@ static std::string findScriptModule(const ModuleAST &From, llvm::StringRef Name,
   llvm::SmallVector<std::string, 4> Dirs;
   llvm::StringRef Parent = llvm::sys::path::parent_path(From.Path);
   Dirs.push_back(Parent.empty() ? "." : Parent.str());
-  Dirs.append(IncludeDirs.begin(), IncludeDirs.end());
+  // A folder given twice (`-I` of the file's own) is tried and named once.
+  for (const std::string &Dir : IncludeDirs)
+    if (!llvm::is_contained(Dirs, Dir))
+      Dirs.push_back(Dir);
   for (const std::string &Dir : Dirs) {
     llvm::SmallString<128> Candidate(Dir);
     llvm::sys::path::append(Candidate, Name + ".bs");
