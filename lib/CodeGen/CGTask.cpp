@@ -70,8 +70,7 @@
 // `ret`. A scalar local gets its value where it is declared, before any
 // use, so the reset does not zero it, unless a nested func may read it
 // before its declaration (VarDecl::ReadBeforeDeclared). The frame holds
-// only what a later call or a nested func reads
-// (ModuleEmitter::keepsInFrame): the body
+// only what a later call or a nested func reads (keepsInFrame): the body
 // reads its parameters from the arguments, and a local that is in scope
 // at no yield is an alloca. The JIT's debugger (CodeGenOptions::Probes)
 // shows frames between cycles, so there every field is kept exact: all
