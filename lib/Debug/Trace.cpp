@@ -359,17 +359,22 @@ std::string debug::formatTraceLine(const DebugTables &T,
   ActiveTree Tree = buildActiveTree(T, Records);
   std::vector<std::string> Paths;
   std::vector<unsigned> Stack;
-  // Depth first, children in task-table order: one path per leaf.
+  // Depth first, children in task-table order: one path per leaf. Every
+  // task on it shows its state and line, because a parent moving through
+  // its yields under an unchanged leaf is what a reader looks for.
   std::function<void(unsigned)> Walk = [&](unsigned N) {
     Stack.push_back(N);
     const ActiveTask &Node = Tree.Nodes[N];
     if (Node.Children.empty()) {
       std::string P;
       llvm::ListSeparator Sep(" > ");
-      for (unsigned S : Stack)
-        P += (llvm::Twine(Sep) + T.Tasks[Tree.Nodes[S].Record.Task].ShortName)
+      for (unsigned S : Stack) {
+        const Activation &A = Tree.Nodes[S].Record;
+        P += (llvm::Twine(Sep) + T.Tasks[A.Task].ShortName + " [" +
+              describeActivation(T, A) + "]")
                  .str();
-      Paths.push_back(P + " [" + describeActivation(T, Node.Record) + "]");
+      }
+      Paths.push_back(std::move(P));
     }
     for (unsigned C : Node.Children)
       Walk(C);

@@ -235,15 +235,21 @@ DebugTables makeTables() {
 
 TEST(DebugTraceTest, ParentIsTheFirstActiveCaller) {
   DebugTables T = makeTables();
-  EXPECT_EQ("main > look > walk [running, M.bs:11]",
+  // Every task on the path shows its state and the yield it waits at
+  // (main's first yield is line 31, look's 21, walk's 11).
+  EXPECT_EQ("main [running, M.bs:31] > look [running, M.bs:21] > "
+            "walk [running, M.bs:11]",
             formatTraceLine(T, {{0, 1, 1}, {1, 1, 1}, {2, 1, 1}}));
   // main is done but was called: it is walk's parent (look did not run).
-  EXPECT_EQ("main > walk [state 3, M.bs:12]",
+  EXPECT_EQ("main [done] > walk [state 3, M.bs:12]",
             formatTraceLine(T, {{0, 2, 3}, {2, 0, 0}}));
-  EXPECT_EQ("main > look > walk [done]",
-            formatTraceLine(T, {{0, 0, 0}, {1, 1, 1}, {2, 1, 1}}));
-  // Two leaves: a path each, children in table order.
-  EXPECT_EQ("main > look [running, M.bs:21]; main > head [done]",
+  // A parent's own state and line, under a leaf that stays the same.
+  EXPECT_EQ("main [failure, M.bs:32] > look [running, M.bs:21] > walk [done]",
+            formatTraceLine(T, {{0, 0, 0}, {1, 1, 1}, {2, 2, -1}}));
+  // Two leaves: a path each, children in table order, the shared parent
+  // described on both.
+  EXPECT_EQ("main [running, M.bs:31] > look [running, M.bs:21]; "
+            "main [running, M.bs:31] > head [done]",
             formatTraceLine(T, {{1, 1, 1}, {2, 1, 1}, {3, 0, 0}}));
   EXPECT_EQ("look [failure, M.bs:22]",
             formatTraceLine(T, {{1, 2, -1}}));
@@ -348,7 +354,7 @@ TEST(DebugTraceTest, TraceRecordsDecodeToActivations) {
   EXPECT_EQ(3u, C5[2].Task);
   EXPECT_EQ(0u, C5[2].Resume);
   EXPECT_EQ(0, C5[2].State);
-  EXPECT_EQ("look > walk [state 7, M.bs:12]; head [done]",
+  EXPECT_EQ("look [running, M.bs:21] > walk [state 7, M.bs:12]; head [done]",
             formatTraceLine(T, C5));
   EXPECT_EQ("look [failure, M.bs:22]",
             formatTraceLine(T, (*Cycles)[1].Records));
@@ -391,7 +397,7 @@ TEST(DebugTraceTest, BudgetWordNamesTheLoopThatRanOut) {
   auto Cycles = parseTraceLog(llvm::StringRef(Log, 32), *Back);
   ASSERT_TRUE(bool(Cycles)) << llvm::toString(Cycles.takeError());
   ASSERT_EQ(2u, Cycles->size());
-  EXPECT_EQ("main > walk [failure]",
+  EXPECT_EQ("main [running, M.bs:31] > walk [failure]",
             formatTraceLine(*Back, (*Cycles)[0].Records));
   EXPECT_EQ(1u, (*Cycles)[0].BudgetLoop);
   EXPECT_EQ("cycle 9 ran out of its budget of 1000 loop passes in the loop "

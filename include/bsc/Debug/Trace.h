@@ -123,9 +123,9 @@ ActiveTree buildActiveTree(const DebugTables &T,
 /// it waits at.
 std::string describeActivation(const DebugTables &T, const Activation &A);
 
-/// The hierarchy on one line, each path from a root to a leaf:
-/// `play > gotoBallAndKick > executeKick [running, Soccer.bs:57]`, paths
-/// separated by `; `; `idle` when no task ran.
+/// The hierarchy on one line, each path from a root to a leaf, every task
+/// with its describeActivation: `play [running, Soccer.bs:12] >
+/// executeKick [done]`, paths separated by `; `; `idle` when no task ran.
 std::string formatTraceLine(const DebugTables &T,
                             llvm::ArrayRef<Activation> Records);
 
