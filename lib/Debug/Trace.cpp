@@ -12,6 +12,7 @@
 #include "llvm/ADT/StringExtras.h"
 #include "llvm/ADT/StringMap.h"
 #include "llvm/Support/Endian.h"
+#include "llvm/Support/ErrorHandling.h"
 #include "llvm/Support/Path.h"
 #include "llvm/Support/SourceMgr.h"
 #include <functional>
@@ -385,6 +386,21 @@ std::string debug::formatTraceLine(const DebugTables &T,
   if (Paths.empty())
     return "idle";
   return llvm::join(Paths, "; ");
+}
+
+bool TraceFilter::shouldPrint(llvm::StringRef Line) {
+  switch (Mode) {
+  case TraceMode::Off:
+    return false;
+  case TraceMode::EveryCycle:
+    return true;
+  case TraceMode::Changes:
+    if (Last && *Last == Line)
+      return false;
+    Last = Line.str();
+    return true;
+  }
+  llvm_unreachable("unknown trace mode");
 }
 
 std::vector<Activation> debug::takeSnapshot(const void *State,

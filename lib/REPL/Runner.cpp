@@ -360,6 +360,7 @@ bool bsc::runBehavior(Compilation &C, LoadedBehavior &L, BehaviorSession &S,
   // `--cycle-budget`: the first cycle that ran out, and how many did.
   std::optional<std::pair<uint32_t, const bs_loop_info *>> FirstRanOut;
   unsigned RanOut = 0;
+  debug::TraceFilter Traces(Opts.Trace);
 
   unsigned Cycles = Replay.empty() ? Opts.Cycles : Replay.size();
   for (unsigned I = 0; I < Cycles; ++I) {
@@ -390,11 +391,12 @@ bool bsc::runBehavior(Compilation &C, LoadedBehavior &L, BehaviorSession &S,
       Out = *Rec.getAsObject()->get("output");
     else if (L.OutputClass && (Opts.PrintOutput || Recorded))
       Out = Values.readClass(*L.OutputClass, S.getOutput());
-    if (Opts.Trace)
-      OS << "cycle " << Cycle << ": "
-         << debug::formatTraceLine(L.Tables,
-                                   debug::takeSnapshot(S.getState(), &S.getInfo()))
-         << "\n";
+    if (Opts.Trace != debug::TraceMode::Off) {
+      std::string Trace = debug::formatTraceLine(
+          L.Tables, debug::takeSnapshot(S.getState(), &S.getInfo()));
+      if (Traces.shouldPrint(Trace))
+        OS << "cycle " << Cycle << ": " << Trace << "\n";
+    }
     if (Opts.PrintOutput && L.OutputClass) {
       debug::printJSON(OS, llvm::json::Object{{"cycle", int64_t(Cycle)},
                                               {"output", Out}});

@@ -103,10 +103,14 @@ cl::opt<std::string> ReplayFile(
     cl::desc("Feed each cycle's input from a JSON-lines file and compare "
              "the outputs it records"),
     cl::value_desc("file.jsonl"), cl::cat(BscCategory), cl::sub(RunCmd));
-cl::opt<bool> TraceFlag("trace",
-                        cl::desc("Print the active task hierarchy after "
-                                 "each cycle"),
-                        cl::cat(BscCategory), cl::sub(RunCmd));
+// A string, not an enum: llvm::cl's own message for a bad value is not a
+// `bsc: error:` (parseTraceMode reports it).
+cl::opt<std::string> TraceArg(
+    "trace", cl::ValueOptional,
+    cl::desc("Print the active task hierarchy after each cycle; with "
+             "'=changes', only the cycles where it, a task's state or a "
+             "line changed"),
+    cl::value_desc("changes"), cl::cat(BscCategory), cl::sub(RunCmd));
 cl::opt<bool> PrintOutputFlag("print-output",
                               cl::desc("Print the output after each cycle "
                                        "as JSON"),
@@ -161,6 +165,11 @@ cl::opt<std::string> TraceObject(
 cl::opt<std::string> TraceLog(cl::Positional, cl::desc("<trace log>"),
                               cl::cat(BscCategory), cl::sub(TraceDecodeCmd),
                               cl::Required);
+cl::opt<bool> TraceChangesFlag(
+    "changes",
+    cl::desc("Print only the cycles whose line differs from the cycle "
+             "before's, as `bsc run --trace=changes`"),
+    cl::cat(BscCategory), cl::sub(TraceDecodeCmd));
 
 cl::opt<bool> SyntaxOnly("fsyntax-only",
                          cl::desc("Check the program; produce no output"),
@@ -347,6 +356,23 @@ bool parseCycleBudget(DiagnosticEngine &Diags, uint32_t &Passes) {
   if (llvm::StringRef(CycleBudgetArg).getAsInteger(10, Passes) || !Passes) {
     Diags.report(llvm::SMLoc(), diag::err_bad_option_value)
         << CycleBudgetArg.getValue() << "--cycle-budget";
+    return false;
+  }
+  return true;
+}
+
+/// Checks `--trace[=changes]`; reports and returns false if it is bad.
+bool parseTraceMode(DiagnosticEngine &Diags, debug::TraceMode &Mode) {
+  Mode = debug::TraceMode::Off;
+  if (TraceArg.getNumOccurrences() == 0)
+    return true;
+  if (TraceArg.empty())
+    Mode = debug::TraceMode::EveryCycle;
+  else if (TraceArg == "changes")
+    Mode = debug::TraceMode::Changes;
+  else {
+    Diags.report(llvm::SMLoc(), diag::err_bad_trace_mode)
+        << TraceArg.getValue();
     return false;
   }
   return true;
@@ -699,8 +725,8 @@ int runJIT(Compilation &C, const FrontendOptions &FOpts) {
   ROpts.CyclesGiven = CyclesArg.getNumOccurrences() != 0;
   ROpts.RecordPath = RecordFile;
   ROpts.ReplayPath = ReplayFile;
-  ROpts.Trace = TraceFlag;
   ROpts.PrintOutput = PrintOutputFlag;
+  OptionsOK &= parseTraceMode(C.Diags, ROpts.Trace);
   OptionsOK &= parseCycleLimit(C.Diags, ROpts.CycleLimitMs);
   uint32_t CycleBudget = 0;
   OptionsOK &= parseCycleBudget(C.Diags, CycleBudget);
@@ -801,9 +827,13 @@ int decodeTrace(Compilation &C) {
       debug::parseTraceLog((*Log)->getBuffer(), *Tables);
   if (!Cycles)
     return Fail(TraceLog, llvm::toString(Cycles.takeError()));
+  debug::TraceFilter Traces(TraceChangesFlag ? debug::TraceMode::Changes
+                                             : debug::TraceMode::EveryCycle);
   for (const debug::LoggedCycle &Cycle : *Cycles) {
-    llvm::outs() << "cycle " << Cycle.Cycle << ": "
-                 << debug::formatTraceLine(*Tables, Cycle.Records) << "\n";
+    std::string Trace = debug::formatTraceLine(*Tables, Cycle.Records);
+    if (Traces.shouldPrint(Trace))
+      llvm::outs() << "cycle " << Cycle.Cycle << ": " << Trace << "\n";
+    // Printed whether or not its cycle's line is: it names the cycle.
     std::string Budget = debug::formatBudgetLine(*Tables, Cycle);
     if (!Budget.empty())
       llvm::outs() << Budget << "\n";

@@ -262,6 +262,26 @@ TEST(DebugTraceTest, ParentIsTheFirstActiveCaller) {
   EXPECT_EQ("idle", formatTraceLine(T, {{7, 1, 1}}));
 }
 
+/// `--trace=changes` prints the first cycle and then only the cycles
+/// whose line differs from the one before; plain `--trace` every cycle.
+TEST(DebugTraceTest, FilterPrintsOnlyChanges) {
+  TraceFilter Changes(TraceMode::Changes);
+  EXPECT_TRUE(Changes.shouldPrint("main [running, M.bs:31]"));
+  EXPECT_FALSE(Changes.shouldPrint("main [running, M.bs:31]"));
+  EXPECT_TRUE(Changes.shouldPrint("main [running, M.bs:32]"));
+  EXPECT_TRUE(Changes.shouldPrint("main [running, M.bs:31]"));
+  EXPECT_TRUE(Changes.shouldPrint("idle"));
+  EXPECT_FALSE(Changes.shouldPrint("idle"));
+  // The first line is printed even when it is empty-looking.
+  TraceFilter FirstIdle(TraceMode::Changes);
+  EXPECT_TRUE(FirstIdle.shouldPrint("idle"));
+  TraceFilter Every(TraceMode::EveryCycle);
+  EXPECT_TRUE(Every.shouldPrint("idle"));
+  EXPECT_TRUE(Every.shouldPrint("idle"));
+  TraceFilter Off(TraceMode::Off);
+  EXPECT_FALSE(Off.shouldPrint("idle"));
+}
+
 TEST(DebugTraceTest, TablesSurviveJSON) {
   DebugTables T = makeTables();
   T.Tasks[0].Fields = {{"n", "int", true}, {"i", "float", false}};

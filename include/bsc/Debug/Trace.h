@@ -129,6 +129,24 @@ std::string describeActivation(const DebugTables &T, const Activation &A);
 std::string formatTraceLine(const DebugTables &T,
                             llvm::ArrayRef<Activation> Records);
 
+/// Which cycles a trace prints: every one (`--trace`), or only those whose
+/// line differs from the cycle before's (`--trace=changes`): the line
+/// spells the hierarchy, the states and the lines, so a change in any of
+/// them changes it.
+enum class TraceMode { Off, EveryCycle, Changes };
+
+/// Decides, cycle after cycle, whether a trace line is printed.
+class TraceFilter {
+public:
+  explicit TraceFilter(TraceMode Mode) : Mode(Mode) {}
+  /// Whether to print `Line`, the next cycle's; the first cycle's always.
+  bool shouldPrint(llvm::StringRef Line);
+
+private:
+  TraceMode Mode;
+  std::optional<std::string> Last;
+};
+
 /// The activations of `State` now, read from its frames: the tasks whose
 /// last call was in the state's cycle, in task-table order.
 std::vector<Activation> takeSnapshot(const void *State,

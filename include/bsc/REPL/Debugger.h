@@ -78,7 +78,8 @@ struct RunOptions {
   unsigned Cycles = 1;
   bool CyclesGiven = false; ///< --cycles was on the command line.
   std::string RecordPath, ReplayPath;
-  bool Trace = false, PrintOutput = false;
+  debug::TraceMode Trace = debug::TraceMode::Off;
+  bool PrintOutput = false;
   unsigned CycleLimitMs = 0;
   /// Called after each cycle (the REPL's breakpoints); true stops the run.
   std::function<bool()> StopAfterCycle;
