@@ -69,7 +69,7 @@ DiagnosticBuilder::~DiagnosticBuilder() {
   if (!Engine)
     return;
   Engine->record(Kind, Loc, DiagnosticEngine::format(getFormat(Kind), Args),
-                 Ranges, FixIts);
+                 Ranges, FixIts, ShowSourceLine);
 }
 
 std::string DiagnosticEngine::format(llvm::StringRef Format,
@@ -91,7 +91,8 @@ std::string DiagnosticEngine::format(llvm::StringRef Format,
 void DiagnosticEngine::record(diag::Kind K, llvm::SMLoc Loc,
                               std::string Message,
                               llvm::ArrayRef<llvm::SMRange> Ranges,
-                              llvm::ArrayRef<llvm::SMFixIt> FixIts) {
+                              llvm::ArrayRef<llvm::SMFixIt> FixIts,
+                              bool ShowSourceLine) {
   Severity Sev = getSeverity(K);
   // -Werror: an error like any other, which says why (as clang does).
   if (Sev == Severity::Warning && !Ignored[K] &&
@@ -124,7 +125,8 @@ void DiagnosticEngine::record(diag::Kind K, llvm::SMLoc Loc,
     DroppingNotes = false;
   Diags.push_back(Diagnostic{K, Sev, Loc, std::move(Message),
                              llvm::SmallVector<llvm::SMRange, 1>(Ranges),
-                             llvm::SmallVector<llvm::SMFixIt, 1>(FixIts)});
+                             llvm::SmallVector<llvm::SMFixIt, 1>(FixIts),
+                             ShowSourceLine});
 }
 
 void DiagnosticEngine::sortBySource(const llvm::SourceMgr &SM) {
@@ -170,6 +172,23 @@ static llvm::SourceMgr::DiagKind toLLVM(Severity S) {
   llvm_unreachable("unknown severity");
 }
 
+/// `file:line:col: error: message` and nothing more: SMDiagnostic prints
+/// no source line when it has no line and column of its own, so the place
+/// goes into its file name.
+static void printWithoutSourceLine(const llvm::SourceMgr &SM,
+                                   const Diagnostic &D, llvm::raw_ostream &OS,
+                                   bool ShowColors) {
+  std::string Where;
+  if (unsigned Buffer = SM.FindBufferContainingLoc(D.Loc)) {
+    auto [Line, Col] = SM.getLineAndColumn(D.Loc, Buffer);
+    Where = (SM.getMemoryBuffer(Buffer)->getBufferIdentifier() + ":" +
+             llvm::Twine(Line) + ":" + llvm::Twine(Col))
+                .str();
+  }
+  llvm::SMDiagnostic(Where, toLLVM(D.Sev), D.Message)
+      .print(Where.empty() ? "bsc" : nullptr, OS, ShowColors);
+}
+
 void bsc::printDiagnostics(const llvm::SourceMgr &SM,
                            llvm::ArrayRef<Diagnostic> Diags,
                            llvm::raw_ostream &OS, bool ShowColors) {
@@ -179,7 +198,9 @@ void bsc::printDiagnostics(const llvm::SourceMgr &SM,
       ++Errors;
     // Locationless diagnostics (options, missing files) print as
     // `bsc: error: ...`; SourceMgr does that for an invalid SMLoc.
-    if (D.Loc.isValid())
+    if (D.Loc.isValid() && !D.ShowSourceLine)
+      printWithoutSourceLine(SM, D, OS, ShowColors);
+    else if (D.Loc.isValid())
       SM.PrintMessage(OS, D.Loc, toLLVM(D.Sev), D.Message, D.Ranges,
                       D.FixIts, ShowColors);
     else

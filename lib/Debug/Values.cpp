@@ -122,12 +122,16 @@ std::string debug::toJSONString(const Value &V) {
   return S;
 }
 
-std::optional<Difference> debug::findDifference(const Value &Recorded,
-                                                const Value &Got,
-                                                llvm::StringRef Path) {
+/// Appends the places where `Got` differs from `Recorded` to `Out`, objects
+/// in key order and arrays in index order; with `FirstOnly`, stops after
+/// the first. Returns whether it found one.
+static bool collectDifferences(const Value &Recorded, const Value &Got,
+                               llvm::StringRef Path, bool FirstOnly,
+                               std::vector<Difference> &Out) {
+  size_t Before = Out.size();
+  auto Done = [&] { return FirstOnly && Out.size() > Before; };
   if (const llvm::json::Object *R = Recorded.getAsObject()) {
-    const llvm::json::Object *G = Got.getAsObject();
-    if (G) {
+    if (const llvm::json::Object *G = Got.getAsObject()) {
       std::vector<llvm::StringRef> Keys;
       for (const auto &KV : *R)
         Keys.push_back(KV.first);
@@ -136,22 +140,24 @@ std::optional<Difference> debug::findDifference(const Value &Recorded,
         const Value *GV = G->get(K);
         std::string Sub = (Path + "." + K).str();
         if (!GV)
-          return Difference{Sub, toJSONString(*R->get(K)), "nothing"};
-        if (auto D = findDifference(*R->get(K), *GV, Sub))
-          return D;
+          Out.push_back({Sub, toJSONString(*R->get(K)), "nothing"});
+        else
+          collectDifferences(*R->get(K), *GV, Sub, FirstOnly, Out);
+        if (Done())
+          break;
       }
-      return std::nullopt;
+      return Out.size() > Before;
     }
   }
   if (const llvm::json::Array *R = Recorded.getAsArray()) {
     // An array field: element by element, named `output.wide[3]`.
     const llvm::json::Array *G = Got.getAsArray();
     if (G && G->size() == R->size()) {
-      for (size_t I = 0; I < R->size(); ++I)
-        if (auto D = findDifference((*R)[I], (*G)[I],
-                                    (Path + "[" + llvm::Twine(I) + "]").str()))
-          return D;
-      return std::nullopt;
+      for (size_t I = 0; I < R->size() && !Done(); ++I)
+        collectDifferences((*R)[I], (*G)[I],
+                           (Path + "[" + llvm::Twine(I) + "]").str(),
+                           FirstOnly, Out);
+      return Out.size() > Before;
     }
   }
   // Numbers compare as the floats (or ints) they are; a number written as
@@ -166,8 +172,26 @@ std::optional<Difference> debug::findDifference(const Value &Recorded,
   else
     Same = Recorded == Got;
   if (Same)
+    return false;
+  Out.push_back({Path.str(), toJSONString(Recorded), toJSONString(Got)});
+  return true;
+}
+
+std::optional<Difference> debug::findDifference(const Value &Recorded,
+                                                const Value &Got,
+                                                llvm::StringRef Path) {
+  std::vector<Difference> Found;
+  if (!collectDifferences(Recorded, Got, Path, /*FirstOnly=*/true, Found))
     return std::nullopt;
-  return Difference{Path.str(), toJSONString(Recorded), toJSONString(Got)};
+  return std::move(Found.front());
+}
+
+std::vector<Difference> debug::findDifferences(const Value &Recorded,
+                                               const Value &Got,
+                                               llvm::StringRef Path) {
+  std::vector<Difference> Found;
+  collectDifferences(Recorded, Got, Path, /*FirstOnly=*/false, Found);
+  return Found;
 }
 
 //===----------------------------------------------------------------------===//

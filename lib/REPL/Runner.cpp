@@ -325,6 +325,24 @@ static void reportBudgetRanOut(Compilation &C, const LoadedBehavior &L,
     C.Diags.report(Where.Loc, diag::note_budget_ran_out_count) << RanOut;
 }
 
+/// A replayed cycle whose output differs from the line's: one error, then
+/// a note per field that differs, at the line. Neither echoes it: a
+/// recording fills it with every output member. Returns whether it
+/// reported.
+static bool reportMismatch(Compilation &C, const ReplayLine &Line,
+                           uint32_t Cycle, const llvm::json::Value &Recorded,
+                           const llvm::json::Value &Got) {
+  std::vector<debug::Difference> Ds =
+      debug::findDifferences(Recorded, Got, "output");
+  if (Ds.empty())
+    return false;
+  C.Diags.report(Line.Loc, diag::err_replay_mismatch) << Cycle << NoSourceLine();
+  for (const debug::Difference &D : Ds)
+    C.Diags.report(Line.Loc, diag::note_replay_difference)
+        << D.Path << D.Recorded << D.Got << NoSourceLine();
+  return true;
+}
+
 bool bsc::runBehavior(Compilation &C, LoadedBehavior &L, BehaviorSession &S,
                       const RunOptions &Opts, llvm::raw_ostream &OS) {
   std::vector<ReplayLine> Replay;
@@ -416,14 +434,11 @@ bool bsc::runBehavior(Compilation &C, LoadedBehavior &L, BehaviorSession &S,
         ReportedFailure = true;
       }
     }
-    if (Recorded)
-      if (auto D = debug::findDifference(*Recorded, Out, "output")) {
-        C.Diags.report(Line->Loc, diag::err_replay_mismatch)
-            << Cycle << D->Path << D->Recorded << D->Got;
-        if (Record)
-          Record->keep();
-        return false;
-      }
+    if (Recorded && reportMismatch(C, *Line, Cycle, *Recorded, Out)) {
+      if (Record)
+        Record->keep();
+      return false;
+    }
     if (Opts.StopAfterCycle && Opts.StopAfterCycle())
       break;
   }

@@ -71,6 +71,35 @@ TEST(DiagnosticTest, PrintsFileLineColumnSourceLineAndCaret) {
             "bsc: error: no input files\n");
 }
 
+/// A diagnostic at a line of data names the place only: the line is not
+/// echoed, nor a caret, for it or its notes.
+TEST(DiagnosticTest, NoSourceLineNamesThePlaceOnly) {
+  llvm::SourceMgr SM;
+  unsigned ID = SM.AddNewSourceBuffer(
+      llvm::MemoryBuffer::getMemBufferCopy("{}\n{\"output\":{\"a\":1}}\n",
+                                           "run.jsonl"),
+      llvm::SMLoc());
+  llvm::SMLoc Line2 = llvm::SMLoc::getFromPointer(
+      SM.getMemoryBuffer(ID)->getBufferStart() + 3);
+  DiagnosticEngine D;
+  D.report(Line2, diag::err_replay_mismatch) << 2 << NoSourceLine();
+  D.report(Line2, diag::note_replay_difference)
+      << "output.a" << "2" << "1" << NoSourceLine();
+  // Otherwise the same location echoes the line.
+  D.report(Line2, diag::err_replay_not_object);
+  std::string Out;
+  llvm::raw_string_ostream OS(Out);
+  printDiagnostics(SM, D.getDiagnostics(), OS);
+  EXPECT_EQ(OS.str(),
+            "run.jsonl:2:1: error: cycle 2: the output differs from the "
+            "recording\n"
+            "run.jsonl:2:1: note: output.a: recorded 2, got 1\n"
+            "run.jsonl:2:1: error: a replay line must be a JSON object like "
+            "{\"input\":{...},\"output\":{...}}\n"
+            "{\"output\":{\"a\":1}}\n"
+            "^\n");
+}
+
 TEST(DiagnosticTest, SortsBySourceKeepingNotesWithTheirDiagnostic) {
   llvm::SourceMgr SM;
   unsigned A = SM.AddNewSourceBuffer(

@@ -53,6 +53,47 @@ TEST(DebugValuesTest, DifferencesNameThePathAndCompareAsFloats) {
                               llvm::json::Object{{"n", "NaN"}, {"m", 1}}, "o"));
 }
 
+/// A replay names every field that differs, not only the first: keys in
+/// sorted order, array elements by index, a missing member as "nothing".
+TEST(DebugValuesTest, AllDifferencesInKeyAndIndexOrder) {
+  llvm::json::Value Recorded = llvm::json::Object{
+      {"z", 1},
+      {"a", llvm::json::Array{1, 2, 3}},
+      {"m", "walk"},
+      {"p", llvm::json::Object{{"y", 0.5}, {"x", 0.1}}},
+      {"gone", true}};
+  llvm::json::Value Got = llvm::json::Object{
+      {"z", 2},
+      {"a", llvm::json::Array{1, 5, 6}},
+      {"m", "walk"},
+      {"p", llvm::json::Object{{"y", -0.5}, {"x", double(0.1f)}}}};
+  std::vector<Difference> Ds = findDifferences(Recorded, Got, "output");
+  ASSERT_EQ(5u, Ds.size());
+  EXPECT_EQ("output.a[1]", Ds[0].Path);
+  EXPECT_EQ("2", Ds[0].Recorded);
+  EXPECT_EQ("5", Ds[0].Got);
+  EXPECT_EQ("output.a[2]", Ds[1].Path);
+  EXPECT_EQ("output.gone", Ds[2].Path);
+  EXPECT_EQ("true", Ds[2].Recorded);
+  EXPECT_EQ("nothing", Ds[2].Got);
+  // output.m is equal and output.p.x is the same float.
+  EXPECT_EQ("output.p.y", Ds[3].Path);
+  EXPECT_EQ("0.5", Ds[3].Recorded);
+  EXPECT_EQ("-0.5", Ds[3].Got);
+  EXPECT_EQ("output.z", Ds[4].Path);
+  // findDifference is the first of them.
+  std::optional<Difference> First = findDifference(Recorded, Got, "output");
+  ASSERT_TRUE(First.has_value());
+  EXPECT_EQ("output.a[1]", First->Path);
+  EXPECT_TRUE(findDifferences(Recorded, Recorded, "output").empty());
+  // An array of another length differs as a whole.
+  Ds = findDifferences(llvm::json::Array{1, 2}, llvm::json::Array{1}, "w");
+  ASSERT_EQ(1u, Ds.size());
+  EXPECT_EQ("w", Ds[0].Path);
+  EXPECT_EQ("[1,2]", Ds[0].Recorded);
+  EXPECT_EQ("[1]", Ds[0].Got);
+}
+
 /// Adds a field `Name` at `Offset` to `C`: an array of `Extents` if given.
 void addField(NativeClass &C, const char *Name, NativeType::Code Code,
               uint64_t Offset, uint32_t Size,

@@ -44,7 +44,14 @@ struct Diagnostic {
   llvm::SmallVector<llvm::SMRange, 1> Ranges;
   /// Replacements printed under the caret line, as clang's fix-its.
   llvm::SmallVector<llvm::SMFixIt, 1> FixIts;
+  /// Whether the source line and the caret follow the message.
+  bool ShowSourceLine = true;
 };
+
+/// Streamed into a diagnostic whose location is a line of data (a replayed
+/// JSON line, hundreds of characters long): `file:line:col:` names the
+/// line, and echoing it would bury what the message says.
+struct NoSourceLine {};
 
 /// The severity and format string of a kind.
 Severity getSeverity(diag::Kind K);
@@ -62,7 +69,7 @@ public:
   DiagnosticBuilder(DiagnosticBuilder &&Other)
       : Engine(Other.Engine), Kind(Other.Kind), Loc(Other.Loc),
         Args(std::move(Other.Args)), Ranges(std::move(Other.Ranges)),
-        FixIts(std::move(Other.FixIts)) {
+        FixIts(std::move(Other.FixIts)), ShowSourceLine(Other.ShowSourceLine) {
     Other.Engine = nullptr;
   }
   DiagnosticBuilder(const DiagnosticBuilder &) = delete;
@@ -95,6 +102,10 @@ public:
     FixIts.push_back(std::move(F));
     return *this;
   }
+  DiagnosticBuilder &operator<<(NoSourceLine) {
+    ShowSourceLine = false;
+    return *this;
+  }
 
 private:
   DiagnosticEngine *Engine;
@@ -103,6 +114,7 @@ private:
   llvm::SmallVector<std::string, 3> Args;
   llvm::SmallVector<llvm::SMRange, 1> Ranges;
   llvm::SmallVector<llvm::SMFixIt, 1> FixIts;
+  bool ShowSourceLine = true;
 };
 
 /// Keeps the diagnostics of a compilation in the order they were reported.
@@ -148,7 +160,7 @@ private:
   friend class DiagnosticBuilder;
   void record(diag::Kind K, llvm::SMLoc Loc, std::string Message,
               llvm::ArrayRef<llvm::SMRange> Ranges,
-              llvm::ArrayRef<llvm::SMFixIt> FixIts);
+              llvm::ArrayRef<llvm::SMFixIt> FixIts, bool ShowSourceLine);
 
   std::vector<Diagnostic> Diags;
   unsigned NumErrors = 0;
@@ -160,7 +172,7 @@ private:
 };
 
 /// Prints diagnostics the way clang does: `file:line:col: error: message`,
-/// the source line and a caret.
+/// the source line and a caret (unless NoSourceLine).
 void printDiagnostics(const llvm::SourceMgr &SM,
                       llvm::ArrayRef<Diagnostic> Diags, llvm::raw_ostream &OS,
                       bool ShowColors = false);

@@ -25,6 +25,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <vector>
 
 namespace bsc {
 struct NativeClass;
@@ -92,6 +93,12 @@ struct Difference {
 std::optional<Difference> findDifference(const llvm::json::Value &Recorded,
                                          const llvm::json::Value &Got,
                                          llvm::StringRef Path);
+/// Every place where `Got` differs from `Recorded`, in the order of
+/// findDifference (keys sorted, array elements by index): a replay names
+/// them all, so one run shows everything an edit changed in a cycle.
+std::vector<Difference> findDifferences(const llvm::json::Value &Recorded,
+                                        const llvm::json::Value &Got,
+                                        llvm::StringRef Path);
 
 } // namespace debug
 } // namespace bsc
