@@ -571,8 +571,10 @@ class Gen:
         (docs/language.md, Tasks rule 4): a kind for `TaskState::running`
         and `::failure` written so, the number for anything else."""
         r = self.rng
-        a = self.state_expr(ctx, 1)
-        b = self.state_value() if r.random() < 0.7 else self.state_expr(ctx, 1)
+        # Each side is evaluated twice, so neither may call anything: a
+        # func's state may differ at its second call.
+        a = self.state_operand(ctx)
+        b = self.state_value() if r.random() < 0.7 else self.state_operand(ctx)
         kinds = {"TaskState::running": "> 0", "TaskState::failure": "< 0"}
         if b in kinds:
             meaning = f"int({a}) {kinds[b]}"
@@ -583,6 +585,18 @@ class Gen:
         self.emit(ind, f"if(({a} == {b}) != ({meaning}))")
         # Named by a number: the operands may hold string literals.
         self.emit(ind + 1, f'io::prints("SELF-CHECK FAILED: state test {self.fresh("q")}")')
+
+    def state_operand(self, ctx):
+        """A TaskState without calls: taskState(T), a variable or constant,
+        or a state written as a constant."""
+        r = self.rng
+        vs = self.vars_of(ctx, "TaskState") + self.const_names("TaskState")
+        k = r.randrange(3)
+        if k == 0 and self.tasks:
+            return f"taskState({r.choice(self.tasks).name})"
+        if k == 1 and vs:
+            return r.choice(vs)
+        return self.state_value()
 
     def state_expr(self, ctx, depth):
         r = self.rng
