@@ -35,11 +35,27 @@
 //
 //===----------------------------------------------------------------------===//
 #include "CodeGenImpl.h"
+#include "bscript/bscript.h"
 #include "llvm/IR/MDBuilder.h"
+#include <cstddef>
 
 using namespace bsc;
 using namespace bsc::codegen;
 using Access = ModuleEmitter::Access;
+
+// The record's words as bscript.h lays them out.
+static_assert(sizeof(bs_budget_record) ==
+              4 * ModuleEmitter::BudgetRecordWords);
+static_assert(offsetof(bs_budget_record, cycle) ==
+              4 * ModuleEmitter::BudgetCycle);
+static_assert(offsetof(bs_budget_record, used) ==
+              4 * ModuleEmitter::BudgetUsed);
+static_assert(offsetof(bs_budget_record, ran_out) ==
+              4 * ModuleEmitter::BudgetRanOut);
+static_assert(offsetof(bs_budget_record, loop) ==
+              4 * ModuleEmitter::BudgetLoop);
+static_assert(offsetof(bs_budget_record, loop_cycle) ==
+              4 * ModuleEmitter::BudgetLoopCycle);
 
 llvm::Value *ModuleEmitter::getBudgetWordPtr(llvm::IRBuilderBase &IRB,
                                              llvm::Value *State,
@@ -47,6 +63,20 @@ llvm::Value *ModuleEmitter::getBudgetWordPtr(llvm::IRBuilderBase &IRB,
   llvm::Value *Idx[] = {IRB.getInt32(0), IRB.getInt32(BudgetRecordField),
                         IRB.getInt32(W)};
   return IRB.CreateInBoundsGEP(StateTy, State, Idx, "budget.word");
+}
+
+llvm::LoadInst *ModuleEmitter::loadBudgetWord(llvm::IRBuilderBase &IRB,
+                                             llvm::Value *Addr,
+                                             const llvm::Twine &Name) {
+  llvm::LoadInst *L = IRB.CreateLoad(IRB.getInt32Ty(), Addr, Name);
+  L->setMetadata(llvm::LLVMContext::MD_tbaa, getAccessTag(Access::Budget));
+  return L;
+}
+
+void ModuleEmitter::storeBudgetWord(llvm::IRBuilderBase &IRB, llvm::Value *V,
+                                    llvm::Value *Addr) {
+  IRB.CreateStore(V, Addr)->setMetadata(llvm::LLVMContext::MD_tbaa,
+                                        getAccessTag(Access::Budget));
 }
 
 unsigned ModuleEmitter::addBudgetLoop(const CallableDecl *Owner,
@@ -75,28 +105,23 @@ llvm::Function *ModuleEmitter::getBudgetRanOut() {
   auto *First = llvm::BasicBlock::Create(Ctx, "first", BudgetRanOutFn);
   auto *Done = llvm::BasicBlock::Create(Ctx, "done", BudgetRanOutFn);
   llvm::IRBuilder<> IRB(Entry);
-  llvm::MDNode *Tag = getAccessTag(Access::Budget);
-  auto Load = [&](BudgetWord W) {
-    llvm::LoadInst *L = IRB.CreateLoad(I32, getBudgetWordPtr(IRB, State, W));
-    L->setMetadata(llvm::LLVMContext::MD_tbaa, Tag);
-    return L;
-  };
-  auto Store = [&](llvm::Value *V, BudgetWord W) {
-    IRB.CreateStore(V, getBudgetWordPtr(IRB, State, W))
-        ->setMetadata(llvm::LLVMContext::MD_tbaa, Tag);
-  };
+  auto Word = [&](BudgetWord W) { return getBudgetWordPtr(IRB, State, W); };
   // The first loop to run out in a cycle is the runaway one; the loops
   // above it that end after it are not news.
-  llvm::Value *Cycle = Load(BudgetCycle);
-  Cycle->setName("cycle");
+  llvm::Value *Cycle = loadBudgetWord(IRB, Word(BudgetCycle), "cycle");
   llvm::Value *Again = IRB.CreateAnd(
-      IRB.CreateICmpNE(Load(BudgetLoop), IRB.getInt32(0)),
-      IRB.CreateICmpEQ(Load(BudgetLoopCycle), Cycle), "again");
+      IRB.CreateICmpNE(loadBudgetWord(IRB, Word(BudgetLoop)),
+                       IRB.getInt32(0)),
+      IRB.CreateICmpEQ(loadBudgetWord(IRB, Word(BudgetLoopCycle)), Cycle),
+      "again");
   IRB.CreateCondBr(Again, Done, First);
   IRB.SetInsertPoint(First);
-  Store(IRB.CreateAdd(Load(BudgetRanOut), IRB.getInt32(1)), BudgetRanOut);
-  Store(Loop, BudgetLoop);
-  Store(Cycle, BudgetLoopCycle);
+  storeBudgetWord(IRB,
+                  IRB.CreateAdd(loadBudgetWord(IRB, Word(BudgetRanOut)),
+                                IRB.getInt32(1)),
+                  Word(BudgetRanOut));
+  storeBudgetWord(IRB, Loop, Word(BudgetLoop));
+  storeBudgetWord(IRB, Cycle, Word(BudgetLoopCycle));
   // `--instrument`: the cycle's trace record says it too.
   const BehaviorLayout::TraceLayout &Trace = Layout.Trace;
   if (Trace.BudgetWord) {
@@ -117,24 +142,21 @@ void ModuleEmitter::emitBudgetStart(llvm::IRBuilderBase &IRB,
                                     llvm::Value *State) {
   if (!Opts.CycleBudget)
     return;
-  llvm::Type *I32 = IRB.getInt32Ty();
-  llvm::MDNode *Tag = getAccessTag(Access::Budget);
-  llvm::Value *Now = IRB.CreateLoad(
-      I32, IRB.CreateConstInBoundsGEP2_32(StateTy, State, 0, StateCycle),
-      "cycle");
+  llvm::LoadInst *Now = IRB.CreateLoad(
+      IRB.getInt32Ty(),
+      IRB.CreateConstInBoundsGEP2_32(StateTy, State, 0, StateCycle), "cycle");
+  Now->setMetadata(llvm::LLVMContext::MD_tbaa, getAccessTag(Access::State));
   llvm::Value *CycleAddr = getBudgetWordPtr(IRB, State, BudgetCycle);
-  llvm::LoadInst *Counted = IRB.CreateLoad(I32, CycleAddr, "budget.cycle");
-  Counted->setMetadata(llvm::LLVMContext::MD_tbaa, Tag);
+  llvm::Value *Counted = loadBudgetWord(IRB, CycleAddr, "budget.cycle");
   llvm::Value *Fresh = IRB.CreateICmpNE(Counted, Now, "budget.new.cycle");
   llvm::Function *F = IRB.GetInsertBlock()->getParent();
   auto *Reset = llvm::BasicBlock::Create(Ctx, "budget.reset", F);
   auto *Go = llvm::BasicBlock::Create(Ctx, "budget.counted", F);
   IRB.CreateCondBr(Fresh, Reset, Go);
   IRB.SetInsertPoint(Reset);
-  IRB.CreateStore(Now, CycleAddr)
-      ->setMetadata(llvm::LLVMContext::MD_tbaa, Tag);
-  IRB.CreateStore(IRB.getInt32(0), getBudgetWordPtr(IRB, State, BudgetUsed))
-      ->setMetadata(llvm::LLVMContext::MD_tbaa, Tag);
+  storeBudgetWord(IRB, Now, CycleAddr);
+  storeBudgetWord(IRB, IRB.getInt32(0),
+                  getBudgetWordPtr(IRB, State, BudgetUsed));
   IRB.CreateBr(Go);
   IRB.SetInsertPoint(Go);
 }

@@ -329,6 +329,12 @@ public:
   /// A pointer to a word of the state's budget record.
   llvm::Value *getBudgetWordPtr(llvm::IRBuilderBase &IRB, llvm::Value *State,
                                 BudgetWord W);
+  /// A load or store of a budget word (at getBudgetWordPtr's address),
+  /// with the record's TBAA tag.
+  llvm::LoadInst *loadBudgetWord(llvm::IRBuilderBase &IRB, llvm::Value *Addr,
+                                 const llvm::Twine &Name = "");
+  void storeBudgetWord(llvm::IRBuilderBase &IRB, llvm::Value *V,
+                       llvm::Value *Addr);
   /// Adds a loop to the budget's loop table; returns its number (from 1).
   unsigned addBudgetLoop(const CallableDecl *Owner, llvm::SMLoc Loc);
   /// `bs.budget.ran_out(ptr state, i32 loop)`: records that the cycle ran
