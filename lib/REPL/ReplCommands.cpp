@@ -1,0 +1,334 @@
+//===- ReplCommands.cpp - the REPL's `:` commands and its stepping --------===//
+//
+// Every command is a row of getCommands() (dispatch, `:help`, completion and
+// the "did you mean" of a typo come from it) and a cmd* method taking the
+// text after its name. step() runs cycles and stops them at breakpoints.
+//
+//===----------------------------------------------------------------------===//
+#include "ReplImpl.h"
+#include "bsc/Sema/CallGraph.h"
+#include "llvm/ADT/DenseSet.h"
+#include "llvm/ADT/StringExtras.h"
+#include "llvm/Support/FileSystem.h"
+#include "llvm/Support/Format.h"
+#include <csignal>
+
+using namespace bsc;
+using namespace bsc::repl;
+
+namespace {
+/// Set by Ctrl-C during `:run`; checked between cycles.
+volatile sig_atomic_t Interrupted = 0;
+void onInterrupt(int) { Interrupted = 1; }
+} // namespace
+
+std::optional<unsigned> Repl::findTask(llvm::StringRef Name) const {
+  for (size_t I = 0; I < L->Tables.Tasks.size(); ++I) {
+    const debug::DebugTables::Task &T = L->Tables.Tasks[I];
+    if (T.Name == Name || T.ShortName == Name)
+      return I;
+  }
+  return std::nullopt;
+}
+
+unsigned Repl::parseCount(llvm::StringRef Cmd, llvm::StringRef Arg,
+                          unsigned Default, llvm::SMLoc Loc) {
+  if (Arg.empty())
+    return Default;
+  unsigned N;
+  if (Arg.getAsInteger(10, N) || N == 0 || N > MaxCycles) {
+    C->Diags.report(Loc, diag::err_repl_bad_count) << Cmd << MaxCycles << Arg;
+    return 0;
+  }
+  return N;
+}
+
+/// The leaves of `New` that differ from `Old`: `output.motion = "kick"`,
+/// `output.wide[3] = 9`.
+static void collectChanges(const llvm::json::Value &Old,
+                           const llvm::json::Value &New, std::string Path,
+                           std::vector<std::string> &Out) {
+  const llvm::json::Array *NA = New.getAsArray();
+  const llvm::json::Array *OA = Old.getAsArray();
+  if (NA && OA && NA->size() == OA->size()) {
+    for (size_t I = 0; I < NA->size(); ++I)
+      collectChanges((*OA)[I], (*NA)[I], Path + "[" + std::to_string(I) + "]",
+                     Out);
+    return;
+  }
+  const llvm::json::Object *NO = New.getAsObject();
+  const llvm::json::Object *OO = Old.getAsObject();
+  if (NO && OO) {
+    std::vector<llvm::StringRef> Keys;
+    for (const auto &KV : *NO)
+      Keys.push_back(KV.first);
+    llvm::sort(Keys);
+    for (llvm::StringRef K : Keys) {
+      const llvm::json::Value *OV = OO->get(K);
+      collectChanges(OV ? *OV : llvm::json::Value(nullptr), *NO->get(K),
+                     Path + "." + K.str(), Out);
+    }
+    return;
+  }
+  if (debug::findDifference(Old, New, Path))
+    Out.push_back(Path + " = " + debug::toJSONString(New));
+}
+
+void Repl::reportStop(llvm::StringRef Why) {
+  flushDiagnostics();
+  uint32_t Cycle = S->getCycle();
+  OS << "stopped after cycle " << Cycle << ": " << Why << "\n"
+     << "cycle " << Cycle << ": "
+     << debug::formatTraceLine(
+            L->Tables, debug::takeSnapshot(S->getState(), &S->getInfo()))
+     << "\n";
+}
+
+void Repl::step(unsigned N, bool Report) {
+  rebaseWatches();
+  Interrupted = 0;
+  auto OldHandler = std::signal(SIGINT, onInterrupt);
+  for (unsigned I = 0; I < N; ++I) {
+    llvm::json::Value Before =
+        L->OutputClass && Report
+            ? Values->readClass(*L->OutputClass, S->getOutput())
+            : llvm::json::Value(nullptr);
+    uint32_t Cycle = S->getCycle() + 1;
+    BehaviorSession::Outcome O = S->runCycle(Opts.CycleLimitMs);
+    if (!reportOutcome(*C, *L, O, Cycle, Opts.CycleLimitMs)) {
+      flushDiagnostics();
+      OS << "stopped in cycle " << Cycle << "; the state is as it left it\n";
+      break;
+    }
+    if (Recording) {
+      debug::printJSON(*Recording, recordCycle(*Values, *L, *S));
+      *Recording << "\n";
+      Recording->flush();
+    }
+    if (Report) {
+      OS << "cycle " << Cycle;
+      if (L->OutputClass) {
+        std::vector<std::string> Changes;
+        collectChanges(Before,
+                       Values->readClass(*L->OutputClass, S->getOutput()),
+                       "output", Changes);
+        OS << (Changes.empty() ? ": output unchanged"
+                               : ": " + llvm::join(Changes, ", "));
+      }
+      OS << "\n";
+    }
+    std::string Why = checkBreakpoints();
+    if (Why.empty() && EntryIndex) {
+      int32_t State =
+          bs_task_state_at(S->getState(), &S->getInfo().tasks[*EntryIndex]);
+      if (State < 0)
+        Why = "the entry " + L->Entry->getQualifiedName() + " failed";
+    }
+    if (Why.empty() && Interrupted)
+      Why = "interrupted";
+    if (!Why.empty()) {
+      reportStop(Why);
+      break;
+    }
+  }
+  std::signal(SIGINT, OldHandler);
+}
+
+void Repl::cmdTasks(llvm::StringRef Args, llvm::SMLoc Loc) {
+  if (!noArgs("tasks", Args, Loc))
+    return;
+  if (S->getCycle() == 0) {
+    OS << "no cycle has run yet\n";
+    return;
+  }
+  std::vector<debug::Activation> Records =
+      debug::takeSnapshot(S->getState(), &S->getInfo());
+  debug::ActiveTree Tree = debug::buildActiveTree(L->Tables, Records);
+  if (Tree.Nodes.empty()) {
+    OS << "no task ran in cycle " << S->getCycle() << "\n";
+    return;
+  }
+  const auto *State = static_cast<const char *>(S->getState());
+  std::function<void(unsigned, unsigned)> Print = [&](unsigned N,
+                                                      unsigned Depth) {
+    const debug::ActiveTask &Node = Tree.Nodes[N];
+    const BehaviorLayout::Task &T = L->Layout.Tasks[Node.Record.Task];
+    std::string Indent(2 * Depth, ' ');
+    std::vector<std::string> Params, Locals;
+    for (const BehaviorLayout::FrameField &F : T.Fields) {
+      std::string Text = F.D->getName().Name.str() + " = " +
+                         formatValue(F.Ty, Values->read(F.Ty, State + F.Offset));
+      (llvm::isa<ParamDecl>(F.D) ? Params : Locals).push_back(Text);
+    }
+    OS << Indent << L->Tables.Tasks[Node.Record.Task].ShortName;
+    if (!T.Decl->Params.empty())
+      OS << "(" << llvm::join(Params, ", ") << ")";
+    OS << " [" << debug::describeActivation(L->Tables, Node.Record) << "]";
+    // A finished task's locals are gone (the next call starts afresh).
+    if (Node.Record.Resume > 0 && !Locals.empty())
+      OS << "  " << llvm::join(Locals, ", ");
+    OS << "\n";
+    for (unsigned Child : Node.Children)
+      Print(Child, Depth + 1);
+  };
+  OS << "cycle " << S->getCycle() << ":\n";
+  for (unsigned R : Tree.Roots)
+    Print(R, 1);
+}
+
+void Repl::cmdRecord(llvm::StringRef Args, llvm::SMLoc Loc) {
+  if (Args.empty()) {
+    C->Diags.report(Loc, diag::err_repl_missing_argument)
+        << "record" << "a file name or 'off'";
+    return;
+  }
+  Recording.reset();
+  if (Args == "off") {
+    OS << "recording stopped\n";
+    return;
+  }
+  std::error_code EC;
+  auto F = std::make_unique<llvm::raw_fd_ostream>(Args, EC,
+                                                  llvm::sys::fs::OF_Append);
+  if (EC) {
+    C->Diags.report(Loc, diag::err_cannot_write_output) << Args << EC.message();
+    return;
+  }
+  Recording = std::move(F);
+  OS << "recording cycles to " << Args << "\n";
+}
+
+void Repl::cmdReplay(llvm::StringRef Args, llvm::SMLoc Loc) {
+  if (Args.empty()) {
+    C->Diags.report(Loc, diag::err_repl_missing_argument)
+        << "replay" << "a file name";
+    return;
+  }
+  RunOptions R;
+  R.ReplayPath = Args.str();
+  R.CycleLimitMs = Opts.CycleLimitMs;
+  std::string Why;
+  R.StopAfterCycle = [&] {
+    Why = checkBreakpoints();
+    return !Why.empty();
+  };
+  uint32_t Before = S->getCycle();
+  rebaseWatches();
+  bool OK = runBehavior(*C, *L, *S, R, OS);
+  flushDiagnostics();
+  if (S->getCycle() == Before) // The file was refused before a cycle ran.
+    OS << "replayed no cycle\n";
+  else
+    OS << "replayed cycles " << Before + 1 << " to " << S->getCycle()
+       << (OK ? "; no recorded output differs" : "") << "\n";
+  if (!Why.empty())
+    reportStop(Why);
+}
+
+void Repl::cmdGraph(llvm::StringRef Args, llvm::SMLoc Loc) {
+  if (!noArgs("graph", Args, Loc))
+    return;
+  llvm::DenseSet<const CallableDecl *> Active;
+  for (const debug::Activation &A :
+       debug::takeSnapshot(S->getState(), &S->getInfo()))
+    Active.insert(L->Layout.Tasks[A.Task].Decl);
+  writeCallGraphDOT(C->Checked, C->SM, OS, &Active);
+}
+
+void Repl::cmdHelp(llvm::StringRef, llvm::SMLoc) {
+  for (const CommandInfo &Cmd : getCommands()) {
+    std::string Head = (":" + llvm::Twine(Cmd.Name) +
+                        (*Cmd.Args ? " " + llvm::Twine(Cmd.Args) : ""))
+                           .str();
+    OS << "  " << llvm::left_justify(Head, 30) << Cmd.Help << "\n";
+  }
+  OS << "  Any other line is b-script: an expression shows its value "
+        "(`input.ball.x`),\n  a statement runs (`input.time = 3000`, "
+        "`float k = 2.5`), between cycles.\n";
+}
+
+bool Repl::noArgs(llvm::StringRef Name, llvm::StringRef Args,
+                  llvm::SMLoc Loc) {
+  if (Args.empty())
+    return true;
+  C->Diags.report(Loc, diag::err_repl_extra_argument) << Name << Args;
+  return false;
+}
+
+void Repl::cmdStep(llvm::StringRef Args, llvm::SMLoc Loc) {
+  if (unsigned N = parseCount("step", Args, 1, Loc))
+    step(N, /*Report=*/true);
+}
+
+void Repl::cmdRun(llvm::StringRef Args, llvm::SMLoc Loc) {
+  unsigned N = parseCount("run", Args, MaxCycles, Loc);
+  if (!N)
+    return;
+  uint32_t Before = S->getCycle();
+  step(N, /*Report=*/false);
+  if (S->getCycle() - Before == N)
+    OS << "ran " << N << " cycles to cycle " << S->getCycle() << "\n";
+}
+
+llvm::ArrayRef<Repl::CommandInfo> Repl::getCommands() {
+  static const CommandInfo Commands[] = {
+      {"step", "[N]", "run N cycles (1), printing what changed in output",
+       &Repl::cmdStep},
+      {"run", "[N]",
+       "run until a breakpoint, a failure of the entry, Ctrl-C or N cycles "
+       "(1000000)",
+       &Repl::cmdRun},
+      {"tasks", "",
+       "the tasks of the last cycle: states, waiting lines, parameters and "
+       "locals",
+       &Repl::cmdTasks},
+      {"break", "TASK|FILE:LINE|failure",
+       "stop after a cycle in which TASK ran, a task waits at a yield on "
+       "FILE:LINE, or a task failed",
+       &Repl::cmdBreak},
+      {"watch", "EXPR", "stop after a cycle that changed the value of EXPR",
+       &Repl::cmdWatch},
+      {"breaks", "", "list the breakpoints and watches", &Repl::cmdBreaks},
+      {"delete", "[N]", "delete breakpoint N, or all", &Repl::cmdDelete},
+      {"reload", "",
+       "recompile the edited files, keeping the state of every task whose "
+       "frame did not change",
+       &Repl::cmdReload},
+      {"record", "FILE|off", "append each cycle's input and output to FILE",
+       &Repl::cmdRecord},
+      {"replay", "FILE",
+       "run a recording: feed its inputs, compare outputs",
+       &Repl::cmdReplay},
+      {"graph", "",
+       "the call graph as DOT, the tasks of the last cycle filled",
+       &Repl::cmdGraph},
+      {"help", "", "this list", &Repl::cmdHelp},
+      {"quit", "", "leave (so does the end of input)", nullptr},
+  };
+  return Commands;
+}
+
+void Repl::command(llvm::StringRef Name, llvm::StringRef Args,
+                   llvm::SMLoc Loc) {
+  for (const CommandInfo &Cmd : getCommands())
+    if (Name == Cmd.Name && Cmd.Run) {
+      (this->*Cmd.Run)(Args, Loc);
+      flushDiagnostics();
+      return;
+    }
+  // The closest command by edit distance, as clang suggests names.
+  const char *Best = nullptr;
+  unsigned BestDistance = 3;
+  for (const CommandInfo &Cmd : getCommands()) {
+    unsigned D = Name.edit_distance(Cmd.Name, true, BestDistance);
+    if (D < BestDistance) {
+      BestDistance = D;
+      Best = Cmd.Name;
+    }
+  }
+  if (Best)
+    C->Diags.report(Loc, diag::err_repl_unknown_command_suggest) << Name << Best;
+  else
+    C->Diags.report(Loc, diag::err_repl_unknown_command) << Name;
+  flushDiagnostics();
+}

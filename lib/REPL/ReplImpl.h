@@ -1,0 +1,143 @@
+//===- ReplImpl.h - the REPL's session, shared by its files ----*- C++ -*-===//
+//
+// The REPL (Repl.h, docs/repl.md) as one class whose jobs live in their own
+// files: Repl.cpp loads the behavior and runs lines of b-script,
+// ReplCommands.cpp dispatches the `:` commands and steps cycles,
+// ReplBreakpoints.cpp decides when a run stops.
+//
+//===----------------------------------------------------------------------===//
+#ifndef BSC_LIB_REPL_REPLIMPL_H
+#define BSC_LIB_REPL_REPLIMPL_H
+
+#include "bsc/REPL/Repl.h"
+#include "bsc/Sema/Sema.h"
+#include "llvm/LineEditor/LineEditor.h"
+#include "llvm/Support/raw_ostream.h"
+#include <optional>
+
+namespace bsc::repl {
+
+/// The most cycles one `:step` or `:run` runs: about a day of a robot's
+/// 30 Hz cycles would be 2.6 million; a million ends runs that no
+/// breakpoint stops, also in batch mode.
+constexpr unsigned MaxCycles = 1000000;
+
+/// Storage of a REPL variable or a line's result: aligned, zeroed.
+struct Slot {
+  void *Ptr = nullptr;
+  size_t Size = 0, Align = 1;
+  const Type *Ty = nullptr;
+};
+
+struct Breakpoint {
+  enum Kind { Task, Line, Failure, Watch } K;
+  unsigned Number;
+  std::string Text; ///< As the user wrote it.
+  unsigned TaskIndex = 0;
+  std::string File;
+  unsigned LineNo = 0;
+  /// Watch: the compiled expression and its last value.
+  void (*Eval)(void *) = nullptr;
+  Slot Result;
+  llvm::json::Value Last = nullptr;
+};
+
+class Repl {
+public:
+  Repl(const ReplOptions &Opts, llvm::raw_ostream &OS)
+      : Opts(Opts), OS(OS) {}
+  ~Repl();
+
+  /// Compiles and starts the behavior; false after reporting.
+  bool start();
+  /// Handles one input line; false once the user quits.
+  bool handleLine(llvm::StringRef Line);
+  std::vector<llvm::LineEditor::Completion> complete(llvm::StringRef Buffer,
+                                                     size_t Pos) const;
+
+private:
+  // Loading.
+  std::unique_ptr<Compilation> compileFiles();
+  bool load(std::unique_ptr<Compilation> NewC);
+
+  // Lines of b-script.
+  void evaluate(llvm::StringRef Line);
+  /// Compiles `Text` as REPL line number ++LineNo; its result and new
+  /// variables get slots. Null after reporting.
+  struct Compiled {
+    void (*Fn)(void *) = nullptr;
+    std::optional<ReplChecker::Line> Checked;
+    Slot Result;
+  };
+  std::optional<Compiled> compileLine(llvm::StringRef Text);
+  Slot allocateSlot(const Type *T);
+  void destroySlot(Slot &S);
+  /// The value as the REPL prints it: `(int) 3`.
+  std::string describe(const Type *T, const void *Addr);
+  std::string formatValue(const Type *T, const llvm::json::Value &V);
+
+  // Commands: each takes the text after its name and the place of the line
+  // (for carets).
+  using Handler = void (Repl::*)(llvm::StringRef Args, llvm::SMLoc Loc);
+  struct CommandInfo {
+    const char *Name, *Args, *Help;
+    Handler Run;
+  };
+  /// Every command, for dispatch, `:help`, completion and suggestions.
+  static llvm::ArrayRef<CommandInfo> getCommands();
+  void command(llvm::StringRef Name, llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdStep(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdRun(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdTasks(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdBreak(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdWatch(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdBreaks(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdDelete(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdReload(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdRecord(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdReplay(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdGraph(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdHelp(llvm::StringRef Args, llvm::SMLoc Loc);
+  /// Reports arguments given to a command that takes none; true if none.
+  bool noArgs(llvm::StringRef Name, llvm::StringRef Args, llvm::SMLoc Loc);
+  void step(unsigned N, bool Report);
+  /// Parses `:step N`'s N (empty: `Default`); reports and returns 0 if bad.
+  unsigned parseCount(llvm::StringRef Cmd, llvm::StringRef Arg,
+                      unsigned Default, llvm::SMLoc Loc);
+
+  /// Why the last cycle should stop `:run`, or empty.
+  std::string checkBreakpoints();
+  /// Takes the watches' values as the ones to compare against.
+  void rebaseWatches();
+  /// "stopped after cycle N: why" and the cycle's trace.
+  void reportStop(llvm::StringRef Why);
+  /// Prints and forgets the diagnostics so far.
+  void flushDiagnostics();
+  /// A buffer holding `Text`, named `<repl>`, for carets under a line.
+  llvm::SMLoc addBuffer(llvm::StringRef Text);
+  std::optional<unsigned> findTask(llvm::StringRef Name) const;
+
+  const ReplOptions &Opts;
+  llvm::raw_ostream &OS;
+
+  // Declared in the order they must be destroyed in reverse: the session
+  // before the JIT that holds its code, both before the compilation whose
+  // types and natives they refer to.
+  std::unique_ptr<Compilation> C;
+  std::unique_ptr<LoadedBehavior> L;
+  std::unique_ptr<BehaviorSession> S;
+  std::unique_ptr<ReplChecker> Checker;
+  std::unique_ptr<debug::ValueIO> Values;
+  std::vector<Slot> Variables;
+  std::vector<Breakpoint> Breakpoints;
+  unsigned NextBreakpoint = 1;
+  unsigned LineNo = 0;
+  std::unique_ptr<llvm::raw_fd_ostream> Recording;
+  /// The entry's index in the task table, if the entry is a task (its
+  /// failure stops `:run`).
+  std::optional<unsigned> EntryIndex;
+};
+
+} // namespace bsc::repl
+
+#endif
