@@ -302,6 +302,10 @@ llvm::ArrayRef<Repl::CommandInfo> Repl::getCommands() {
       {"graph", "",
        "the call graph as DOT, the tasks of the last cycle filled",
        &Repl::cmdGraph},
+      {"why", "[TASK]",
+       "the conditions TASK (or every task) evaluated in the last cycle, "
+       "with their values, and the yield it stopped at",
+       &Repl::cmdWhy},
       {"help", "", "this list", &Repl::cmdHelp},
       {"quit", "", "leave (so does the end of input)", nullptr},
   };

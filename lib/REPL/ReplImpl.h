@@ -98,6 +98,7 @@ private:
   void cmdReplay(llvm::StringRef Args, llvm::SMLoc Loc);
   void cmdGraph(llvm::StringRef Args, llvm::SMLoc Loc);
   void cmdHelp(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdWhy(llvm::StringRef Args, llvm::SMLoc Loc); // ReplWhy.cpp
   /// Reports arguments given to a command that takes none; true if none.
   bool noArgs(llvm::StringRef Name, llvm::StringRef Args, llvm::SMLoc Loc);
   void step(unsigned N, bool Report);
