@@ -329,6 +329,11 @@ llvm::Value *FunctionEmitter::emitCond(const Expr *E) {
 }
 
 llvm::Value *FunctionEmitter::emitExpr(const Expr *E) {
+  // CodeGenOptions::Explain: an operand of the condition being lowered
+  // also goes into the condition's record (CGExplain.cpp).
+  if (Explaining)
+    if (llvm::Value *V = emitExplainedOperand(E))
+      return V;
   switch (E->getKind()) {
   case NodeKind::IntLiteralExpr:
     return Builder.getInt32(llvm::cast<IntLiteralExpr>(E)->Value);
@@ -405,6 +410,13 @@ llvm::Value *FunctionEmitter::emitName(const NameExpr &E) {
 llvm::Value *FunctionEmitter::emitMember(const MemberExpr &E) {
   // `input.ball.position.x`: offsets from the input pointer for fields,
   // the getter thunk for properties (and fields without an offset).
+  if (E.TaskField) {
+    // `Striker.state` at the prompt: the field where the state keeps it.
+    const auto *V = llvm::dyn_cast<VarDecl>(E.TaskField);
+    const Type *T = V ? V->Ty : llvm::cast<ParamDecl>(E.TaskField)->Ty;
+    return emitLoad(T, getDeclAddress(E.TaskField),
+                    E.TaskField->getName().Name);
+  }
   const NativeFunction &NF = *E.Resolved;
   assert(NF.isData() && "a method is only a callee (emitCall)");
   if (NF.Kind == NativeFunction::Field && NF.FieldOffset)

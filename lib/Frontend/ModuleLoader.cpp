@@ -52,11 +52,9 @@ unsigned bsc::addSourceFile(Compilation &C, llvm::StringRef Path) {
   return C.SM.AddNewSourceBuffer(std::move(*BufOrErr), llvm::SMLoc());
 }
 
-/// `<Name>.bs` in the requiring file's folder, then in the -I folders.
-/// Returns "" if there is none; `Searched` lists the folders tried.
-static std::string findScriptModule(const ModuleAST &From, llvm::StringRef Name,
-                                    llvm::ArrayRef<std::string> IncludeDirs,
-                                    std::string &Searched) {
+std::string bsc::findScriptModule(const ModuleAST &From, llvm::StringRef Name,
+                                  llvm::ArrayRef<std::string> IncludeDirs,
+                                  std::string &Searched) {
   llvm::SmallVector<std::string, 4> Dirs;
   llvm::StringRef Parent = llvm::sys::path::parent_path(From.Path);
   Dirs.push_back(Parent.empty() ? "." : Parent.str());

@@ -57,7 +57,7 @@ void Repl::flushDiagnostics() {
 
 std::unique_ptr<Compilation> Repl::compileFiles() {
   auto NewC = std::make_unique<Compilation>();
-  if (!runFrontend(*NewC, Opts.Frontend) ||
+  if (!runFrontend(*NewC, Frontend) ||
       !findProgramEntry(*NewC, Opts.EntryName)) {
     printDiagnostics(NewC->SM, NewC->Diags.getDiagnostics(), llvm::errs(),
                      llvm::WithColor(llvm::errs()).colorsEnabled());
@@ -92,6 +92,7 @@ bool Repl::load(std::unique_ptr<Compilation> NewC) {
   const CallableDecl *Entry = findProgramEntry(*NewC, Opts.EntryName);
   LoadOptions LOpts = Opts.Load;
   LOpts.ExternalFunctions = true;
+  LOpts.Explain = true; // :why
   auto Loaded = loadBehavior(*NewC, *Entry, LOpts);
   if (!Loaded) {
     llvm::WithColor::error(llvm::errs(), "bsc")
@@ -172,6 +173,10 @@ bool Repl::load(std::unique_ptr<Compilation> NewC) {
       destroySlot(B.Result);
     Breakpoints.clear();
   }
+  // `:frame` stays on a task of the same name.
+  std::string FrameTask = Checker && Checker->getFrame()
+                              ? Checker->getFrame()->getQualifiedName()
+                              : "";
   // The old session ends before its JIT, the JIT before its compilation.
   S = std::move(NewS);
   Checker.reset();
@@ -180,6 +185,14 @@ bool Repl::load(std::unique_ptr<Compilation> NewC) {
   C = std::move(NewC);
   Checker = std::make_unique<ReplChecker>(C->Ctx, C->Diags, C->Checked,
                                           &C->Natives, L->Entry->Module);
+  llvm::DenseSet<const Decl *> Kept;
+  for (const BehaviorLayout::Task &T : L->Layout.Tasks)
+    for (const BehaviorLayout::FrameField &F : T.Fields)
+      Kept.insert(F.D);
+  Checker->setFrameFields(std::move(Kept));
+  for (const BehaviorLayout::Task &T : L->Layout.Tasks)
+    if (T.Decl->getQualifiedName() == FrameTask)
+      Checker->setFrame(llvm::cast<TaskDecl>(T.Decl));
   EntryIndex.reset();
   for (unsigned T = 0; T < L->Layout.Tasks.size(); ++T)
     if (L->Layout.Tasks[T].Decl == L->Entry)
@@ -210,6 +223,44 @@ void Repl::cmdReload(llvm::StringRef Args, llvm::SMLoc Loc) {
 //===----------------------------------------------------------------------===//
 // Lines of b-script
 //===----------------------------------------------------------------------===//
+
+void Repl::requireModule(llvm::StringRef Line, llvm::SMLoc Loc) {
+  llvm::StringRef Name = Line.drop_front(8).trim();
+  llvm::SMLoc NameLoc = Loc.getFromPointer(Loc.getPointer() +
+                                           (Line.size() - Name.size()));
+  if (!Name.consume_front("\"") || !Name.consume_back("\"") ||
+      Name.empty() || Name.contains('"')) {
+    C->Diags.report(NameLoc, diag::err_expected_after)
+        << "a module name in quotes" << "'requires'";
+    flushDiagnostics();
+    return;
+  }
+  bool Loaded = C->Natives.find(Name);
+  for (const ModuleAST *M : C->Checked.Modules)
+    Loaded |= M->Name == Name;
+  if (Loaded) {
+    OS << "module " << Name << " is loaded: its names are reachable as "
+       << Name << "::name\n";
+    return;
+  }
+  std::string Searched;
+  std::string Path = findScriptModule(*L->Entry->Module, Name,
+                                      Frontend.IncludeDirs, Searched);
+  if (Path.empty()) {
+    C->Diags.report(NameLoc, diag::err_unknown_module) << Name << Searched;
+    flushDiagnostics();
+    return;
+  }
+  Frontend.Inputs.push_back(Path);
+  std::unique_ptr<Compilation> NewC = compileFiles();
+  if (!NewC || !load(std::move(NewC))) {
+    Frontend.Inputs.pop_back();
+    C->Diags.report(llvm::SMLoc(), diag::err_repl_reload_failed);
+    flushDiagnostics();
+    return;
+  }
+  OS << "loaded module " << Name << " from " << Path << "\n";
+}
 
 llvm::SMLoc Repl::addBuffer(llvm::StringRef Text) {
   unsigned ID = C->SM.AddNewSourceBuffer(
@@ -323,6 +374,12 @@ bool Repl::handleLine(llvm::StringRef Line) {
   llvm::StringRef Text = Line.trim();
   if (Text.empty() || Text.starts_with("#"))
     return true;
+  if (Text.starts_with("requires") &&
+      (Text.size() == 8 || !(llvm::isAlnum(Text[8]) || Text[8] == '_'))) {
+    requireModule(Text, addBuffer(Text));
+    OS.flush();
+    return true;
+  }
   if (!Text.consume_front(":")) {
     evaluate(Text);
     OS.flush();

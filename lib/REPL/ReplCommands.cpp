@@ -225,6 +225,29 @@ void Repl::cmdReplay(llvm::StringRef Args, llvm::SMLoc Loc) {
     reportStop(Why);
 }
 
+void Repl::cmdFrame(llvm::StringRef Args, llvm::SMLoc Loc) {
+  if (Args.empty()) {
+    Checker->setFrame(nullptr);
+    OS << "lines are checked in module " << L->Entry->Module->Name << "\n";
+    return;
+  }
+  std::optional<unsigned> T = findTask(Args);
+  if (!T) {
+    C->Diags.report(Loc, diag::err_repl_unknown_task) << Args;
+    return;
+  }
+  const BehaviorLayout::Task &Task = L->Layout.Tasks[*T];
+  Checker->setFrame(llvm::cast<TaskDecl>(Task.Decl));
+  std::vector<std::string> Names;
+  for (const BehaviorLayout::FrameField &F : Task.Fields)
+    if (!llvm::is_contained(Names, F.D->getName().Name))
+      Names.push_back(F.D->getName().Name.str());
+  OS << "frame of " << Task.Decl->getQualifiedName() << ": "
+     << (Names.empty() ? std::string("it keeps no parameter or local")
+                       : llvm::join(Names, ", "))
+     << "\n";
+}
+
 void Repl::cmdGraph(llvm::StringRef Args, llvm::SMLoc Loc) {
   if (!noArgs("graph", Args, Loc))
     return;
@@ -282,6 +305,10 @@ llvm::ArrayRef<Repl::CommandInfo> Repl::getCommands() {
        "the tasks of the last cycle: states, waiting lines, parameters and "
        "locals",
        &Repl::cmdTasks},
+      {"frame", "[TASK]",
+       "check later lines in TASK's frame: its parameters, kept locals and "
+       "nested funcs unqualified (no TASK: the entry's module)",
+       &Repl::cmdFrame},
       {"break", "TASK|FILE:LINE|failure",
        "stop after a cycle in which TASK ran, a task waits at a yield on "
        "FILE:LINE, or a task failed",

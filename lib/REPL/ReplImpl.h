@@ -45,7 +45,7 @@ struct Breakpoint {
 class Repl {
 public:
   Repl(const ReplOptions &Opts, llvm::raw_ostream &OS)
-      : Opts(Opts), OS(OS) {}
+      : Opts(Opts), OS(OS), Frontend(Opts.Frontend) {}
   ~Repl();
 
   /// Compiles and starts the behavior; false after reporting.
@@ -99,6 +99,10 @@ private:
   void cmdGraph(llvm::StringRef Args, llvm::SMLoc Loc);
   void cmdHelp(llvm::StringRef Args, llvm::SMLoc Loc);
   void cmdWhy(llvm::StringRef Args, llvm::SMLoc Loc); // ReplWhy.cpp
+  void cmdFrame(llvm::StringRef Args, llvm::SMLoc Loc);
+  /// `requires "M"` at the prompt: loads M (a :reload with M added to the
+  /// inputs) unless it is loaded.
+  void requireModule(llvm::StringRef Line, llvm::SMLoc Loc);
   /// Reports arguments given to a command that takes none; true if none.
   bool noArgs(llvm::StringRef Name, llvm::StringRef Args, llvm::SMLoc Loc);
   void step(unsigned N, bool Report);
@@ -120,6 +124,8 @@ private:
 
   const ReplOptions &Opts;
   llvm::raw_ostream &OS;
+  /// Opts.Frontend and the modules `requires` added at the prompt.
+  FrontendOptions Frontend;
 
   // Declared in the order they must be destroyed in reverse: the session
   // before the JIT that holds its code, both before the compilation whose

@@ -364,8 +364,8 @@ LookupResult Sema::findUnqualified(llvm::StringRef Name, LookupMode Mode) {
     R.Ty = E->Ty;
     return R;
   }
-  if (CurTask)
-    for (FuncDecl *F : CurTask->NestedFuncs)
+  if (const TaskDecl *Nesting = getNestingTask())
+    for (FuncDecl *F : Nesting->NestedFuncs)
       if (F->getName().Name == Name) {
         R.Kind = LookupKind::Callable;
         R.Callable = F;
@@ -537,15 +537,6 @@ LookupResult Sema::lookupEnumValue(const Type *ValueTy,
   return R;
 }
 
-namespace {
-/// The module a qualifier names from the point of view of one module.
-struct QualifierModule {
-  enum { None, Script, Native, Poison } Kind = None;
-  ModuleAST *ScriptModule = nullptr;
-  const NativeModule *NativeMod = nullptr;
-};
-} // namespace
-
 LookupResult Sema::lookupQualified(const QualifiedName &N) {
   LookupResult R;
   const Ident &Q = N.Parts[0];
@@ -576,6 +567,8 @@ LookupResult Sema::lookupQualified(const QualifiedName &N) {
     } else if (World && Q.Name == World->Name) {
       QM.Kind = QualifierModule::Native;
       QM.NativeMod = World;
+    } else if (Repl) {
+      QM = findReplModule(Q.Name);
     }
   }
 
@@ -780,78 +773,6 @@ bool bsc::checkBehavior(llvm::ArrayRef<ModuleAST *> Modules, ASTContext &Ctx,
   S.FindModuleFile = FindModuleFile;
   S.Unbound = Unbound;
   return S.run(Modules);
-}
-
-//===----------------------------------------------------------------------===//
-// REPL lines
-//===----------------------------------------------------------------------===//
-
-ReplChecker::ReplChecker(ASTContext &Ctx, DiagnosticEngine &Diags,
-                         const Behavior &B, const NativeRegistry *Natives,
-                         ModuleAST *Context)
-    : Ctx(Ctx), Context(Context),
-      S(std::make_unique<sema::Sema>(Ctx, Diags, Scratch, Natives)) {
-  S->buildModuleTables(B.Modules);
-  S->Repl = true;
-}
-
-ReplChecker::~ReplChecker() = default;
-
-std::optional<ReplChecker::Line> ReplChecker::check(BlockStmt *Body,
-                                                    unsigned Number) {
-  Line L;
-  std::string Name = "repl" + std::to_string(Number);
-  L.Func = Ctx.create<FuncDecl>(
-      Body->getRange(),
-      Ident{Ctx.saveString(Name), Body->getRange().Start});
-  L.Func->Module = Context;
-  L.Func->Body = Body;
-  L.Func->ResultTy = Ctx.getTypes().getVoid();
-
-  S->HadError = false;
-  S->CurModule = S->InfoOf.lookup(Context);
-  S->CurTask = nullptr;
-  S->CurCallable = L.Func;
-  S->LoopDepth = 0;
-  S->Scopes.clear();
-  S->pushScope();
-  for (VarDecl *V : Vars)
-    S->Scopes.back().push_back({V->getName().Name, V});
-  S->pushScope();
-  for (Stmt *&St : Body->Stmts) {
-    auto *ES = llvm::dyn_cast<ExprStmt>(St);
-    if (!ES || St != Body->Stmts.back() || !ES->E) {
-      S->checkStmt(St);
-      continue;
-    }
-    // The value of the last expression is shown: it initialises a hidden
-    // local, the result.
-    const Type *T;
-    if (auto *C = llvm::dyn_cast<CallExpr>(ES->E))
-      T = C->Ty = S->checkCall(C, /*AsStatement=*/true);
-    else
-      T = S->checkExpr(ES->E);
-    if (T->isError() || T->isVoid())
-      continue;
-    L.Result = Ctx.create<VarDecl>(ES->getRange(),
-                                   Ident{"", ES->getRange().Start},
-                                   QualifiedName(), ES->E);
-    L.Result->Ty = T;
-    L.Result->Owner = L.Func;
-    L.Func->Locals.push_back(L.Result);
-    St = Ctx.create<DeclStmt>(ES->getRange(), L.Result);
-  }
-  S->Scopes.clear();
-  S->CurCallable = nullptr;
-  S->CurModule = nullptr;
-  if (S->HadError)
-    return std::nullopt;
-  for (VarDecl *V : L.Func->Locals)
-    if (V != L.Result) {
-      L.NewVars.push_back(V);
-      Vars.push_back(V);
-    }
-  return L;
 }
 
 bool bsc::isCallableFromC(const CallableDecl &D) {

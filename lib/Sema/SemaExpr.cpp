@@ -198,7 +198,12 @@ const Type *Sema::applyLookup(NameExpr *E, const LookupResult &L, Access A) {
   case LookupKind::Local:
     E->Kind = NameKind::Local;
     E->Local = L.Var;
-    if (L.Var->Owner != CurCallable) {
+    // A prompt's line reads a task's kept local as it is; it is no nested
+    // func of the task, and the checked behavior must not change.
+    if (Repl) {
+      if (!checkReplFieldAccess(L.Var, E->getRange(), A))
+        return Types.getError();
+    } else if (L.Var->Owner != CurCallable) {
       L.Var->UsedByNestedFunc = true;
       TaskLocalsUsed[CurCallable].push_back(L.Var);
     }
@@ -206,8 +211,12 @@ const Type *Sema::applyLookup(NameExpr *E, const LookupResult &L, Access A) {
   case LookupKind::Param:
     E->Kind = NameKind::Param;
     E->Param = L.Param;
-    if (L.Param->Owner != CurCallable)
+    if (Repl) {
+      if (!checkReplFieldAccess(L.Param, E->getRange(), A))
+        return Types.getError();
+    } else if (L.Param->Owner != CurCallable) {
       L.Param->ReadByNestedFunc = true;
+    }
     if (!checkParamAccess(E, L.Param, A))
       return Types.getError();
     return L.Param->Ty ? L.Param->Ty : Types.getError();
@@ -261,6 +270,9 @@ const Type *Sema::checkName(NameExpr *E, Access A) {
 }
 
 const Type *Sema::checkMember(MemberExpr *E, Access A) {
+  if (Repl)
+    if (const Type *T = checkTaskField(E, A))
+      return T;
   // A part of input or output (or of a task parameter) follows the rules of
   // the whole, so the use is passed down to the root of a member chain.
   const Type *BaseTy = checkExpr(E->Base, A);
@@ -648,6 +660,8 @@ bool Sema::resolveConstructor(CallExpr *C, NameExpr *Callee, const Type *T) {
     for (size_t I = 0; I != Ctor.Params.size(); ++I) {
       const Type *T = resolveNativeType(Ctor.Params[I]);
       S += (I ? ", " : "") + T->getName().str();
+      if (I < Ctor.ParamNames.size() && !Ctor.ParamNames[I].empty())
+        S += " " + Ctor.ParamNames[I]; // `float x`: the registered name.
       if (I >= MinArgs) { // `= 0.25`: the registered default.
         const NativeDefault &D = Ctor.Defaults[I - MinArgs];
         S += " = " + (D.IsFloat ? llvm::formatv("{0}", D.Float).str()

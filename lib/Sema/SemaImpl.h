@@ -75,6 +75,13 @@ enum class Access {
   MutatingMethodBase, ///< A non-const method is called on it.
 };
 
+/// The module a qualifier names from the point of view of one module.
+struct QualifierModule {
+  enum { None, Script, Native, Poison } Kind = None;
+  ModuleAST *ScriptModule = nullptr;
+  const NativeModule *NativeMod = nullptr;
+};
+
 /// The name tables of one module.
 struct ModuleInfo {
   ModuleAST *AST = nullptr;
@@ -267,6 +274,17 @@ public:
   Expr *makeDefaultArg(const NativeDefault &D, const Type *ParamTy,
                        llvm::SMLoc Loc);
 
+  //--- SemaRepl.cpp: what only the REPL's prompt allows ----------------------
+  /// A loaded module named `Name` that the current one does not require
+  /// (at the prompt every module is reachable qualified), or None.
+  QualifierModule findReplModule(llvm::StringRef Name);
+  /// `Task.x` at the prompt: if E's base names a task (and no value),
+  /// checks the read of its field and returns its type (an error type after
+  /// reporting); null if the base is no task and E is an ordinary member.
+  const Type *checkTaskField(MemberExpr *E, Access A);
+  /// Reports a write to a task's parameter or local at the prompt; true if
+  /// `D` may be used with `A`.
+  bool checkReplFieldAccess(const Decl *D, llvm::SMRange R, Access A);
   //--- SemaTask.cpp ---------------------------------------------------------
   void checkYield(YieldStmt *S);
   const Type *checkTaskState(TaskStateExpr *E);
@@ -284,6 +302,16 @@ public:
   /// Checking a REPL line (ReplChecker): `input` is writable and `output`
   /// readable.
   bool Repl = false;
+  /// REPL: the task parameters and locals lines may read (ReplChecker::
+  /// setFrameFields).
+  llvm::DenseSet<const Decl *> ReplFrameFields;
+  /// REPL: the task of `:frame`, whose nested funcs are visible.
+  const TaskDecl *ReplFrame = nullptr;
+  /// The task whose nested funcs an unqualified name may call: the one
+  /// being checked, or at the prompt the frame's.
+  const TaskDecl *getNestingTask() const {
+    return CurTask ? CurTask : ReplFrame;
+  }
   llvm::DenseMap<const NativeConstant *, ConstDecl *> NativeConstants;
   /// checkBehavior's: whether a module file could be required (or null).
   ModuleFileFinder FindModuleFile = nullptr;

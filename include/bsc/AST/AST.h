@@ -546,6 +546,10 @@ public:
   /// Method; the class is Resolved->Owner). Ty is the field's or
   /// property's type, or for a method callee its result type.
   const NativeFunction *Resolved = nullptr;
+  /// Sema, at the REPL's prompt only: `Striker.state` reads this parameter
+  /// or local of the task named by Base (a VarDecl or ParamDecl kept in
+  /// its frame); Resolved is then null.
+  const Decl *TaskField = nullptr;
   static bool classof(const Node *N) {
     return N->getKind() == NodeKind::MemberExpr;
   }

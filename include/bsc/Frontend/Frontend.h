@@ -95,6 +95,13 @@ bool readBindingObjects(Compilation &C, const FrontendOptions &Opts);
 /// Returns false if an error was reported.
 bool loadModules(Compilation &C, const FrontendOptions &Opts);
 
+/// The file of script module `Name` as `requires` in `From` finds it:
+/// `<Name>.bs` in From's folder, then in the -I folders. Returns "" if there
+/// is none; `Searched` lists the folders tried (`'a', 'b'`).
+std::string findScriptModule(const ModuleAST &From, llvm::StringRef Name,
+                             llvm::ArrayRef<std::string> IncludeDirs,
+                             std::string &Searched);
+
 /// loadModules, then checkBehavior. Returns false if an error was reported.
 bool runFrontend(Compilation &C, const FrontendOptions &Opts);
 

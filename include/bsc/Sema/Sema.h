@@ -4,6 +4,7 @@
 
 #include "bsc/AST/AST.h"
 #include "bsc/Basic/Diagnostic.h"
+#include "llvm/ADT/DenseSet.h"
 #include "llvm/ADT/STLFunctionalExtras.h"
 #include <memory>
 #include <optional>
@@ -106,16 +107,29 @@ class Sema;
 
 /// Checks the lines typed at `bsc repl` against a behavior checkBehavior
 /// accepted, as the body of a new func in the scope of one of its modules
-/// (the entry's: its funcs, tasks and `requires` are visible). What the
+/// (the entry's: its funcs, tasks and `requires` are visible; every other
+/// loaded module is reachable qualified, `Math::between(...)`). What the
 /// REPL allows beyond a func body: writing `input` and reading `output`
-/// (between cycles the debugger plays the world), an expression of any
-/// type as a statement (its value is shown), and variables that outlive
-/// the line (visible to every later line).
+/// (between cycles the debugger plays the world), reading a task's kept
+/// parameters and locals (`Striker.state`, `Striker::Striker.state`), an
+/// expression of any type as a statement (its value is shown), and
+/// variables that outlive the line (visible to every later line).
 class ReplChecker {
 public:
   ReplChecker(ASTContext &Ctx, DiagnosticEngine &Diags, const Behavior &B,
               const NativeRegistry *Natives, ModuleAST *Context);
   ~ReplChecker();
+
+  /// The parameters and locals of tasks that lines may read (`Task.x`, and
+  /// unqualified in the task's frame): the ones the state keeps
+  /// (BehaviorLayout's frame fields; with the JIT's probes, all). Until
+  /// set, none.
+  void setFrameFields(llvm::DenseSet<const Decl *> Kept);
+  /// `:frame T`: later lines are checked in T's module, with T's kept
+  /// parameters and locals and its nested funcs visible unqualified; null
+  /// returns to the context module.
+  void setFrame(const TaskDecl *T);
+  const TaskDecl *getFrame() const { return Frame; }
 
   /// A checked line: the func to generate and run once.
   struct Line {
@@ -136,6 +150,7 @@ public:
 private:
   ASTContext &Ctx;
   ModuleAST *Context;
+  const TaskDecl *Frame = nullptr;
   Behavior Scratch; ///< What the checker's Sema records; unused.
   std::unique_ptr<sema::Sema> S;
   std::vector<VarDecl *> Vars;
