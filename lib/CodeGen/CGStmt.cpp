@@ -244,7 +244,7 @@ void FunctionEmitter::emitAssign(const AssignStmt &S) {
 
 void FunctionEmitter::emitIf(const IfStmt &S) {
   llvm::LLVMContext &Ctx = CGM.getContext();
-  llvm::Value *Cond = emitFullCond(S.Cond);
+  llvm::Value *Cond = emitCondition(S, S.Cond);
   llvm::BasicBlock *ThenBB = llvm::BasicBlock::Create(Ctx, "if.then", Fn);
   llvm::BasicBlock *EndBB = llvm::BasicBlock::Create(Ctx, "if.end");
   llvm::BasicBlock *ElseBB = EndBB;
@@ -286,7 +286,7 @@ void FunctionEmitter::emitFor(const ForStmt &S) {
     emitProbe(LoopProbeSymbol, Site);
   }
   if (S.Cond)
-    Builder.CreateCondBr(emitFullCond(S.Cond), BodyBB, EndBB);
+    Builder.CreateCondBr(emitCondition(S, S.Cond), BodyBB, EndBB);
   else
     Builder.CreateBr(BodyBB);
 

@@ -45,6 +45,12 @@ enum StateField : unsigned {
   FirstFrameField = 4,
 };
 
+/// The name (in IR and DWARF) of the state pointer every generated function
+/// takes first. Reserved (`__`) so that no script parameter or local named
+/// `state` shadows it in a debugger: `print __bs_state->M.task` works in
+/// every frame (docs/repl.md, "gdb: -g").
+constexpr llvm::StringLiteral StateParamName = "__bs_state";
+
 /// A frame (`%bs.frame.*`) starts with the task's last call; its resume
 /// point and state follow when they take 4 bytes (TaskWordInfo), then the
 /// parameters and locals.
@@ -362,6 +368,19 @@ public:
   unsigned addSite(DebugSite Site);
   /// `bs.probe.loop` or `bs.probe.native`, defined on first use.
   llvm::GlobalVariable *getProbe(const char *Symbol);
+
+  // Explaining conditions (CodeGenOptions::Explain, CGExplain.cpp) ---------
+
+  /// Records a site; returns its number (from 1).
+  unsigned addExplainSite(ExplainSite Site);
+  /// `ptr bs.explain.begin(i32 site, i32 size)`: a record of the log with
+  /// its site and an empty mask, or scratch room when the log is not
+  /// active or full. Defined on first use, as is the log.
+  llvm::Function *getExplainBegin();
+  /// At an entry: a new cycle starts a new log, which takes records until
+  /// emitExplainEntryEnd.
+  void emitExplainEntryStart(llvm::IRBuilderBase &IRB, llvm::Value *State);
+  void emitExplainEntryEnd(llvm::IRBuilderBase &IRB);
   llvm::LLVMContext &getContext() { return Ctx; }
 
 private:
@@ -609,6 +628,21 @@ private:
   void emitProbe(const char *Symbol, unsigned Site);
   /// The statement being lowered: the place a native call's probe names.
   llvm::SMLoc CurStmtLoc;
+
+  // Explaining conditions (CodeGenOptions::Explain, CGExplain.cpp).
+  /// The condition of an `if` or `for` statement as a full expression
+  /// (emitFullCond); with Explain it also writes the condition's record.
+  llvm::Value *emitCondition(const Stmt &S, const Expr *Cond);
+  /// While a condition is explained, emitExpr of one of its operands: the
+  /// value, also stored into the record. Null for other expressions, which
+  /// emitExpr emits as usual.
+  llvm::Value *emitExplainedOperand(const Expr *E);
+  /// A task's records of its calls: the start at the top, the state and
+  /// resume point it leaves before every `ret`.
+  void emitExplainTaskMarks();
+  struct ExplainRecord;
+  /// The condition being explained, or null.
+  ExplainRecord *Explaining = nullptr;
 
   /// Evaluates a yield's value as an i32 task state.
   llvm::Value *emitToTaskState(const Expr *E);

@@ -80,6 +80,7 @@ bsc::loadBehavior(Compilation &C, const CallableDecl &Entry,
   CGOpts.Sources = &C.SM;
   CGOpts.OptLevel = Opts.OptLevel;
   CGOpts.CycleBudget = Opts.CycleBudget;
+  CGOpts.Explain = Opts.Explain;
   // The JIT calls the entry only.
   CGOpts.Exports.emplace();
   if (isCallableFromC(Entry))

@@ -49,6 +49,15 @@ struct CodeGenOptions {
   /// loop that ran away or the binding that crashed. Values computed do
   /// not change; robot objects never have probes (no mutable globals).
   bool Probes = false;
+  /// Explaining conditions for the REPL's `:why` (CGExplain.cpp), JIT only
+  /// like Probes: every `if` and `for` condition appends a record to the
+  /// log `bs.explain.log` (ExplainLogHeader) with its site
+  /// (BehaviorLayout::ExplainSites), its value and the values of its
+  /// operands that ran (short-circuiting skips some), and every task call
+  /// records its start and the state and resume point it left. The entry
+  /// starts a new log in each cycle. Values computed do not change; robot
+  /// objects never have it. Needs `Sources` (the sites' lines).
+  bool Explain = false;
   /// `--instrument`: every way out of a task call writes the task's slot of
   /// the trace record, which follows the frames in the state
   /// (BehaviorLayout::Trace, bscript.h "Trace records"), and
@@ -73,7 +82,7 @@ struct CodeGenOptions {
   /// table, a subprogram per func and task, their parameters and locals
   /// (frame fields included) with b-script types, registered classes with
   /// their C++ layouts. `Sources` maps the AST's locations to lines; it
-  /// must be set with DebugInfo. At -O1 and above the code generated does
+  /// must be set with DebugInfo (and Explain). At -O1 and above the code generated does
   /// not change; at -O0 the state pointer and task parameters that are
   /// only arguments are also stored on the stack, where the debugger reads
   /// them all along.
@@ -108,6 +117,66 @@ struct DebugSite {
 /// The probe globals of CodeGenOptions::Probes.
 inline constexpr const char *LoopProbeSymbol = "bs.probe.loop";
 inline constexpr const char *NativeProbeSymbol = "bs.probe.native";
+
+/// A condition CodeGenOptions::Explain records (or a task call's start or
+/// end), numbered from 1 in BehaviorLayout::ExplainSites. The table says
+/// how to read a record of the log: the record starts with the site
+/// number (uint32), 4 unused bytes and a uint64 mask whose bit k says that
+/// operand k ran and its value is at Operands[k].Offset.
+struct ExplainSite {
+  enum SiteKind {
+    If,        ///< `if(cond)`, `else if(cond)`.
+    For,       ///< `for(...; cond; ...)`, at each evaluation.
+    TaskStart, ///< A call of task In begins; no operands.
+    TaskEnd,   ///< It returns: its state and resume point (ExplainTaskEnd*).
+  };
+  SiteKind Kind;
+  const CallableDecl *In; ///< The func or task whose body holds it.
+  llvm::SMLoc Loc;        ///< The statement (the task for the markers).
+  std::string File;       ///< Without folders.
+  unsigned Line = 0;
+  /// A sub-expression whose value a record may hold: the condition itself
+  /// (operand 0), then the others in source order, each with the operand
+  /// that encloses it. Literals, constants and implicit conversions are
+  /// left out (their values are in the text), as are strings and class
+  /// values that cannot be copied as bytes or are larger than
+  /// MaxExplainedClassSize.
+  struct Operand {
+    const Expr *E;
+    std::string Text; ///< As b-script (`input.ball.position.abs()`).
+    const Type *Ty;
+    int Parent = -1;     ///< Index of the operand that encloses it; -1: none.
+    uint32_t Offset = 0; ///< Of its value in the record, stored as a
+                         ///< variable stores it (bool: one byte).
+  };
+  std::vector<Operand> Operands;
+  uint32_t RecordSize = 0; ///< A multiple of 8.
+};
+
+/// The log of CodeGenOptions::Explain: this header, then the records back
+/// to back (ExplainSite); a record that does not fit is not written and
+/// counts in Overflow. Only calls of the entry are logged (Active): a
+/// REPL line's or a watch's calls are not.
+struct ExplainLogHeader {
+  uint32_t Cycle;    ///< The state's cycle the records are of.
+  uint32_t Active;   ///< 1 while the entry runs.
+  uint32_t Used;     ///< Bytes of records.
+  uint32_t Overflow; ///< Records that did not fit.
+};
+inline constexpr const char *ExplainLogSymbol = "bs.explain.log";
+/// Room for the records of one cycle: some 10,000 conditions. A loop that
+/// runs longer fills it; the rest of the cycle is only counted.
+inline constexpr uint32_t ExplainLogCapacity = 256 * 1024;
+/// The bytes before a record's operands: site, unused, mask.
+inline constexpr uint32_t ExplainRecordHeaderSize = 16;
+/// A mask has 64 bits: operands past them are not recorded.
+inline constexpr unsigned MaxExplainOperands = 64;
+/// Class values larger than this are not copied into records (a Vector2f
+/// is 8 bytes, a pose 12).
+inline constexpr uint32_t MaxExplainedClassSize = 16;
+/// A TaskEnd record: the task's state (int32) and resume point (uint32).
+inline constexpr uint32_t ExplainTaskEndState = ExplainRecordHeaderSize;
+inline constexpr uint32_t ExplainTaskEndResume = ExplainRecordHeaderSize + 4;
 
 /// Where things ended up; what --emit-header and the JIT need.
 struct BehaviorLayout {
@@ -152,6 +221,9 @@ struct BehaviorLayout {
   /// With CodeGenOptions::Probes: the sites, numbered from 1 (0 in a probe
   /// global means "none").
   std::vector<DebugSite> Sites;
+  /// With CodeGenOptions::Explain: the sites of the log's records,
+  /// numbered from 1.
+  std::vector<ExplainSite> ExplainSites;
   /// With CodeGenOptions::Instrument: the declared symbol of the tables.
   std::string DebugTablesSymbol;
   /// With CodeGenOptions::Instrument: the trace record every task call

@@ -39,6 +39,9 @@ struct LoadOptions {
   bool DebugInfo = false;
   /// `--cycle-budget=N` (CodeGenOptions::CycleBudget); 0: none.
   uint32_t CycleBudget = 0;
+  /// The log of the conditions each cycle evaluated, for the REPL's `:why`
+  /// (CodeGenOptions::Explain).
+  bool Explain = false;
 };
 
 /// Reports every thunk or descriptor that `M` imports from the binding
