@@ -99,7 +99,7 @@ llvm::Function *ModuleEmitter::getBudgetRanOut() {
   BudgetRanOutFn->addFnAttr(llvm::Attribute::NoInline);
   llvm::Value *State = BudgetRanOutFn->getArg(0);
   llvm::Value *Loop = BudgetRanOutFn->getArg(1);
-  State->setName("state");
+  State->setName(StateParamName);
   Loop->setName("loop");
   auto *Entry = llvm::BasicBlock::Create(Ctx, "entry", BudgetRanOutFn);
   auto *First = llvm::BasicBlock::Create(Ctx, "first", BudgetRanOutFn);

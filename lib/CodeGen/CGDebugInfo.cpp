@@ -10,11 +10,12 @@
 // - parameters and locals with their b-script types: int, float, bool,
 //   `string` (a `const char *`), TaskState and registered enums as
 //   enumerations, registered classes as structures with the C++ fields;
-// - `state`, argument 1 of every function, as `struct bs_state *` whose
-//   members are the state header and every task's frame, module by module
-//   (`print state->Motion.walk`).
+// - `__bs_state`, argument 1 of every function, as `struct bs_state *`
+//   whose members are the state header and every task's frame, module by
+//   module (`print __bs_state->Motion.walk`), named so that a script's own
+//   `state` does not hide it.
 //
-// A task's variable kept in its frame is described as the `state`
+// A task's variable kept in its frame is described as the `__bs_state`
 // argument plus the field's offset. That description holds at every point
 // of the function: the code after a `yield` is entered from the resume
 // switch, not from the block that declared the variable. Every dbg.declare
@@ -408,13 +409,23 @@ llvm::DIType *DebugInfoEmitter::getStatePointerType() {
       auto *Frame = DIB.createStructType(
           ModStruct, TaskName + "_frame", nullptr, 0, Task.FrameSize * 8, 0,
           llvm::DINode::FlagZero, nullptr, llvm::DINodeArray());
+      // The frame's own words. A kept variable of the same name (a task's
+      // `int state`) keeps its name, and the word takes the `__bs_`
+      // prefix: gdb would show one of two same-named members.
+      auto WordName = [&](llvm::StringRef Name) {
+        bool Taken =
+            llvm::any_of(Task.Fields, [&](const BehaviorLayout::FrameField &F) {
+              return F.D->getName().Name == Name;
+            });
+        return Taken ? ("__bs_" + Name).str() : Name.str();
+      };
       llvm::SmallVector<llvm::Metadata *, 8> Fields = {
-          Member(Frame, "last_call", 32, 0, U32)};
+          Member(Frame, WordName("last_call"), 32, 0, U32)};
       if (inFrame(Task, Task.Resume))
-        Fields.push_back(Member(Frame, "resume", 32,
+        Fields.push_back(Member(Frame, WordName("resume"), 32,
                                 Task.Resume.Offset - Task.FrameOffset, U32));
       if (inFrame(Task, Task.State))
-        Fields.push_back(Member(Frame, "state", 32,
+        Fields.push_back(Member(Frame, WordName("state"), 32,
                                 Task.State.Offset - Task.FrameOffset,
                                 TaskState));
       for (const BehaviorLayout::FrameField &F : Task.Fields) {
@@ -547,8 +558,9 @@ void DebugInfoEmitter::declareFrameVariable(
 void DebugInfoEmitter::declareState(llvm::DISubprogram *SP, llvm::Value *Slot,
                                     llvm::Instruction *Before) {
   llvm::DILocalVariable *Var = DIB.createParameterVariable(
-      SP, "state", 1, SP->getFile(), SP->getLine(), getStatePointerType(),
-      /*AlwaysPreserve=*/true, llvm::DINode::FlagArtificial);
+      SP, StateParamName, 1, SP->getFile(), SP->getLine(),
+      getStatePointerType(), /*AlwaysPreserve=*/true,
+      llvm::DINode::FlagArtificial);
   DIB.insertDeclare(Slot, Var, DIB.createExpression(),
                     llvm::DILocation::get(CGM.getContext(), SP->getLine(), 0,
                                           SP),
@@ -578,7 +590,8 @@ void FunctionEmitter::emitDebugPrologue() {
   DebugInfoEmitter *DI = CGM.getDebugInfo();
   DebugScopes = {DI->createFunction(D, *Fn)};
   // mem2reg removes these slots at -O1 and above.
-  StateSlot = new llvm::AllocaInst(StatePtr->getType(), 0, "state.addr",
+  StateSlot = new llvm::AllocaInst(StatePtr->getType(), 0,
+                                   StateParamName + ".addr",
                                    EntryPoint);
   Builder.CreateStore(StatePtr, StateSlot);
   DI->declareState(Fn->getSubprogram(), StateSlot, EntryPoint);
@@ -624,7 +637,7 @@ void FunctionEmitter::declareForDebugger(const Decl &Dcl, const Type *Ty,
     DI->declareVariable(Dcl, Ty, DebugScopes.back(), Slot, ArgNo, EntryPoint);
     return;
   }
-  // A task's parameter or local kept in its frame: `state` plus the
+  // A task's parameter or local kept in its frame: `__bs_state` plus the
   // field's offset (the file comment says why not the field's address).
   const CallableDecl *Owner = nullptr;
   if (const auto *V = llvm::dyn_cast<VarDecl>(&Dcl))

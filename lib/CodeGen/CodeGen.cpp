@@ -590,7 +590,7 @@ void ModuleEmitter::declareFunctions() {
     auto *F = llvm::Function::Create(FTy, getFunctionLinkage(),
                                      getInternalName(*D), M);
     addCommonAttributes(F);
-    F->getArg(0)->setName("state");
+    F->getArg(0)->setName(StateParamName);
     if (ClassResult)
       F->getArg(1)->setName("result");
     unsigned First = ClassResult ? 2 : 1;
@@ -617,7 +617,7 @@ void ModuleEmitter::declareFunctions() {
         getFunctionLinkage(), getInternalName(*T) + ".destroy",
         M);
     addCommonAttributes(FI.Destroy);
-    FI.Destroy->getArg(0)->setName("state");
+    FI.Destroy->getArg(0)->setName(StateParamName);
   }
 }
 
@@ -670,7 +670,7 @@ void ModuleEmitter::emitDestroyFunctions() {
                               {llvm::PointerType::getUnqual(Ctx)}, false),
       llvm::GlobalValue::InternalLinkage, "bs.destroy", M);
   addCommonAttributes(BehaviorDestroy);
-  BehaviorDestroy->getArg(0)->setName("state");
+  BehaviorDestroy->getArg(0)->setName(StateParamName);
   llvm::IRBuilder<> IRB(
       llvm::BasicBlock::Create(Ctx, "entry", BehaviorDestroy));
   for (auto It = TaskDestroys.rbegin(); It != TaskDestroys.rend(); ++It)
@@ -726,7 +726,7 @@ void ModuleEmitter::emitEntries() {
         llvm::FunctionType::get(Result, Params, false),
         llvm::GlobalValue::ExternalLinkage, Symbol, M);
     addCommonAttributes(F);
-    F->getArg(0)->setName("state");
+    F->getArg(0)->setName(StateParamName);
 
     llvm::IRBuilder<> IRB(llvm::BasicBlock::Create(Ctx, "entry", F));
     emitBudgetStart(IRB, F->getArg(0));
@@ -1211,7 +1211,7 @@ void ModuleEmitter::runReplLine(
                               {llvm::PointerType::getUnqual(Ctx)}, false),
       llvm::GlobalValue::ExternalLinkage, Symbol, M);
   addCommonAttributes(F);
-  F->getArg(0)->setName("state");
+  F->getArg(0)->setName(StateParamName);
   Functions[&Line] = F;
   FunctionEmitter(*this, Line).run();
 }

@@ -6,10 +6,10 @@ bt
 frame 3
 info args
 info locals
-print *state->input
-print state->kick.kick
-print state->headers.kick
-print state->kick.main.mode
+print *__bs_state->input
+print __bs_state->kick.kick
+print __bs_state->headers.kick
+print __bs_state->kick.main.mode
 break kick.bs:16
 continue
 info locals
@@ -19,7 +19,7 @@ break kick::kick
 continue
 print power
 print aim
-print state->kick.kick.kicked
+print __bs_state->kick.kick.kicked
 next
 next
 next

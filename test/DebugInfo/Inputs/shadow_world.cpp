@@ -1,0 +1,20 @@
+// Used by gdb-shadow.test: a class registered by value with its fields
+// (.var: gdb shows them by their offsets) and a function a debugger can stop
+// in (sw::note), compiled with -g.
+#include <bscript/Bind.h>
+
+namespace sw {
+struct Vector2f {
+  float x = 0;
+  float y = 0;
+};
+// Not inline, so that gdb can break on it by name.
+__attribute__((noinline)) int note(int V) { return V + 1; }
+} // namespace sw
+
+BS_MODULE(Shapes,
+  registerClass<sw::Vector2f>(module, "Vector2f")
+    .var<&sw::Vector2f::x>("x")
+    .var<&sw::Vector2f::y>("y");
+  registerFunction<&sw::note>(module, "note");
+)
