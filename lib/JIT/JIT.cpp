@@ -36,6 +36,7 @@
 #include <cstring>
 #include <iterator>
 #include <sys/time.h>
+#include <unistd.h>
 
 using namespace bsc;
 
@@ -423,17 +424,18 @@ uint32_t BehaviorSession::getCycle() const {
   return static_cast<const bs_state_header *>(State)->cycle;
 }
 
-BehaviorSession::Outcome BehaviorSession::runCycle(unsigned LimitMs) {
+BehaviorSession::Outcome BehaviorSession::runCycle(unsigned LimitMs,
+                                                   bool WithWorld) {
   bs_begin_cycle(State, Input, Output);
   // A world's hooks run in the cycle: under its guard and time limit.
   uint32_t Cycle = getCycle();
   return runGuardedBody(
       [&] {
-        if (World.Begin)
+        if (WithWorld && World.Begin)
           inHook("bs_world_begin",
                  [&] { World.Begin(WorldUser, Input, Output, Cycle); });
         Entry(State);
-        if (World.End)
+        if (WithWorld && World.End)
           inHook("bs_world_end",
                  [&] { World.End(WorldUser, Input, Output, Cycle); });
       },
@@ -477,6 +479,26 @@ BehaviorSession::runGuardedBody(llvm::function_ref<void()> Body,
   Result.WorldHook = CurrentHook;
   Result.NullUser = !bs_state_user(State);
   CurrentHook = nullptr;
+  redirectStdout(false); // A hook that crashed did not put it back.
   std::fflush(stdout);
   return Result;
+}
+
+void BehaviorSession::setWorldOutput(int Fd) {
+  redirectStdout(false);
+  WorldOutput = Fd;
+}
+
+void BehaviorSession::redirectStdout(bool To) {
+  if (WorldOutput < 0 || (SavedStdout >= 0) == To)
+    return;
+  std::fflush(stdout);
+  if (To) {
+    SavedStdout = dup(STDOUT_FILENO);
+    dup2(WorldOutput, STDOUT_FILENO);
+  } else {
+    dup2(SavedStdout, STDOUT_FILENO);
+    close(SavedStdout);
+    SavedStdout = -1;
+  }
 }

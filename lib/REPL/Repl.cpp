@@ -30,6 +30,8 @@
 #include "llvm/Support/Process.h"
 #include "llvm/Support/WithColor.h"
 #include <cstring>
+#include <fcntl.h>
+#include <unistd.h>
 
 using namespace bsc;
 using namespace bsc::repl;
@@ -41,8 +43,12 @@ using namespace bsc::repl;
 Repl::~Repl() {
   for (Slot &V : Variables)
     destroySlot(V);
-  for (Breakpoint &B : Breakpoints)
-    destroySlot(B.Result);
+  destroyBreakpoints();
+  // The session goes before the descriptors it writes the world's output to.
+  S.reset();
+  for (int Fd : {WorldOutputFd, QuietFd})
+    if (Fd >= 0)
+      close(Fd);
 }
 
 void Repl::flushDiagnostics() {
@@ -169,9 +175,7 @@ bool Repl::load(std::unique_ptr<Compilation> NewC) {
     for (Slot &V : Variables)
       destroySlot(V);
     Variables.clear();
-    for (Breakpoint &B : Breakpoints)
-      destroySlot(B.Result);
-    Breakpoints.clear();
+    destroyBreakpoints();
   }
   // `:frame` stays on a task of the same name.
   std::string FrameTask = Checker && Checker->getFrame()
@@ -197,6 +201,14 @@ bool Repl::load(std::unique_ptr<Compilation> NewC) {
   for (unsigned T = 0; T < L->Layout.Tasks.size(); ++T)
     if (L->Layout.Tasks[T].Decl == L->Entry)
       EntryIndex = T;
+  if (FirstLoad && !Opts.WorldOutput.empty()) {
+    WorldOutputFd = openWorldOutput(*C, Opts.WorldOutput);
+    if (WorldOutputFd < 0) {
+      printDiagnostics(C->SM, C->Diags.getDiagnostics(), llvm::errs());
+      return false;
+    }
+    S->setWorldOutput(WorldOutputFd);
+  }
   if (FirstLoad && !Opts.WorldLibrary.empty() &&
       !attachWorldLibrary(*C, *L, *S, Opts.WorldLibrary, Opts.CycleLimitMs)) {
     printDiagnostics(C->SM, C->Diags.getDiagnostics(), llvm::errs());

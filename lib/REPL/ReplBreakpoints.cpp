@@ -3,7 +3,12 @@
 // Breakpoints are checked after each cycle (a cycle is the unit the robot
 // runs; the state between cycles is all there is to see), against the
 // cycle's activations (bsc/Debug/Trace.h): a task that ran, a task waiting
-// at a yield on a line, a task that failed, a watched value that changed.
+// at a yield on a line, a task that failed, a watched value that changed;
+// `LOC if EXPR` also needs EXPR true after that cycle. `:until EXPR` stops
+// the first cycle after which EXPR is true.
+//
+// Expressions here are probes: REPL lines compiled once, run under the
+// session's guard after each cycle.
 //
 //===----------------------------------------------------------------------===//
 #include "ReplImpl.h"
@@ -12,47 +17,96 @@
 using namespace bsc;
 using namespace bsc::repl;
 
+//===----------------------------------------------------------------------===//
+// Probes
+//===----------------------------------------------------------------------===//
+
+std::optional<Probe> Repl::compileProbe(llvm::StringRef Text,
+                                        llvm::StringRef Cmd, bool Bool,
+                                        llvm::SMLoc Loc) {
+  std::optional<Compiled> R = compileLine(Text);
+  if (!R)
+    return std::nullopt;
+  if (!R->Result.Ptr || (Bool && !R->Result.Ty->isBool())) {
+    if (Bool)
+      C->Diags.report(Loc, diag::err_repl_not_a_condition)
+          << Cmd << Text
+          << (R->Result.Ptr ? R->Result.Ty->getName() : "void");
+    else
+      C->Diags.report(Loc, diag::err_repl_watch_void) << Cmd;
+    destroySlot(R->Result);
+    return std::nullopt;
+  }
+  return Probe{Text.str(), R->Fn, R->Result};
+}
+
+std::optional<llvm::json::Value> Repl::evalProbe(Probe &P) {
+  BehaviorSession::Outcome O = S->runGuarded(P.Eval, Opts.CycleLimitMs);
+  if (!reportOutcome(*C, *L, O, S->getCycle(), Opts.CycleLimitMs))
+    return std::nullopt;
+  return Values->read(P.Result.Ty, P.Result.Ptr);
+}
+
+bool Repl::isTrue(Probe &P) {
+  std::optional<llvm::json::Value> V = evalProbe(P);
+  return V && V->getAsBoolean().value_or(false);
+}
+
+//===----------------------------------------------------------------------===//
+// Checking
+//===----------------------------------------------------------------------===//
+
 std::string Repl::checkBreakpoints() {
   std::vector<debug::Activation> Records =
       debug::takeSnapshot(S->getState(), &S->getInfo());
   for (Breakpoint &B : Breakpoints) {
+    std::string Hit;
     switch (B.K) {
     case Breakpoint::Task:
       for (const debug::Activation &A : Records)
-        if (A.Task == B.TaskIndex)
-          return "breakpoint " + std::to_string(B.Number) + ", " + B.Text +
-                 " ran";
+        if (A.Task == B.TaskIndex) {
+          Hit = B.Text + " ran";
+          break;
+        }
       break;
     case Breakpoint::Line:
       for (const debug::Activation &A : Records) {
         const debug::DebugTables::Task &T = L->Tables.Tasks[A.Task];
         if (A.Resume > 0 && T.File == B.File &&
-            T.YieldLines[A.Resume - 1] == B.LineNo)
-          return "breakpoint " + std::to_string(B.Number) + ", " + T.Name +
-                 " waits at " + B.Text;
+            T.YieldLines[A.Resume - 1] == B.LineNo) {
+          Hit = T.Name + " waits at " + B.Text;
+          break;
+        }
       }
       break;
     case Breakpoint::Failure:
       for (const debug::Activation &A : Records)
-        if (A.State < 0)
-          return "breakpoint " + std::to_string(B.Number) + ", " +
-                 L->Tables.Tasks[A.Task].Name + " failed";
+        if (A.State < 0) {
+          Hit = L->Tables.Tasks[A.Task].Name + " failed";
+          break;
+        }
       break;
     case Breakpoint::Watch: {
-      BehaviorSession::Outcome O = S->runGuarded(B.Eval, Opts.CycleLimitMs);
-      if (!reportOutcome(*C, *L, O, S->getCycle(), Opts.CycleLimitMs))
+      std::optional<llvm::json::Value> Now = evalProbe(B.Watched);
+      if (!Now)
         return "watch " + std::to_string(B.Number) + " was stopped";
-      llvm::json::Value Now = Values->read(B.Result.Ty, B.Result.Ptr);
-      if (debug::findDifference(B.Last, Now, B.Text)) {
+      if (debug::findDifference(B.Last, *Now, B.Text)) {
+        const Type *T = B.Watched.Result.Ty;
         std::string Why = "watch " + std::to_string(B.Number) + ", " + B.Text +
-                          ": " + formatValue(B.Result.Ty, B.Last) + " -> " +
-                          formatValue(B.Result.Ty, Now);
-        B.Last = std::move(Now);
+                          ": " + formatValue(T, B.Last) + " -> " +
+                          formatValue(T, *Now);
+        B.Last = std::move(*Now);
         return Why;
       }
       break;
     }
     }
+    if (Hit.empty())
+      continue;
+    if (B.If.Eval && !isTrue(B.If))
+      continue;
+    return "breakpoint " + std::to_string(B.Number) + ", " + Hit +
+           (B.If.Eval ? " and " + B.If.Text + " is true" : "");
   }
   return "";
 }
@@ -62,23 +116,55 @@ void Repl::rebaseWatches() {
   // the prompt since it was last looked at.
   for (Breakpoint &B : Breakpoints)
     if (B.K == Breakpoint::Watch &&
-        S->runGuarded(B.Eval, Opts.CycleLimitMs).K ==
+        S->runGuarded(B.Watched.Eval, Opts.CycleLimitMs).K ==
             BehaviorSession::Outcome::Completed)
-      B.Last = Values->read(B.Result.Ty, B.Result.Ptr);
+      B.Last = Values->read(B.Watched.Result.Ty, B.Watched.Result.Ptr);
+}
+
+void Repl::destroyBreakpoints() {
+  for (Breakpoint &B : Breakpoints) {
+    destroyProbe(B.Watched);
+    destroyProbe(B.If);
+  }
+  Breakpoints.clear();
+}
+
+//===----------------------------------------------------------------------===//
+// Commands
+//===----------------------------------------------------------------------===//
+
+/// Splits `LOC if EXPR` at its first ` if `; Cond is empty without one.
+static std::pair<llvm::StringRef, llvm::StringRef>
+splitCondition(llvm::StringRef Args) {
+  for (size_t I = Args.find("if"); I != llvm::StringRef::npos;
+       I = Args.find("if", I + 2)) {
+    bool WordStart = I > 0 && llvm::isSpace(Args[I - 1]);
+    bool WordEnd = I + 2 == Args.size() || llvm::isSpace(Args[I + 2]) ||
+                   Args[I + 2] == '(';
+    if (WordStart && WordEnd)
+      return {Args.take_front(I).rtrim(), Args.drop_front(I + 2).trim()};
+  }
+  return {Args, ""};
 }
 
 void Repl::cmdBreak(llvm::StringRef Args, llvm::SMLoc Loc) {
-  Breakpoint B;
-  B.Number = NextBreakpoint;
-  B.Text = Args.str();
   if (Args.empty()) {
     C->Diags.report(Loc, diag::err_repl_missing_argument)
         << "break" << "a task, FILE:LINE or 'failure'";
     return;
   }
-  if (Args == "failure") {
+  auto [Where, Cond] = splitCondition(Args);
+  if (Where.size() != Args.size() && Cond.empty()) {
+    C->Diags.report(Loc, diag::err_repl_missing_argument)
+        << "break ... if" << "a condition";
+    return;
+  }
+  Breakpoint B;
+  B.Number = NextBreakpoint;
+  B.Text = Where.str();
+  if (Where == "failure") {
     B.K = Breakpoint::Failure;
-  } else if (auto [File, LineText] = Args.rsplit(':');
+  } else if (auto [File, LineText] = Where.rsplit(':');
              !LineText.empty() && llvm::all_of(LineText, llvm::isDigit)) {
     B.K = Breakpoint::Line;
     B.File = File.str();
@@ -90,15 +176,24 @@ void Repl::cmdBreak(llvm::StringRef Args, llvm::SMLoc Loc) {
       C->Diags.report(Loc, diag::err_repl_no_yield_at) << File << LineText;
       return;
     }
-  } else if (std::optional<unsigned> T = findTask(Args)) {
+  } else if (std::optional<unsigned> T = findTask(Where)) {
     B.K = Breakpoint::Task;
     B.TaskIndex = *T;
   } else {
-    C->Diags.report(Loc, diag::err_repl_unknown_task) << Args;
+    C->Diags.report(Loc, diag::err_repl_unknown_task) << Where;
     return;
   }
+  if (!Cond.empty()) {
+    std::optional<Probe> If = compileProbe(Cond, "break", /*Bool=*/true, Loc);
+    if (!If)
+      return;
+    B.If = *If;
+  }
   ++NextBreakpoint;
-  OS << "breakpoint " << B.Number << ": " << B.Text << "\n";
+  OS << "breakpoint " << B.Number << ": " << B.Text;
+  if (B.If.Eval)
+    OS << " if " << B.If.Text;
+  OS << "\n";
   Breakpoints.push_back(std::move(B));
 }
 
@@ -108,27 +203,22 @@ void Repl::cmdWatch(llvm::StringRef Args, llvm::SMLoc Loc) {
         << "watch" << "an expression";
     return;
   }
-  std::optional<Compiled> R = compileLine(Args);
-  if (!R)
+  std::optional<Probe> P = compileProbe(Args, "watch", /*Bool=*/false, Loc);
+  if (!P)
     return;
-  if (!R->Result.Ptr) {
-    C->Diags.report(Loc, diag::err_repl_watch_void);
-    return;
-  }
   Breakpoint B;
   B.K = Breakpoint::Watch;
-  B.Number = NextBreakpoint++;
   B.Text = Args.str();
-  B.Eval = R->Fn;
-  B.Result = R->Result;
-  BehaviorSession::Outcome O = S->runGuarded(B.Eval, Opts.CycleLimitMs);
-  if (!reportOutcome(*C, *L, O, S->getCycle(), Opts.CycleLimitMs)) {
-    destroySlot(B.Result);
+  B.Watched = *P;
+  std::optional<llvm::json::Value> Now = evalProbe(B.Watched);
+  if (!Now) {
+    destroyProbe(B.Watched);
     return;
   }
-  B.Last = Values->read(B.Result.Ty, B.Result.Ptr);
+  B.Number = NextBreakpoint++;
+  B.Last = std::move(*Now);
   OS << "watch " << B.Number << ": " << B.Text << " = "
-     << formatValue(B.Result.Ty, B.Last) << "\n";
+     << formatValue(B.Watched.Result.Ty, B.Last) << "\n";
   Breakpoints.push_back(std::move(B));
 }
 
@@ -137,16 +227,18 @@ void Repl::cmdBreaks(llvm::StringRef Args, llvm::SMLoc Loc) {
     return;
   if (Breakpoints.empty())
     OS << "no breakpoints\n";
-  for (const Breakpoint &B : Breakpoints)
+  for (const Breakpoint &B : Breakpoints) {
     OS << (B.K == Breakpoint::Watch ? "watch " : "breakpoint ") << B.Number
-       << ": " << B.Text << "\n";
+       << ": " << B.Text;
+    if (B.If.Eval)
+      OS << " if " << B.If.Text;
+    OS << "\n";
+  }
 }
 
 void Repl::cmdDelete(llvm::StringRef Args, llvm::SMLoc Loc) {
   if (Args.empty()) {
-    for (Breakpoint &B : Breakpoints)
-      destroySlot(B.Result);
-    Breakpoints.clear();
+    destroyBreakpoints();
     OS << "deleted every breakpoint\n";
     return;
   }
@@ -159,7 +251,39 @@ void Repl::cmdDelete(llvm::StringRef Args, llvm::SMLoc Loc) {
     C->Diags.report(Loc, diag::err_repl_no_breakpoint) << Args;
     return;
   }
-  destroySlot(It->Result);
+  destroyProbe(It->Watched);
+  destroyProbe(It->If);
   Breakpoints.erase(It);
   OS << "deleted " << Args << "\n";
+}
+
+/// Splits `EXPR [N]`: a number at the end is N unless the expression needs
+/// it (`x == 2` ends in an operand; `x 100` does not).
+static std::pair<llvm::StringRef, llvm::StringRef>
+splitCount(llvm::StringRef Args) {
+  auto [Head, Last] = Args.rsplit(' ');
+  Head = Head.rtrim();
+  if (Last.empty() || Head.empty() || !llvm::all_of(Last, llvm::isDigit) ||
+      llvm::StringRef("=<>!+-*/%&|(,").contains(Head.back()))
+    return {Args, ""};
+  return {Head, Last};
+}
+
+void Repl::cmdUntil(llvm::StringRef Args, llvm::SMLoc Loc) {
+  if (Args.empty()) {
+    C->Diags.report(Loc, diag::err_repl_missing_argument)
+        << "until" << "a condition";
+    return;
+  }
+  auto [Text, CountText] = splitCount(Args);
+  unsigned N = parseCount("until", CountText, MaxCycles, Loc);
+  if (!N)
+    return;
+  std::optional<Probe> Until = compileProbe(Text, "until", /*Bool=*/true, Loc);
+  if (!Until)
+    return;
+  if (step(N, /*Report=*/false, &*Until) == StepEnd::Ran)
+    OS << Until->Text << " was not true after any of " << N
+       << " cycles; stopped after cycle " << S->getCycle() << "\n";
+  destroyProbe(*Until);
 }

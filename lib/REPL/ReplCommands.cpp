@@ -12,6 +12,7 @@
 #include "llvm/Support/FileSystem.h"
 #include "llvm/Support/Format.h"
 #include <csignal>
+#include <fcntl.h>
 
 using namespace bsc;
 using namespace bsc::repl;
@@ -84,10 +85,11 @@ void Repl::reportStop(llvm::StringRef Why) {
      << "\n";
 }
 
-void Repl::step(unsigned N, bool Report) {
+StepEnd Repl::step(unsigned N, bool Report, Probe *Until) {
   rebaseWatches();
   Interrupted = 0;
   auto OldHandler = std::signal(SIGINT, onInterrupt);
+  StepEnd End = StepEnd::Ran;
   for (unsigned I = 0; I < N; ++I) {
     llvm::json::Value Before =
         L->OutputClass && Report
@@ -98,6 +100,7 @@ void Repl::step(unsigned N, bool Report) {
     if (!reportOutcome(*C, *L, O, Cycle, Opts.CycleLimitMs)) {
       flushDiagnostics();
       OS << "stopped in cycle " << Cycle << "; the state is as it left it\n";
+      End = StepEnd::Broken;
       break;
     }
     if (Recording) {
@@ -118,6 +121,8 @@ void Repl::step(unsigned N, bool Report) {
       OS << "\n";
     }
     std::string Why = checkBreakpoints();
+    if (Why.empty() && Until && isTrue(*Until))
+      Why = Until->Text + " is true";
     if (Why.empty() && EntryIndex) {
       int32_t State =
           bs_task_state_at(S->getState(), &S->getInfo().tasks[*EntryIndex]);
@@ -128,10 +133,12 @@ void Repl::step(unsigned N, bool Report) {
       Why = "interrupted";
     if (!Why.empty()) {
       reportStop(Why);
+      End = StepEnd::Stopped;
       break;
     }
   }
   std::signal(SIGINT, OldHandler);
+  return End;
 }
 
 void Repl::cmdTasks(llvm::StringRef Args, llvm::SMLoc Loc) {
@@ -248,6 +255,21 @@ void Repl::cmdFrame(llvm::StringRef Args, llvm::SMLoc Loc) {
      << "\n";
 }
 
+void Repl::cmdQuiet(llvm::StringRef Args, llvm::SMLoc Loc) {
+  if (Args.empty() || Args == "on") {
+    if (QuietFd < 0)
+      QuietFd = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+    S->setWorldOutput(QuietFd);
+    OS << "the world's output is discarded\n";
+  } else if (Args == "off") {
+    S->setWorldOutput(WorldOutputFd);
+    OS << "the world's output goes to "
+       << (WorldOutputFd < 0 ? "standard output" : Opts.WorldOutput) << "\n";
+  } else {
+    C->Diags.report(Loc, diag::err_repl_extra_argument) << "quiet" << Args;
+  }
+}
+
 void Repl::cmdGraph(llvm::StringRef Args, llvm::SMLoc Loc) {
   if (!noArgs("graph", Args, Loc))
     return;
@@ -259,12 +281,17 @@ void Repl::cmdGraph(llvm::StringRef Args, llvm::SMLoc Loc) {
 }
 
 void Repl::cmdHelp(llvm::StringRef, llvm::SMLoc) {
-  for (const CommandInfo &Cmd : getCommands()) {
-    std::string Head = (":" + llvm::Twine(Cmd.Name) +
-                        (*Cmd.Args ? " " + llvm::Twine(Cmd.Args) : ""))
-                           .str();
-    OS << "  " << llvm::left_justify(Head, 30) << Cmd.Help << "\n";
-  }
+  auto Head = [](const CommandInfo &Cmd) {
+    return (":" + llvm::Twine(Cmd.Name) +
+            (*Cmd.Args ? " " + llvm::Twine(Cmd.Args) : ""))
+        .str();
+  };
+  size_t Width = 0;
+  for (const CommandInfo &Cmd : getCommands())
+    Width = std::max(Width, Head(Cmd).size());
+  for (const CommandInfo &Cmd : getCommands())
+    OS << "  " << llvm::left_justify(Head(Cmd), Width + 2) << Cmd.Help
+       << "\n";
   OS << "  Any other line is b-script: an expression shows its value "
         "(`input.ball.x`),\n  a statement runs (`input.time = 3000`, "
         "`float k = 2.5`), between cycles.\n";
@@ -287,10 +314,12 @@ void Repl::cmdRun(llvm::StringRef Args, llvm::SMLoc Loc) {
   unsigned N = parseCount("run", Args, MaxCycles, Loc);
   if (!N)
     return;
-  uint32_t Before = S->getCycle();
-  step(N, /*Report=*/false);
-  if (S->getCycle() - Before == N)
-    OS << "ran " << N << " cycles to cycle " << S->getCycle() << "\n";
+  if (step(N, /*Report=*/false) != StepEnd::Ran)
+    return;
+  OS << "ran " << N << " cycles to cycle " << S->getCycle();
+  if (!Breakpoints.empty())
+    OS << "; no breakpoint was hit";
+  OS << "\n";
 }
 
 llvm::ArrayRef<Repl::CommandInfo> Repl::getCommands() {
@@ -309,10 +338,14 @@ llvm::ArrayRef<Repl::CommandInfo> Repl::getCommands() {
        "check later lines in TASK's frame: its parameters, kept locals and "
        "nested funcs unqualified (no TASK: the entry's module)",
        &Repl::cmdFrame},
-      {"break", "TASK|FILE:LINE|failure",
+      {"break", "TASK|FILE:LINE|failure [if EXPR]",
        "stop after a cycle in which TASK ran, a task waits at a yield on "
-       "FILE:LINE, or a task failed",
+       "FILE:LINE, or a task failed (and EXPR is true)",
        &Repl::cmdBreak},
+      {"until", "EXPR [N]",
+       "run until EXPR is true after a cycle, a breakpoint, or N cycles "
+       "(1000000)",
+       &Repl::cmdUntil},
       {"watch", "EXPR", "stop after a cycle that changed the value of EXPR",
        &Repl::cmdWatch},
       {"breaks", "", "list the breakpoints and watches", &Repl::cmdBreaks},
@@ -326,6 +359,10 @@ llvm::ArrayRef<Repl::CommandInfo> Repl::getCommands() {
       {"replay", "FILE",
        "run a recording: feed its inputs, compare outputs",
        &Repl::cmdReplay},
+      {"quiet", "[on|off]",
+       "discard what the --world library prints (off: to --world-output "
+       "or standard output again)",
+       &Repl::cmdQuiet},
       {"graph", "",
        "the call graph as DOT, the tasks of the last cycle filled",
        &Repl::cmdGraph},

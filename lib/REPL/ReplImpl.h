@@ -29,17 +29,34 @@ struct Slot {
   const Type *Ty = nullptr;
 };
 
+/// A compiled expression the REPL evaluates between cycles (a watch, a
+/// breakpoint's condition, `:until`, `:history`): the line's function and
+/// the slot it writes the value to.
+struct Probe {
+  std::string Text; ///< As the user wrote it.
+  void (*Eval)(void *) = nullptr;
+  Slot Result;
+};
+
 struct Breakpoint {
   enum Kind { Task, Line, Failure, Watch } K;
   unsigned Number;
-  std::string Text; ///< As the user wrote it.
+  std::string Text; ///< As the user wrote it (LOC for `LOC if EXPR`).
   unsigned TaskIndex = 0;
   std::string File;
   unsigned LineNo = 0;
-  /// Watch: the compiled expression and its last value.
-  void (*Eval)(void *) = nullptr;
-  Slot Result;
+  /// Watch: the expression and its last value.
+  Probe Watched;
   llvm::json::Value Last = nullptr;
+  /// `:break LOC if EXPR`: EXPR, a bool (no Eval: none).
+  Probe If;
+};
+
+/// How step() ended.
+enum class StepEnd {
+  Ran,     ///< Every cycle asked for ran.
+  Stopped, ///< A breakpoint, `:until`, the entry's failure or Ctrl-C.
+  Broken,  ///< A cycle crashed or ran out of time.
 };
 
 class Repl {
@@ -100,12 +117,28 @@ private:
   void cmdHelp(llvm::StringRef Args, llvm::SMLoc Loc);
   void cmdWhy(llvm::StringRef Args, llvm::SMLoc Loc); // ReplWhy.cpp
   void cmdFrame(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdQuiet(llvm::StringRef Args, llvm::SMLoc Loc);
   /// `requires "M"` at the prompt: loads M (a :reload with M added to the
   /// inputs) unless it is loaded.
   void requireModule(llvm::StringRef Line, llvm::SMLoc Loc);
   /// Reports arguments given to a command that takes none; true if none.
   bool noArgs(llvm::StringRef Name, llvm::StringRef Args, llvm::SMLoc Loc);
-  void step(unsigned N, bool Report);
+  /// Runs up to N cycles; after each, checks the breakpoints and `Until`
+  /// (if given, a bool probe that stops when true).
+  StepEnd step(unsigned N, bool Report, Probe *Until = nullptr);
+  void cmdUntil(llvm::StringRef Args, llvm::SMLoc Loc);
+  /// Compiles `Text` into a probe with a value (of type bool if `Bool`);
+  /// reports for command `Cmd` and returns std::nullopt if it has none.
+  std::optional<Probe> compileProbe(llvm::StringRef Text, llvm::StringRef Cmd,
+                                    bool Bool, llvm::SMLoc Loc);
+  /// Runs the probe; its value, or null after reporting a crash or a
+  /// runaway loop.
+  std::optional<llvm::json::Value> evalProbe(Probe &P);
+  /// Whether a bool probe is true now (false if it could not run).
+  bool isTrue(Probe &P);
+  void destroyProbe(Probe &P) { destroySlot(P.Result); }
+  /// Destroys and forgets every breakpoint.
+  void destroyBreakpoints();
   /// Parses `:step N`'s N (empty: `Default`); reports and returns 0 if bad.
   unsigned parseCount(llvm::StringRef Cmd, llvm::StringRef Arg,
                       unsigned Default, llvm::SMLoc Loc);
@@ -126,6 +159,8 @@ private:
   llvm::raw_ostream &OS;
   /// Opts.Frontend and the modules `requires` added at the prompt.
   FrontendOptions Frontend;
+  /// --world-output's file and `:quiet`'s /dev/null (-1: not open).
+  int WorldOutputFd = -1, QuietFd = -1;
 
   // Declared in the order they must be destroyed in reverse: the session
   // before the JIT that holds its code, both before the compilation whose

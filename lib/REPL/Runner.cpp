@@ -176,6 +176,16 @@ bool bsc::attachWorldLibrary(Compilation &C, const LoadedBehavior &L,
   return reportOutcome(C, L, S.attachWorld(H, LimitMs), 0, LimitMs);
 }
 
+int bsc::openWorldOutput(Compilation &C, llvm::StringRef Path) {
+  int Fd;
+  if (std::error_code EC = llvm::sys::fs::openFileForWrite(Path, Fd)) {
+    C.Diags.report(llvm::SMLoc(), diag::err_cannot_write_output)
+        << Path << EC.message();
+    return -1;
+  }
+  return Fd;
+}
+
 /// "SIGSEGV (segmentation fault)".
 static std::string describeSignal(int Sig) {
   const char *Name = Sig == SIGSEGV   ? "SIGSEGV"

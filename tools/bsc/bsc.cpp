@@ -127,6 +127,12 @@ cl::opt<std::string> WorldLibrary(
              "every cycle (bs_world_init/begin/end/exit, docs/repl.md)"),
     cl::value_desc("lib.so"), cl::cat(BscCategory), cl::sub(RunCmd),
     cl::sub(ReplCmd));
+cl::opt<std::string> WorldOutput(
+    "world-output",
+    cl::desc("Write what the --world library prints to this file instead of "
+             "standard output"),
+    cl::value_desc("file"), cl::cat(BscCategory), cl::sub(RunCmd),
+    cl::sub(ReplCmd));
 cl::opt<std::string> BatchFile(
     "batch",
     cl::desc("Read the REPL's lines from this file, without a prompt (also "
@@ -716,6 +722,16 @@ int compile(Compilation &C, const BackendOptions &BOpts, OutputKind Kind,
   return finish(C);
 }
 
+/// `--world-output` redirects the world's prints: without `--world` it is
+/// a mistake.
+static bool checkWorldOutputOption(Compilation &C) {
+  if (WorldOutput.empty() || !WorldLibrary.empty())
+    return true;
+  C.Diags.report(llvm::SMLoc(), diag::err_option_needs_option)
+      << "--world-output" << "--world";
+  return false;
+}
+
 /// `bsc run`: the behavior in the host JIT, --cycles calls of --entry.
 int runJIT(Compilation &C, const FrontendOptions &FOpts) {
   BackendOptions BOpts;
@@ -752,9 +768,17 @@ int runJIT(Compilation &C, const FrontendOptions &FOpts) {
         << "--world" << "--replay";
     return finish(C);
   }
+  if (!checkWorldOutputOption(C))
+    return finish(C);
+  int WorldOutputFd = -1;
+  if (!WorldOutput.empty() &&
+      (WorldOutputFd = openWorldOutput(C, WorldOutput)) < 0)
+    return finish(C);
   auto Session = startSession(C, **Loaded);
   if (!Session)
     return finishWithInternalError(C, Session.takeError());
+  if (*Session)
+    (*Session)->setWorldOutput(WorldOutputFd);
   if (*Session && (WorldLibrary.empty() ||
                    attachWorldLibrary(C, **Loaded, **Session, WorldLibrary,
                                       ROpts.CycleLimitMs)))
@@ -773,6 +797,7 @@ int runReplCommand(Compilation &C, const FrontendOptions &FOpts) {
     C.Diags.report(llvm::SMLoc(), diag::err_no_input_files);
     OK = false;
   }
+  OK &= checkWorldOutputOption(C);
   if (!OK)
     return finish(C);
   Opts.Frontend = FOpts;
@@ -783,6 +808,7 @@ int runReplCommand(Compilation &C, const FrontendOptions &FOpts) {
   Opts.EntryName = EntryName;
   Opts.BatchFile = BatchFile;
   Opts.WorldLibrary = WorldLibrary;
+  Opts.WorldOutput = WorldOutput;
   return runRepl(Opts, llvm::outs());
 }
 

@@ -195,8 +195,10 @@ public:
     bool NullUser = false;
   };
   /// Begins the next cycle and calls the entry; a cycle still running after
-  /// `LimitMs` milliseconds (0: no limit) is stopped.
-  Outcome runCycle(unsigned LimitMs);
+  /// `LimitMs` milliseconds (0: no limit) is stopped. Without `WithWorld`
+  /// the world's hooks are not called: the REPL re-runs a cycle of its
+  /// history on the input it logged.
+  Outcome runCycle(unsigned LimitMs, bool WithWorld = true);
   /// Calls `Fn(state)` under the same guard, between cycles (a REPL line).
   Outcome runGuarded(void (*Fn)(void *), unsigned LimitMs) {
     return runGuardedBody([&] { Fn(State); }, LimitMs);
@@ -212,9 +214,14 @@ public:
   void takeWorldFrom(BehaviorSession &Old) {
     World = Old.World;
     WorldUser = Old.WorldUser;
+    WorldOutput = Old.WorldOutput;
     bs_state_set_user(State, WorldUser);
     Old.World = WorldHooks();
   }
+
+  /// What the world's hooks print to standard output goes to file
+  /// descriptor `Fd` (the session does not own it); -1: standard output.
+  void setWorldOutput(int Fd);
 
   void *getState() const { return State; }
   void *getInput() const { return Input; }
@@ -238,10 +245,17 @@ private:
   void *WorldUser = nullptr;
   /// The hook running now (read after a signal or the watchdog).
   const char *volatile CurrentHook = nullptr;
+  /// setWorldOutput's descriptor, and standard output's own while a hook
+  /// runs with it (-1: none).
+  int WorldOutput = -1, SavedStdout = -1;
+  /// Points standard output at WorldOutput (To) or back.
+  void redirectStdout(bool To);
   /// Calls a world hook, naming it while it runs.
   template <class Fn> void inHook(const char *Name, Fn &&Call) {
     CurrentHook = Name;
+    redirectStdout(true);
     Call();
+    redirectStdout(false);
     CurrentHook = nullptr;
   }
 };

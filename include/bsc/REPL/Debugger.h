@@ -96,6 +96,11 @@ bool attachWorldLibrary(Compilation &C, const LoadedBehavior &L,
                         BehaviorSession &S, llvm::StringRef Path,
                         unsigned LimitMs);
 
+/// `--world-output FILE`: opens FILE (emptied) for what a world library
+/// prints (BehaviorSession::setWorldOutput). Returns its descriptor, or -1
+/// after reporting a file that cannot be written.
+int openWorldOutput(Compilation &C, llvm::StringRef Path);
+
 /// The default --cycle-limit: long enough for any real cycle (a robot's is
 /// 10 to 33 ms), short enough that a runaway loop is noticed at once.
 constexpr unsigned DefaultCycleLimitMs = 3000;

@@ -18,6 +18,7 @@ struct ReplOptions {
   std::string EntryName = "main";
   std::string BatchFile; ///< --batch: read the lines from this file.
   std::string WorldLibrary; ///< --world: feeds input, reads output.
+  std::string WorldOutput;  ///< --world-output: what the world prints.
   unsigned CycleLimitMs = DefaultCycleLimitMs;
 };
 
