@@ -6,7 +6,7 @@
 //
 //   module Math:  class Vector2f (Eigen::Vector2f) with fields x, y, method
 //                 abs() (the Euclidean norm), operators + and - (_plus_,
-//                 _min_), and function fabs(float).
+//                 _min_), and function fabs(float x).
 //   module World: enum MotionType {stand, walk, kick}; the type of `input`
 //                 (ball.position, oppGoal, time in ms, executedMotion) and of
 //                 `output` (motion, walkTarget, headTarget). World declares
@@ -50,9 +50,10 @@ BS_MODULE(Math,
     // dot() takes `const MatrixBase<D>&`: wrap it so the parameter is a
     // registered type.
     .func<[](const Vector2f &A, const Vector2f &B) { return A.dot(B); }>(
-        "dot", "dot")
+        "dot", {"other"}, "dot")
     .copyAsBytes();
-  registerFunction<&Math::fabs>(module, "fabs", "Math::fabs");
+  // The parameter names show in --dump-bindings and in messages.
+  registerFunction<&Math::fabs>(module, "fabs", {"x"}, "Math::fabs");
 )
 
 BS_MODULE(World,

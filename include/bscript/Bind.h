@@ -334,6 +334,7 @@ inline void default_value_does_not_match_the_parameter_type() {}
 inline void enum_values_must_directly_follow_their_registerEnum() {}
 inline void empty_name() {}
 inline void constant_value_does_not_fit_in_an_int() {}
+inline void parameter_named_twice() {}
 } // namespace error
 
 /// The running behavior, for registered C++ that needs to know which robot
@@ -410,6 +411,21 @@ template <class V> bool notEquals(const V &A, const V &B) {
 /// `.func("abs", bs::fn<&V::norm>)`, `registerFunction(module, "f", bs::fn<&f>)`.
 template <auto F> struct FnTag {};
 template <auto F> inline constexpr FnTag<F> fn{};
+
+/// The C++ name a registration may give for messages and dumps
+/// (`"Math::fabs"`). A class rather than `const char *`, so that a braced
+/// list of one parameter name (`{"v"}`) picks the overload that takes
+/// parameter names instead of becoming the C++ name.
+struct CppName {
+  const char *Text;
+  constexpr CppName(const char *Text = nullptr) : Text(Text) {}
+};
+
+/// Parameter names, one per parameter the script writes (without the
+/// object of a method and a leading `bs::Context &`), in order:
+/// `registerFunction<&between>(module, "between", {"v", "min", "max"})`.
+/// bsc shows them in `--dump-bindings` and in messages.
+template <std::size_t N> using ParamNames = const char *const (&)[N];
 
 namespace detail {
 
@@ -534,6 +550,12 @@ template <> struct ParamWire<Context &> {
   static constexpr u32 flags() { return TypeRef | TypePointer; }
   static constexpr u32 size() { return sizeof(void *); }
 };
+
+/// Whether A... starts with `bs::Context &` (which the script does not pass).
+template <class... A> consteval bool contextFirst() {
+  bool Is[] = {false, std::is_same_v<std::remove_cvref_t<A>, Context>...};
+  return sizeof...(A) > 0 && Is[1];
+}
 
 /// Whether `bs::Context &` appears anywhere but first in A...
 template <class... A> consteval bool contextNotFirst() {
@@ -916,6 +938,9 @@ template <auto Fn> constexpr const void *holder() {
 template <class L> struct ParamsOf;
 template <class... A> struct ParamsOf<List<A...>> {
   static constexpr u32 Count = sizeof...(A);
+  /// The parameters a script writes: without a leading `bs::Context &`.
+  static constexpr std::size_t ScriptCount =
+      sizeof...(A) - (contextFirst<A...>() ? 1 : 0);
   static_assert(!contextNotFirst<A...>(),
                 "bs: bs::Context & must be the first parameter (after the "
                 "object of a method)");
@@ -1010,11 +1035,14 @@ public:
     return I;
   }
 
+  /// Appends a parameter record to the last member; Name may be null.
   constexpr void addParam(const void *Key, detail::u32 Code, detail::u32 Flags,
-                          detail::u32 Size) {
+                          detail::u32 Size, const char *Name = nullptr) {
     detail::u32 I = N.params++;
+    detail::u32 NameOff = str(Name);
     if (filling()) {
-      Tabs.params[I] = {Key, Code, Flags, Size, 0, detail::DefaultNone, 0, 0.0f, 0};
+      Tabs.params[I] = {Key, Code, Flags, Size, NameOff, detail::DefaultNone,
+                        0, 0.0f, 0};
       ++Tabs.members[LastMember].numParams;
     }
   }
@@ -1081,12 +1109,30 @@ template <class R> constexpr void setResult(rec::Member *M) {
     M->flags |= MemberResultOut;
 }
 
+/// Whether two names are equal (strcmp, usable at compile time).
+constexpr bool sameName(const char *A, const char *B) {
+  while (*A && *A == *B)
+    ++A, ++B;
+  return *A == *B;
+}
+
 /// Records a callable F as member `Name` of class Owner (None: a module
-/// function) and returns its index.
+/// function) and returns its index. Params, if given, names each parameter
+/// the script writes (ParamsOf::ScriptCount of them).
 template <class T, auto F>
 constexpr u32 addCallable(Module &Mod, u32 Owner, const char *Name,
-                          const char *CppName) {
+                          const char *CppName,
+                          const char *const *Params = nullptr) {
   using C = Callable<T, F>;
+  constexpr std::size_t NumNamed = ParamsOf<typename C::Args>::ScriptCount;
+  if (Params)
+    for (std::size_t I = 0; I < NumNamed; ++I) {
+      if (isEmpty(Params[I]))
+        error::empty_name();
+      for (std::size_t J = 0; J < I; ++J)
+        if (sameName(Params[I], Params[J]))
+          error::parameter_named_twice();
+    }
   u32 Kind = C::HasSelf ? KindMethod : KindFunction;
   u32 I = Mod.addMember(Kind, Owner, Name, CppName);
   if (rec::Member *M = Mod.member(I)) {
@@ -1096,9 +1142,13 @@ constexpr u32 addCallable(Module &Mod, u32 Owner, const char *Name,
         M->flags |= MemberConstSelf;
     setResult<typename C::Ret>(M);
   }
+  std::size_t Next = 0;
   ParamsOf<typename C::Args>::each(
       [&](const void *Key, u32 Code, u32 Flags, u32 Size) {
-        Mod.addParam(Key, Code, Flags, Size);
+        const char *ParamName = nullptr;
+        if (Params && Code != CodeContext)
+          ParamName = Params[Next++];
+        Mod.addParam(Key, Code, Flags, Size, ParamName);
       });
   return I;
 }
@@ -1233,17 +1283,32 @@ public:
   /// or lambda whose first parameter is T&/const T&/T, or (without such a
   /// parameter) a function in the class's scope.
   template <auto F>
-  constexpr ClassBuilder &func(const char *Name,
-                               const char *CppName = nullptr) {
-    detail::addCallable<T, F>(*M, Index, Name, CppName);
+  constexpr ClassBuilder &func(const char *Name, CppName Cpp = {}) {
+    detail::addCallable<T, F>(*M, Index, Name, Cpp.Text);
+    return *this;
+  }
+  /// ...with the names of its parameters: `.func<&V::dot>("dot", {"other"})`.
+  template <auto F, std::size_t N>
+  constexpr ClassBuilder &func(const char *Name, ParamNames<N> Params,
+                               CppName Cpp = {}) {
+    using Args = typename detail::Callable<T, F>::Args;
+    constexpr bool OneEach = N == detail::ParamsOf<Args>::ScriptCount;
+    static_assert(OneEach, "bs: give one name per parameter the script "
+                           "passes (not the object, not bs::Context &)");
+    if constexpr (OneEach) // No follow-on errors from reading past Params.
+      detail::addCallable<T, F>(*M, Index, Name, Cpp.Text, Params);
     return *this;
   }
 
   /// The paper's argument order: `.func("abs", bs::fn<&V::norm>, "norm")`.
   template <auto F>
+  constexpr ClassBuilder &func(const char *Name, FnTag<F>, CppName Cpp = {}) {
+    return func<F>(Name, Cpp);
+  }
+  template <auto F, std::size_t N>
   constexpr ClassBuilder &func(const char *Name, FnTag<F>,
-                               const char *CppName = nullptr) {
-    return func<F>(Name, CppName);
+                               ParamNames<N> Params, CppName Cpp = {}) {
+    return func<F>(Name, Params, Cpp);
   }
   template <auto Ptr>
   constexpr ClassBuilder &var(const char *Name, FnTag<Ptr>,
@@ -1254,15 +1319,15 @@ public:
   /// A constructor T(A...): the script writes `Module::T(a, ...)`, and the
   /// constructors of one class are told apart by their parameters.
   template <class... A> constexpr ClassBuilder &ctor() {
-    static_assert(std::is_constructible_v<T, A...>,
-                  "bs: .ctor<A...>() needs a constructor T(A...)");
-    static_assert(std::is_move_constructible_v<T> ||
-                      std::is_copy_constructible_v<T>,
-                  "bs: .ctor<A...>() returns T by value");
-    detail::u32 I = detail::addCallable<void, &detail::construct<T, A...>>(
-        *M, Index, "_ctor_", nullptr);
-    if (detail::rec::Member *R = M->member(I))
-      R->kind = detail::KindConstructor;
+    return addCtor<A...>(nullptr);
+  }
+  /// ...with the names of its parameters: `.ctor<float, float>({"x", "y"})`.
+  template <class... A, std::size_t N>
+  constexpr ClassBuilder &ctor(ParamNames<N> Params) {
+    static_assert(N == sizeof...(A),
+                  "bs: give one name per parameter of the constructor");
+    if constexpr (N == sizeof...(A))
+      addCtor<A...>(Params);
     return *this;
   }
 
@@ -1283,6 +1348,20 @@ public:
   }
 
 private:
+  template <class... A>
+  constexpr ClassBuilder &addCtor(const char *const *Params) {
+    static_assert(std::is_constructible_v<T, A...>,
+                  "bs: .ctor<A...>() needs a constructor T(A...)");
+    static_assert(std::is_move_constructible_v<T> ||
+                      std::is_copy_constructible_v<T>,
+                  "bs: .ctor<A...>() returns T by value");
+    detail::u32 I = detail::addCallable<void, &detail::construct<T, A...>>(
+        *M, Index, "_ctor_", nullptr, Params);
+    if (detail::rec::Member *R = M->member(I))
+      R->kind = detail::KindConstructor;
+    return *this;
+  }
+
   Module *M;
   detail::u32 Index;
 };
@@ -1349,17 +1428,36 @@ constexpr ClassBuilder<T> registerClass(Module &M, const char *Name,
 /// Registers a module function: `registerFunction<&f>(module, "f")`.
 template <auto F>
 constexpr FunctionBuilder registerFunction(Module &M, const char *Name,
-                                           const char *CppName = nullptr) {
-  detail::addCallable<void, F>(M, detail::None, Name, CppName);
+                                           CppName Cpp = {}) {
+  detail::addCallable<void, F>(M, detail::None, Name, Cpp.Text);
+  return FunctionBuilder(M);
+}
+/// ...with the names of its parameters:
+/// `registerFunction<&between>(module, "between", {"v", "min", "max"})`.
+template <auto F, std::size_t N>
+constexpr FunctionBuilder registerFunction(Module &M, const char *Name,
+                                           ParamNames<N> Params,
+                                           CppName Cpp = {}) {
+  using Args = typename detail::Callable<void, F>::Args;
+  constexpr bool OneEach = N == detail::ParamsOf<Args>::ScriptCount;
+  static_assert(OneEach, "bs: give one name per parameter the script passes "
+                         "(not bs::Context &)");
+  if constexpr (OneEach) // No follow-on errors from reading past Params.
+    detail::addCallable<void, F>(M, detail::None, Name, Cpp.Text, Params);
   return FunctionBuilder(M);
 }
 
 /// The paper's argument order: `registerFunction(module, "f", bs::fn<&f>)`.
 template <auto F>
 constexpr FunctionBuilder registerFunction(Module &M, const char *Name,
-                                           FnTag<F>,
-                                           const char *CppName = nullptr) {
-  return registerFunction<F>(M, Name, CppName);
+                                           FnTag<F>, CppName Cpp = {}) {
+  return registerFunction<F>(M, Name, Cpp);
+}
+template <auto F, std::size_t N>
+constexpr FunctionBuilder registerFunction(Module &M, const char *Name,
+                                           FnTag<F>, ParamNames<N> Params,
+                                           CppName Cpp = {}) {
+  return registerFunction<F>(M, Name, Params, Cpp);
 }
 
 /// Registers a constant of the module: `registerConstant(module, "off",

@@ -196,6 +196,7 @@ private:
       NativeType T;
       Ok = convertType(P.Type, T) && Ok;
       NF.Params.push_back(std::move(T));
+      NF.ParamNames.push_back(P.Name);
       if (P.Default != DefaultKind::None) {
         NativeDefault D;
         D.IsFloat = P.Default == DefaultKind::Float;

@@ -142,6 +142,14 @@ TEST_P(FormsTest, ReadsEveryForm) {
   EXPECT_EQ(Move.Params[2].Default, DefaultKind::Int);
   EXPECT_EQ(Move.Params[2].DefaultInt, 0);
   EXPECT_EQ(Move.Params[2].Type.Code, TypeCode::Bool);
+  // ...and named with .func<&Point::move>("move", {"dx", "dy", "twice"}).
+  EXPECT_EQ(Move.Params[0].Name, "dx");
+  EXPECT_EQ(Move.Params[1].Name, "dy");
+  EXPECT_EQ(Move.Params[2].Name, "twice");
+  // Parameters registered without names have none (as in descriptors
+  // written before names could be given).
+  EXPECT_EQ(member(P, "scale").Params[0].Name, "");
+  EXPECT_EQ(member(P, "_plus_").Params[0].Name, "");
 
   // Properties: a mutable-reference getter is read/write on its own.
   EXPECT_EQ(member(P, "rx").Kind, MemberKind::Property);
@@ -153,6 +161,7 @@ TEST_P(FormsTest, ReadsEveryForm) {
   EXPECT_EQ(member(P, "dist").Kind, MemberKind::Method);
   EXPECT_TRUE(member(P, "dist").isConstSelf());
   EXPECT_EQ(member(P, "dist").Params.size(), 1u);
+  EXPECT_EQ(member(P, "dist").Params[0].Name, "other"); // not the object's
   EXPECT_FALSE(member(P, "reset").isConstSelf());
   EXPECT_EQ(member(P, "_min_").Kind, MemberKind::Method);
   EXPECT_EQ(member(P, "_neg_").Params.size(), 0u);
@@ -176,6 +185,7 @@ TEST_P(FormsTest, ReadsEveryForm) {
   ASSERT_TRUE(Twice);
   EXPECT_EQ(Twice->CppName, "geo::twice");
   EXPECT_EQ(Twice->Params[0].DefaultInt, 4);
+  EXPECT_EQ(Twice->Params[0].Name, "v"); // {"v"}, then the C++ name
   const BoundMember *Flip = M.findFunction("flip");
   ASSERT_TRUE(Flip);
   EXPECT_EQ(Model.getQualifiedName(Flip->Result), "Forms::Mode");
@@ -188,6 +198,8 @@ TEST_P(FormsTest, ReadsEveryForm) {
   EXPECT_EQ(Out->Params[2].Type.StorageSize, 1u); // bool&
   EXPECT_TRUE(M.findFunction("fabs"));
   EXPECT_EQ(M.findFunction("twice2")->Thunk, Twice->Thunk); // bs::fn form
+  EXPECT_EQ(M.findFunction("twice2")->Params[0].Name, "v");
+  EXPECT_EQ(M.findFunction("max")->Params[0].Name, "");
   EXPECT_EQ(M.findFunction("greet")->Result.Code, TypeCode::String);
   EXPECT_TRUE(M.findFunction("max"));
 }
@@ -356,6 +368,7 @@ TEST(BindTest, SoccerBindings) {
     const BoundMember *Fabs = Math->findFunction("fabs");
     ASSERT_TRUE(Fabs);
     EXPECT_EQ(Fabs->Params[0].Type.Code, TypeCode::Float);
+    EXPECT_EQ(Fabs->Params[0].Name, "x");
 
     const BoundEnum *MT = World->findEnum("MotionType");
     ASSERT_TRUE(MT);
@@ -387,6 +400,7 @@ TEST(BindTest, SoccerBindings) {
     EXPECT_EQ(NF->Symbol, Fabs->Thunk);
     EXPECT_EQ(NF->Params[0].TheCode, NativeType::Float);
     EXPECT_EQ(NF->Result.TheCode, NativeType::Float);
+    EXPECT_EQ(NF->ParamNames, std::vector<std::string>{"x"});
     const NativeModule *NW = Reg.find("World");
     ASSERT_TRUE(NW && NW->findEnum("MotionType"));
     EXPECT_EQ(NW->findEnum("MotionType")->Values[1].Number, 1);
@@ -421,7 +435,7 @@ TEST(BindTest, ArchiveAndDump) {
             std::string::npos);
   EXPECT_NE(S.find("  enum MotionType size 4 scoped signed: stand=0 walk=1 kick=2"),
             std::string::npos);
-  EXPECT_NE(S.find("  function fabs(float) : float = Math::fabs"), std::string::npos);
+  EXPECT_NE(S.find("  function fabs(float x) : float = Math::fabs"), std::string::npos);
   EXPECT_NE(S.find("BehaviorInput size 24 align 4"), std::string::npos);
   EXPECT_NE(S.find(" input\n"), std::string::npos);
   EXPECT_NE(S.find(" output\n"), std::string::npos);
@@ -688,6 +702,18 @@ TEST(BindTest, InProcessDescriptorAndThunks) {
   std::ptrdiff_t XOff;
   std::memcpy(&XOff, D.member("x")->memptr, sizeof XOff);
   EXPECT_EQ(uint64_t(XOff), *member(P, "x").FieldOffset);
+  // Parameter names: written by Bind.h into the param records' name words,
+  // read back by bsc from the file ("" where none were registered).
+  const bs::detail::rec::Member *Move = D.member("move");
+  ASSERT_EQ(Move->numParams, 3u);
+  const auto *Params = reinterpret_cast<const bs::detail::rec::Param *>(
+      D.Base + D.H.paramOffset + Move->firstParam * D.H.paramSize);
+  const BoundMember &ReadMove = member(P, "move");
+  for (unsigned I = 0; I < 3; ++I) {
+    EXPECT_STREQ(D.str(Params[I].name), ReadMove.Params[I].Name.c_str());
+    EXPECT_NE(Params[I].name, 0u);
+  }
+  EXPECT_EQ(ReadMove.Params[0].Name, "dx");
 
   // Construct a Point in raw storage and use it through the thunks only.
   auto *Cls = reinterpret_cast<const bs::detail::rec::Class *>(D.Base + D.H.classOffset);

@@ -94,6 +94,9 @@ struct NativeFunction {
   /// directly instead of calling the getter).
   std::optional<uint64_t> FieldOffset;
   std::vector<NativeType> Params; ///< Without the object of a method.
+  /// The registered names of Params (`{"v", "min", "max"}`), for messages;
+  /// empty, or "" for each parameter, when the registration gives none.
+  std::vector<std::string> ParamNames;
   /// Defaults of the last Defaults.size() parameters, in order.
   std::vector<NativeDefault> Defaults;
   NativeType Result; ///< Fields and properties: their type.

@@ -64,11 +64,11 @@ BS_MODULE(Forms,
     .func<&Point::plus>("_plus_", "plus")
     .func<&Point::getId>("getId")
     .func<&Point::tag>("tag")
-    .func<&Point::move>("move").defaults(1.5f, false)
+    .func<&Point::move>("move", {"dx", "dy", "twice"}).defaults(1.5f, false)
     .prop<bs::mut(&Point::rx)>("rx")
     .prop<bs::cnst(&Point::rx)>("crx")
     .prop<&Point::getY, &Point::setY>("py")
-    .func<&geo::dist>("dist")
+    .func<&geo::dist>("dist", {"other"})
     .func<&geo::reset>("reset")
     .func<[](const Point &a, const Point &b) { return Point(a.x - b.x, a.y - b.y); }>("_min_", "operator-")
     .func<[](const Point &a) { return Point(-a.x, -a.y); }>("_neg_")
@@ -76,11 +76,11 @@ BS_MODULE(Forms,
   registerEnum<geo::Color>(module, "Color", "geo::Color")
     .value("red", geo::red).value("green", geo::green).value("blue", geo::blue);
   registerEnum<geo::Mode>(module, "Mode").value("off", geo::Mode::off).value("on", geo::Mode::on);
-  registerFunction<&geo::twice>(module, "twice", "geo::twice").defaults(4);
+  registerFunction<&geo::twice>(module, "twice", {"v"}, "geo::twice").defaults(4);
   registerFunction<&geo::flip>(module, "flip").defaults(geo::Mode::on);
   registerFunction<&geo::outParams>(module, "outParams");
   registerFunction<bs::overload<float(float)>(&std::fabs)>(module, "fabs", "std::fabs");
-  registerFunction(module, "twice2", bs::fn<&geo::twice>);
+  registerFunction(module, "twice2", bs::fn<&geo::twice>, {"v"});
   registerFunction<&geo::greet>(module, "greet");
   registerFunction<[](int a, int b) { return (a > b) ? a : b; }>(module, "max");
 )

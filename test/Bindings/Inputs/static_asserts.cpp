@@ -26,6 +26,8 @@ long long wide(long long X) { return X; }
 int *raw(int *P) { return P; }
 void outShort(short &S) { S = 1; }
 int plain(int X) { return X; }
+int two(int X, int Y) { return X + Y; }
+int withContext(bs::Context &, int X) { return X; }
 
 #ifndef CASE
 #define CASE 0
@@ -65,8 +67,17 @@ BS_MODULE(Cases,
   registerClass<G>(module, "G").var<&G::deep>("deep");
 #elif CASE == 15 // an array of an unsupported element type
   registerClass<G>(module, "G").var<&G::ptrs>("ptrs");
+#elif CASE == 16 // parameter names: one too few
+  registerFunction<&plain>(module, "plain", {"a", "b"});
+#elif CASE == 17 // parameter names of a constructor: one too many
+  registerClass<G>(module, "G").ctor<>({"x"});
+#elif CASE == 18 // the same parameter name twice
+  registerFunction<&two>(module, "two", {"a", "a"});
 #else
   a.var<&A::v>("v").prop<bs::mut(&A::get)>("get");
   registerClass<G>(module, "G").var<&G::grid>("grid");
+  // Names: one (not taken for the C++ name), none for bs::Context &.
+  registerFunction<&plain>(module, "plain", {"x"});
+  registerFunction<&withContext>(module, "withContext", {"x"}, "withContext");
 #endif
 )

@@ -27,8 +27,8 @@ BS_MODULE(Geo,
     .var<&geo::Pose2f::y>("y")
     .var<&geo::Pose2f::rotation>("rotation")
     .ctor<>()
-    .ctor<float>()
-    .ctor<float, float, float>().defaults(0.25f)
+    .ctor<float>({"rotation"})
+    .ctor<float, float, float>({"x", "y", "rotation"}).defaults(0.25f)
     .ctor<int, int>()
     // A method with the context after the object: the cycle it ran in.
     .func<[](const geo::Pose2f &P, bs::Context &C) {
