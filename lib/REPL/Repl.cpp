@@ -197,6 +197,7 @@ bool Repl::load(std::unique_ptr<Compilation> NewC) {
   for (const BehaviorLayout::Task &T : L->Layout.Tasks)
     if (T.Decl->getQualifiedName() == FrameTask)
       Checker->setFrame(llvm::cast<TaskDecl>(T.Decl));
+  startHistory();
   EntryIndex.reset();
   for (unsigned T = 0; T < L->Layout.Tasks.size(); ++T)
     if (L->Layout.Tasks[T].Decl == L->Entry)
@@ -370,7 +371,9 @@ void Repl::evaluate(llvm::StringRef Line) {
     flushDiagnostics();
     return;
   }
+  std::vector<unsigned char> Before = copyBlocks();
   BehaviorSession::Outcome O = S->runGuarded(R->Fn, Opts.CycleLimitMs);
+  noteEdits(Before);
   if (!reportOutcome(*C, *L, O, S->getCycle(), Opts.CycleLimitMs)) {
     flushDiagnostics();
     OS << "the line was stopped; the state is as it left it\n";

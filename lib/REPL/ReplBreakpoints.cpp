@@ -257,10 +257,8 @@ void Repl::cmdDelete(llvm::StringRef Args, llvm::SMLoc Loc) {
   OS << "deleted " << Args << "\n";
 }
 
-/// Splits `EXPR [N]`: a number at the end is N unless the expression needs
-/// it (`x == 2` ends in an operand; `x 100` does not).
-static std::pair<llvm::StringRef, llvm::StringRef>
-splitCount(llvm::StringRef Args) {
+std::pair<llvm::StringRef, llvm::StringRef>
+bsc::repl::splitCount(llvm::StringRef Args) {
   auto [Head, Last] = Args.rsplit(' ');
   Head = Head.rtrim();
   if (Last.empty() || Head.empty() || !llvm::all_of(Last, llvm::isDigit) ||

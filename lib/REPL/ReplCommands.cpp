@@ -96,14 +96,15 @@ StepEnd Repl::step(unsigned N, bool Report, Probe *Until) {
             ? Values->readClass(*L->OutputClass, S->getOutput())
             : llvm::json::Value(nullptr);
     uint32_t Cycle = S->getCycle() + 1;
-    BehaviorSession::Outcome O = S->runCycle(Opts.CycleLimitMs);
+    bool FromHistory;
+    BehaviorSession::Outcome O = runNextCycle(FromHistory);
     if (!reportOutcome(*C, *L, O, Cycle, Opts.CycleLimitMs)) {
       flushDiagnostics();
       OS << "stopped in cycle " << Cycle << "; the state is as it left it\n";
       End = StepEnd::Broken;
       break;
     }
-    if (Recording) {
+    if (Recording && !FromHistory) {
       debug::printJSON(*Recording, recordCycle(*Values, *L, *S));
       *Recording << "\n";
       Recording->flush();
@@ -216,9 +217,11 @@ void Repl::cmdReplay(llvm::StringRef Args, llvm::SMLoc Loc) {
   R.CycleLimitMs = Opts.CycleLimitMs;
   std::string Why;
   R.StopAfterCycle = [&] {
+    recordLiveCycle();
     Why = checkBreakpoints();
     return !Why.empty();
   };
+  forgetFuture(); // The recording's inputs replace the history's.
   uint32_t Before = S->getCycle();
   rebaseWatches();
   bool OK = runBehavior(*C, *L, *S, R, OS);
@@ -350,6 +353,14 @@ llvm::ArrayRef<Repl::CommandInfo> Repl::getCommands() {
        &Repl::cmdWatch},
       {"breaks", "", "list the breakpoints and watches", &Repl::cmdBreaks},
       {"delete", "[N]", "delete breakpoint N, or all", &Repl::cmdDelete},
+      {"goto", "CYCLE",
+       "go to CYCLE of this session, back or forth (the cycles in between "
+       "run again on their inputs)",
+       &Repl::cmdGoto},
+      {"back", "[N]", "go back N cycles (1)", &Repl::cmdBack},
+      {"history", "EXPR [FROM TO]",
+       "the cycles of this session at which EXPR's value changed",
+       &Repl::cmdHistory},
       {"reload", "",
        "recompile the edited files, keeping the state of every task whose "
        "frame did not change",

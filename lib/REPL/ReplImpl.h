@@ -9,6 +9,7 @@
 #ifndef BSC_LIB_REPL_REPLIMPL_H
 #define BSC_LIB_REPL_REPLIMPL_H
 
+#include "bsc/REPL/CycleHistory.h"
 #include "bsc/REPL/Repl.h"
 #include "bsc/Sema/Sema.h"
 #include "llvm/LineEditor/LineEditor.h"
@@ -51,6 +52,11 @@ struct Breakpoint {
   /// `:break LOC if EXPR`: EXPR, a bool (no Eval: none).
   Probe If;
 };
+
+/// Splits `EXPR [N]` (`:until`, `:history`): a number at the end is N
+/// unless the expression needs it (`x == 2` ends in an operand; `x 100`
+/// does not). N is empty without one.
+std::pair<llvm::StringRef, llvm::StringRef> splitCount(llvm::StringRef Args);
 
 /// How step() ended.
 enum class StepEnd {
@@ -118,6 +124,37 @@ private:
   void cmdWhy(llvm::StringRef Args, llvm::SMLoc Loc); // ReplWhy.cpp
   void cmdFrame(llvm::StringRef Args, llvm::SMLoc Loc);
   void cmdQuiet(llvm::StringRef Args, llvm::SMLoc Loc);
+
+  // Time travel (ReplTime.cpp).
+  void cmdGoto(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdBack(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdHistory(llvm::StringRef Args, llvm::SMLoc Loc);
+  /// Starts the history at the present cycle (a load, a reload), or says
+  /// in NoHistory why the state cannot have one.
+  void startHistory();
+  CycleHistory::Blocks getBlocks() const;
+  /// Runs the next cycle: from the history on its logged input (no world)
+  /// if the present is in the past, else live, recorded into the history.
+  BehaviorSession::Outcome runNextCycle(bool &FromHistory);
+  /// A cycle that ran live outside runNextCycle (`:replay`) enters the
+  /// history.
+  void recordLiveCycle();
+  /// New inputs from here on (`:replay` in the past): the cycles after the
+  /// present are forgotten.
+  void forgetFuture();
+  /// The state, input and output bytes (empty without a history), to tell
+  /// with noteEdits whether a line at the prompt changed them.
+  std::vector<unsigned char> copyBlocks() const;
+  void noteEdits(const std::vector<unsigned char> &Before);
+  /// Goes to cycle `Target` (at most one live run past the history's end);
+  /// false after reporting a cycle that crashed on the way.
+  bool travelTo(uint32_t Target);
+  /// "cycle N: " and its trace line.
+  void showCycle();
+  /// Report and false without a history, or for a cycle outside it
+  /// (`Forward`: any cycle after its start is fine).
+  bool checkHistory(llvm::SMLoc Loc);
+  bool checkInHistory(uint32_t Cycle, bool Forward, llvm::SMLoc Loc);
   /// `requires "M"` at the prompt: loads M (a :reload with M added to the
   /// inputs) unless it is loaded.
   void requireModule(llvm::StringRef Line, llvm::SMLoc Loc);
@@ -159,6 +196,8 @@ private:
   llvm::raw_ostream &OS;
   /// Opts.Frontend and the modules `requires` added at the prompt.
   FrontendOptions Frontend;
+  std::unique_ptr<CycleHistory> History;
+  std::string NoHistory; ///< Why there is no History.
   /// --world-output's file and `:quiet`'s /dev/null (-1: not open).
   int WorldOutputFd = -1, QuietFd = -1;
 
