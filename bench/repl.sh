@@ -6,6 +6,13 @@
 #  - 10,000 cycles of the paper's soccer behavior stepped in the REPL
 #    (`:step 10000`, printing each cycle's output changes, and `:run 10000`),
 #    less a session that steps once; best of 5, on one core.
+#  - time travel (issue 26) over 100,000 cycles of the paper's soccer
+#    behavior driven by a world library (bench/soccer_world.cpp around
+#    examples/soccer's world): `:run 100000` against `bsc run --cycles
+#    100000` of the same world (the cost of keeping the history), then
+#    `:goto 50000` from the end, `:goto 99999`, `:history output.motion`
+#    over all cycles, each less the session without it; peak memory of the
+#    session with the 100,000 cycles against one with 1.
 # (Tracing on the robot, `--instrument`, is counted by bench/run.sh on the
 # shared benchmark's behaviors for i586.)
 #   bench/repl.sh [BUILD_DIR]     (default: build)
@@ -37,6 +44,17 @@ for _ in range(5):
 print("%.4f" % best)
 PY
 }
+# peak_mb BATCH ARGS...: the peak resident memory of a REPL session (MB).
+peak_mb() {
+  local batch=$1; shift
+  python3 - "$batch" "$BSC" repl "$@" <<'PY'
+import resource, subprocess, sys
+batch, cmd = sys.argv[1], sys.argv[2:]
+with open(batch) as f:
+    subprocess.run(cmd, stdin=f, stdout=subprocess.DEVNULL, check=True)
+print("%.1f" % (resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024))
+PY
+}
 diff_s() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.3f", a - b }'; }
 
 python3 gen-behavior.py 100 > "$OUT/Big.bs"
@@ -54,3 +72,34 @@ one=$(seconds "$OUT/one.txt" "${E[@]}")
 step=$(seconds "$OUT/step.txt" "${E[@]}")
 run=$(seconds "$OUT/run.txt" "${E[@]}")
 echo "10,000 cycles of the paper's soccer behavior: :step $(diff_s "$step" "$one") s, :run $(diff_s "$run" "$one") s (goal < 0.3 s)"
+
+# Time travel over 100,000 cycles with a world.
+g++ -std=c++20 -O2 -fPIC -shared -I../examples/soccer -I/usr/include/eigen3 \
+  soccer_world.cpp ../examples/soccer/SoccerWorld.cpp -o "$OUT/world.so"
+W=(--world "$OUT/world.so" "${E[@]}")
+printf ':run 100000\n' > "$OUT/run100k.txt"
+{ echo ':run 100000'; for _ in $(seq 1000); do echo ':goto 50000'; echo ':goto 99999'; done; } > "$OUT/goto.txt"
+printf ':run 100000\n:history output.motion\n' > "$OUT/history.txt"
+printf ':run 1\n' > "$OUT/run1.txt"
+# run_seconds CYCLES: the best wall time of five `bsc run`s with the world.
+run_seconds() {
+  python3 - "${PIN[@]}" "$BSC" run --cycles "$1" "${W[@]}" <<'PY'
+import subprocess, sys, time
+best = None
+for _ in range(5):
+    t = time.perf_counter()
+    subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, check=True)
+    t = time.perf_counter() - t
+    best = t if best is None else min(best, t)
+print("%.4f" % best)
+PY
+}
+live=$(diff_s "$(run_seconds 100000)" "$(run_seconds 1)")
+one=$(seconds "$OUT/run1.txt" "${W[@]}")
+run100k=$(seconds "$OUT/run100k.txt" "${W[@]}")
+goto=$(seconds "$OUT/goto.txt" "${W[@]}")
+history=$(seconds "$OUT/history.txt" "${W[@]}")
+echo "100,000 cycles with a world, less 1: bsc run $live s, the REPL's :run (keeping the history) $(diff_s "$run100k" "$one") s"
+echo "  :goto 50000 and :goto 99999 from there, 1,000 times each: $(awk -v a="$goto" -v b="$run100k" 'BEGIN { printf "%.2f", (a - b) * 1000 / 2000 }') ms per :goto"
+echo "  :history output.motion over the 100,000 cycles: $(diff_s "$history" "$run100k") s"
+echo "  peak memory: $(peak_mb "$OUT/run100k.txt" "${W[@]}") MB after 100,000 cycles, $(peak_mb "$OUT/run1.txt" "${W[@]}") MB after 1"
