@@ -1153,6 +1153,20 @@ constexpr u32 addCallable(Module &Mod, u32 Owner, const char *Name,
   return I;
 }
 
+/// addCallable with N parameter names, which must be one per parameter the
+/// script passes: known here, so a wrong count is a static_assert.
+template <class T, auto F, std::size_t N>
+constexpr void addNamedCallable(Module &Mod, u32 Owner, const char *Name,
+                                const char *CppName,
+                                const char *const (&Params)[N]) {
+  using Args = typename Callable<T, F>::Args;
+  constexpr bool OneEach = N == ParamsOf<Args>::ScriptCount;
+  static_assert(OneEach, "bs: give one name per parameter the script passes "
+                         "(not the object of a method, not bs::Context &)");
+  if constexpr (OneEach) // No follow-on errors from reading past Params.
+    addCallable<T, F>(Mod, Owner, Name, CppName, Params);
+}
+
 /// The constructor T(A...) as a function returning T: the thunk of a
 /// `.ctor<A...>()` (a template with external linkage, so generated code
 /// calls it by name like any other thunk).
@@ -1291,12 +1305,7 @@ public:
   template <auto F, std::size_t N>
   constexpr ClassBuilder &func(const char *Name, ParamNames<N> Params,
                                CppName Cpp = {}) {
-    using Args = typename detail::Callable<T, F>::Args;
-    constexpr bool OneEach = N == detail::ParamsOf<Args>::ScriptCount;
-    static_assert(OneEach, "bs: give one name per parameter the script "
-                           "passes (not the object, not bs::Context &)");
-    if constexpr (OneEach) // No follow-on errors from reading past Params.
-      detail::addCallable<T, F>(*M, Index, Name, Cpp.Text, Params);
+    detail::addNamedCallable<T, F, N>(*M, Index, Name, Cpp.Text, Params);
     return *this;
   }
 
@@ -1438,12 +1447,8 @@ template <auto F, std::size_t N>
 constexpr FunctionBuilder registerFunction(Module &M, const char *Name,
                                            ParamNames<N> Params,
                                            CppName Cpp = {}) {
-  using Args = typename detail::Callable<void, F>::Args;
-  constexpr bool OneEach = N == detail::ParamsOf<Args>::ScriptCount;
-  static_assert(OneEach, "bs: give one name per parameter the script passes "
-                         "(not bs::Context &)");
-  if constexpr (OneEach) // No follow-on errors from reading past Params.
-    detail::addCallable<void, F>(M, detail::None, Name, Cpp.Text, Params);
+  detail::addNamedCallable<void, F, N>(M, detail::None, Name, Cpp.Text,
+                                       Params);
   return FunctionBuilder(M);
 }
 
