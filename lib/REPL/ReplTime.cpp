@@ -218,10 +218,19 @@ void Repl::cmdHistory(llvm::StringRef Args, llvm::SMLoc Loc) {
       C->Diags.report(Loc, diag::err_repl_history_order) << From << To;
       return;
     }
-    From = std::max(From, History->first() + 1);
+    // The value before the first cycle is the start of the comparison.
+    if (From == History->first()) {
+      if (From == To) {
+        OS << "cycle " << From << " is the history's start; ':history' "
+           << "shows the cycles after it\n";
+        return;
+      }
+      ++From;
+    }
   }
   if (From > To) {
-    OS << "no cycle has run yet\n";
+    // Only the history's first moment: no cycle ran after it.
+    OS << "no cycle has run in this history yet\n";
     return;
   }
   std::optional<Probe> P = compileProbe(Text, "history", /*Bool=*/false, Loc);
