@@ -9,7 +9,9 @@
 //   gdb then applies), and artificial ones for the glue bsc generates;
 // - parameters and locals with their b-script types: int, float, bool,
 //   `string` (a `const char *`), TaskState and registered enums as
-//   enumerations, registered classes as structures with the C++ fields;
+//   enumerations, registered classes as structures with the C++ fields
+//   and, for their properties, the getters as member functions (gdb calls
+//   them; tools/gdb/bscript_printers.py shows them beside the fields);
 // - `__bs_state`, argument 1 of every function, as `struct bs_state *`
 //   whose members are the state header and every task's frame, module by
 //   module (`print __bs_state->Motion.walk`), named so that a script's own
@@ -252,8 +254,90 @@ llvm::DIType *DebugInfoEmitter::getClassType(const NativeClass *C) {
                                            *F.FieldOffset * 8,
                                            llvm::DINode::FlagZero, FieldTy));
   }
+  addProperties(C, Struct, Members);
   DIB.replaceArrays(Struct, DIB.getOrCreateArray(Members));
   return T;
+}
+
+llvm::DIType *DebugInfoEmitter::getWireType(const NativeType &NT) {
+  switch (NT.TheCode) {
+  case NativeType::Void:
+  case NativeType::Class:
+    return nullptr;
+  case NativeType::Int:
+    // Every integer up to 32 bits travels as one (a uint8_t 250 is 250).
+    return NT.Unsigned
+               ? getBasicType("unsigned int", 32, llvm::dwarf::DW_ATE_unsigned)
+               : getBasicType("int", 32, llvm::dwarf::DW_ATE_signed);
+  case NativeType::Float: // A double travels as float.
+    return getBasicType("float", 32, llvm::dwarf::DW_ATE_float);
+  case NativeType::Bool:
+    // An i32 0 or 1: its low byte is the bool.
+    return getBasicType("bool", 8, llvm::dwarf::DW_ATE_boolean);
+  case NativeType::String:
+  case NativeType::Enum:
+    return getNativeElementType(NT);
+  }
+  return nullptr;
+}
+
+// A property has no place in the object, only a getter thunk, `wire(R)
+// get(const T *self)`: the plain C ABI of a C++ member function of T that
+// returns R, with `this` first. Declaring the thunk as such a member
+// function (its symbol as the linkage name) lets gdb call it in a live
+// process: `print v.x()`. A class-valued getter, `void get(R *out, const
+// T *self)`, is no member function's shape (a C++ method returning R puts
+// `this` first, or returns a small R in registers), so it is listed only.
+//
+// gdb's Python API does not list a type's member functions, so the
+// pretty-printer finds the properties in a nested union, `T::__bs_properties`,
+// one member per property with its type; a union takes no space in T and
+// does not change how gdb prints T without the printer.
+void DebugInfoEmitter::addProperties(
+    const NativeClass *C, llvm::DICompositeType *Struct,
+    llvm::SmallVectorImpl<llvm::Metadata *> &Members) {
+  llvm::SmallVector<std::pair<const NativeFunction *, llvm::DIType *>, 8> Props;
+  uint64_t Bits = 0, Align = 0;
+  llvm::DIType *Self = nullptr;
+  for (const NativeFunction &F : C->Members) {
+    if (F.Kind != NativeFunction::Property || F.Symbol.empty())
+      continue;
+    llvm::DIType *Shown = F.Result.TheCode == NativeType::Class
+                              ? getNativeType(F.Result)
+                              : getWireType(F.Result);
+    if (!Shown)
+      continue;
+    Props.push_back({&F, Shown});
+    Bits = std::max(Bits, Shown->getSizeInBits());
+    Align = std::max<uint64_t>(Align, Shown->getAlignInBits());
+    llvm::DIType *Wire = getWireType(F.Result);
+    if (!Wire)
+      continue;
+    if (!Self)
+      Self = DIB.createObjectPointerType(DIB.createPointerType(
+          DIB.createQualifiedType(llvm::dwarf::DW_TAG_const_type, Struct),
+          CGM.getModule().getDataLayout().getPointerSizeInBits()));
+    llvm::Metadata *Sig[] = {Wire, Self};
+    Members.push_back(DIB.createMethod(
+        Struct, F.Name, F.Symbol, nullptr, 0,
+        DIB.createSubroutineType(DIB.getOrCreateTypeArray(Sig)),
+        /*VTableIndex=*/0, /*ThisAdjustment=*/0, /*VTableHolder=*/nullptr,
+        llvm::DINode::FlagPrototyped));
+  }
+  if (Props.empty())
+    return;
+  auto *List =
+      DIB.createUnionType(Struct, "__bs_properties", nullptr, 0, Bits, Align,
+                          llvm::DINode::FlagZero, llvm::DINodeArray());
+  llvm::SmallVector<llvm::Metadata *, 8> Listed;
+  for (auto [F, Ty] : Props)
+    Listed.push_back(DIB.createMemberType(List, F->Name, nullptr, 0,
+                                          Ty->getSizeInBits(), 0, 0,
+                                          llvm::DINode::FlagZero, Ty));
+  DIB.replaceArrays(List, DIB.getOrCreateArray(Listed));
+  // Not referenced by any member: kept by the compile unit, emitted inside
+  // its scope, T.
+  DIB.retainType(List);
 }
 
 llvm::DIType *DebugInfoEmitter::getType(const Type *T) {

@@ -186,6 +186,17 @@ private:
   /// bscript.h bs_task_info): the same enumeration by name.
   llvm::DIType *getTaskStateType(unsigned Bits = 32);
   llvm::DIType *getClassType(const NativeClass *C);
+  /// A property's value as its getter thunk returns it (bindings.md, "wire"):
+  /// integers as 32 bits, floats as float; null for a class (returned
+  /// through an out pointer) or void.
+  llvm::DIType *getWireType(const NativeType &NT);
+  /// The properties of class `C`, whose DWARF is `Struct`: a member function
+  /// per scalar property whose linkage name is its getter thunk (`print
+  /// v.x()`), and the union `__bs_properties` that lists every property for
+  /// the pretty-printer (tools/gdb/bscript_printers.py); appended to
+  /// `Members`.
+  void addProperties(const NativeClass *C, llvm::DICompositeType *Struct,
+                     llvm::SmallVectorImpl<llvm::Metadata *> &Members);
   llvm::DIType *getStringType();
   llvm::DIType *getStatePointerType();
   /// The state's member `headers`: per task with a narrow resume point or
