@@ -6,6 +6,8 @@
 #   P/lib/cmake/bscript/  the package: find_package(bscript 0.1 REQUIRED)
 #   P/share/doc/bscript/  README.md, docs/ and examples/embedding, in the
 #                         source tree's layout so that their links work
+#   P/share/bscript/gdb/bscript_printers.py  gdb's pretty-printer of
+#                         registered classes (docs/repl.md, "gdb: -g")
 include(CMakePackageConfigHelpers)
 
 set(BSC_PACKAGE_DIR lib/cmake/bscript)
@@ -23,6 +25,7 @@ install(FILES README.md DESTINATION share/doc/bscript)
 install(DIRECTORY docs/ DESTINATION share/doc/bscript/docs
   FILES_MATCHING PATTERN "*.md")
 install(DIRECTORY examples/embedding DESTINATION share/doc/bscript/examples)
+install(FILES tools/gdb/bscript_printers.py DESTINATION share/bscript/gdb)
 install(EXPORT bscriptTargets NAMESPACE bscript::
   DESTINATION ${BSC_PACKAGE_DIR})
 configure_package_config_file(cmake/bscriptConfig.cmake.in
