@@ -313,10 +313,9 @@ static llvm::GlobalVariable *getExplainLog(llvm::Module &M) {
       Ctx, {I32, I32, I32, I32,
             llvm::ArrayType::get(llvm::Type::getInt8Ty(Ctx),
                                  ExplainLogCapacity + MaxRecordSize)});
-  auto *G = new llvm::GlobalVariable(M, Ty, /*isConstant=*/false,
-                                     llvm::GlobalValue::ExternalLinkage,
-                                     llvm::Constant::getNullValue(Ty),
-                                     ExplainLogSymbol);
+  auto *G = new llvm::GlobalVariable(
+      M, Ty, /*isConstant=*/false, llvm::GlobalValue::ExternalLinkage,
+      llvm::Constant::getNullValue(Ty), ExplainLogSymbol);
   G->setAlignment(llvm::Align(8));
   return G;
 }
@@ -333,9 +332,9 @@ llvm::Function *ModuleEmitter::getExplainBegin() {
   llvm::GlobalVariable *Log = getExplainLog(M);
   llvm::Type *I32 = llvm::Type::getInt32Ty(Ctx);
   llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
-  auto *F = llvm::Function::Create(
-      llvm::FunctionType::get(Ptr, {I32, I32}, false),
-      llvm::GlobalValue::InternalLinkage, Name, M);
+  auto *F =
+      llvm::Function::Create(llvm::FunctionType::get(Ptr, {I32, I32}, false),
+                             llvm::GlobalValue::InternalLinkage, Name, M);
   addCommonAttributes(F);
   llvm::Value *Site = F->getArg(0), *Size = F->getArg(1);
   Site->setName("site");
@@ -369,9 +368,9 @@ llvm::Function *ModuleEmitter::getExplainBegin() {
   // Full: counted, and closed for the rest of the cycle.
   IRB.SetInsertPoint(Full);
   llvm::Value *OverflowAddr = getLogField(IRB, Log, LogOverflow);
-  IRB.CreateStore(IRB.CreateAdd(IRB.CreateLoad(I32, OverflowAddr),
-                                IRB.getInt32(1)),
-                  OverflowAddr);
+  IRB.CreateStore(
+      IRB.CreateAdd(IRB.CreateLoad(I32, OverflowAddr), IRB.getInt32(1)),
+      OverflowAddr);
   IRB.CreateStore(IRB.getInt32(ExplainLogCapacity), UsedAddr);
   IRB.CreateBr(Init);
 
@@ -441,10 +440,9 @@ llvm::Value *FunctionEmitter::emitCondition(const Stmt &S, const Expr *Cond) {
   const ExplainSite &Added = CGM.getLayout().ExplainSites[Number - 1];
   for (unsigned I = 0; I < Added.Operands.size(); ++I)
     R.Index[Added.Operands[I].E] = I;
-  R.Record = Builder.CreateCall(CGM.getExplainBegin(),
-                                {Builder.getInt32(Number),
-                                 Builder.getInt32(Size)},
-                                "explain");
+  R.Record = Builder.CreateCall(
+      CGM.getExplainBegin(), {Builder.getInt32(Number), Builder.getInt32(Size)},
+      "explain");
   Explaining = &R;
   llvm::Value *V = emitFullCond(Cond);
   Explaining = nullptr;
@@ -470,9 +468,9 @@ llvm::Value *FunctionEmitter::emitExplainedOperand(const Expr *E) {
     // The value is its storage: a copy of its bytes.
     for (uint32_t Off = 0; Off < O.Ty->getClass()->Size; ++Off)
       Builder.CreateStore(
-          Builder.CreateLoad(Builder.getInt8Ty(),
-                             Builder.CreateConstInBoundsGEP1_32(
-                                 Builder.getInt8Ty(), V, Off)),
+          Builder.CreateLoad(
+              Builder.getInt8Ty(),
+              Builder.CreateConstInBoundsGEP1_32(Builder.getInt8Ty(), V, Off)),
           Builder.CreateConstInBoundsGEP1_32(Builder.getInt8Ty(), Slot, Off));
   } else {
     llvm::Value *Stored = V;

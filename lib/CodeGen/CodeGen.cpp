@@ -730,6 +730,7 @@ void ModuleEmitter::emitEntries() {
 
     llvm::IRBuilder<> IRB(llvm::BasicBlock::Create(Ctx, "entry", F));
     emitBudgetStart(IRB, F->getArg(0));
+    emitExplainEntryStart(IRB, F->getArg(0));
     llvm::SmallVector<llvm::Value *, 4> Args = {F->getArg(0)};
     for (const ParamDecl *P : D->Params) {
       llvm::Value *A = F->getArg(P->Index + 1);
@@ -741,9 +742,11 @@ void ModuleEmitter::emitEntries() {
     }
     if (Result->isVoidTy()) {
       IRB.CreateCall(Impl, Args);
+      emitExplainEntryEnd(IRB);
       IRB.CreateRetVoid();
     } else {
       llvm::Value *R = IRB.CreateCall(Impl, Args, "result");
+      emitExplainEntryEnd(IRB);
       if (R->getType()->isIntegerTy(1))
         R = IRB.CreateZExt(R, I32, "result.int");
       IRB.CreateRet(R);
@@ -1084,6 +1087,8 @@ void FunctionEmitter::run() {
   llvm::EliminateUnreachableBlocks(*Fn);
   if (CGM.getOptions().Probes)
     restoreLoopProbeOnReturn();
+  if (CGM.getOptions().Explain && Task)
+    emitExplainTaskMarks();
   EntryPoint->eraseFromParent();
   EntryPoint = nullptr;
 }

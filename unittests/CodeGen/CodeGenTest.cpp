@@ -876,4 +876,97 @@ TEST_F(CodeGenTest, ProgramMainRunsTheCycles) {
   EXPECT_FALSE(emit(Targets[0], L2)->getFunction("main"));
 }
 
+
+TEST_F(CodeGenTest, ExplainedModulesVerify) {
+  // The JIT's options with the conditions' log (`:why`), with and without
+  // -g, unoptimised and optimised: every module verifies (the records'
+  // calls need lines where the function has debug information).
+  for (const auto &[Name, Files] : getPrograms()) {
+    SCOPED_TRACE(Name);
+    ASSERT_TRUE(check(Files));
+    for (bool Debug : {false, true})
+      for (unsigned Level : {0u, 2u}) {
+        CodeGenOptions Opts;
+        Opts.Probes = Opts.ExternalFunctions = Opts.Explain = true;
+        Opts.DebugInfo = Debug;
+        Opts.Sources = &C->SM;
+        Opts.OptLevel = Level;
+        BehaviorLayout L;
+        std::unique_ptr<llvm::Module> M = emit(Targets[1], L, Opts);
+        optimize(*M, Level);
+        std::string Err;
+        llvm::raw_string_ostream OS(Err);
+        EXPECT_FALSE(llvm::verifyModule(*M, &OS)) << Err;
+        EXPECT_EQ(findForbidden(*M), "");
+        EXPECT_TRUE(M->getNamedGlobal(ExplainLogSymbol));
+      }
+  }
+}
+
+TEST_F(CodeGenTest, ExplainSitesDescribeTheRecords) {
+  ASSERT_TRUE(check({{"m", R"(task t(int n)
+    for(int i = 0; i < n && (i + 1) * 2 != n || !(n > 3); i += 1)
+        if(-i < 3)
+            yield
+    for(; true; yield)
+        t2()
+
+task t2()
+    yield
+)"}}));
+  // Without the option: no table, no log.
+  BehaviorLayout Plain;
+  EXPECT_FALSE(emit(Targets[1], Plain)->getNamedGlobal(ExplainLogSymbol));
+  EXPECT_TRUE(Plain.ExplainSites.empty());
+
+  CodeGenOptions Opts;
+  Opts.Probes = Opts.Explain = true;
+  Opts.Sources = &C->SM;
+  BehaviorLayout L;
+  std::unique_ptr<llvm::Module> M = emit(Targets[1], L, Opts);
+  ASSERT_TRUE(M->getNamedGlobal(ExplainLogSymbol));
+  // t's two conditions (not `true`), then its start and end; t2's.
+  ASSERT_EQ(L.ExplainSites.size(), 6u);
+  const ExplainSite &For = L.ExplainSites[0];
+  EXPECT_EQ(For.Kind, ExplainSite::For);
+  EXPECT_EQ(For.File, "m.bs");
+  EXPECT_EQ(For.Line, 2u);
+  // Pre-order, each under the nearest operand that encloses it; the
+  // parentheses are those the structure needs; literals are not operands.
+  std::vector<std::pair<std::string, int>> Expected = {
+      {"i < n && (i + 1) * 2 != n || !(n > 3)", -1},
+      {"i < n && (i + 1) * 2 != n", 0},
+      {"i < n", 1},
+      {"i", 2},
+      {"n", 2},
+      {"(i + 1) * 2 != n", 1},
+      {"(i + 1) * 2", 5},
+      {"i + 1", 6},
+      {"i", 7},
+      {"n", 5},
+      {"!(n > 3)", 0},
+      {"n > 3", 10},
+      {"n", 11}};
+  ASSERT_EQ(For.Operands.size(), Expected.size());
+  for (size_t I = 0; I < Expected.size(); ++I) {
+    SCOPED_TRACE(I);
+    EXPECT_EQ(For.Operands[I].Text, Expected[I].first);
+    EXPECT_EQ(For.Operands[I].Parent, Expected[I].second);
+    // Scalars, 4 bytes each after the 16-byte header.
+    EXPECT_EQ(For.Operands[I].Offset, ExplainRecordHeaderSize + 4 * I);
+  }
+  EXPECT_EQ(For.RecordSize, 72u); // 68, rounded up to 8.
+  const ExplainSite &If = L.ExplainSites[1];
+  EXPECT_EQ(If.Kind, ExplainSite::If);
+  EXPECT_EQ(If.Line, 3u);
+  ASSERT_EQ(If.Operands.size(), 3u);
+  EXPECT_EQ(If.Operands[0].Text, "-i < 3");
+  EXPECT_EQ(If.Operands[1].Text, "-i");
+  EXPECT_EQ(If.Operands[2].Text, "i");
+  EXPECT_EQ(L.ExplainSites[2].Kind, ExplainSite::TaskStart);
+  EXPECT_EQ(L.ExplainSites[3].Kind, ExplainSite::TaskEnd);
+  EXPECT_EQ(L.ExplainSites[3].RecordSize, 24u);
+  EXPECT_EQ(L.ExplainSites[4].In, findDecl("m", "t2"));
+}
+
 } // namespace
