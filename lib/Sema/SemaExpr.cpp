@@ -10,6 +10,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "SemaImpl.h"
+#include "llvm/ADT/StringExtras.h"
 #include "llvm/Support/FormatVariadic.h"
 
 using namespace bsc;
@@ -531,6 +532,38 @@ const Type *Sema::checkConversion(ConversionExpr *E) {
 // Calls
 //===----------------------------------------------------------------------===//
 
+void Sema::noteSignature(const CallExpr *C, llvm::StringRef Name,
+                         llvm::ArrayRef<const Type *> ParamTys,
+                         const Type *ResultTy) {
+  // The parameters by name, where the script or the registration names
+  // them, so that two swapped arguments of the same type show.
+  std::vector<std::string> Params;
+  for (size_t I = 0; I < ParamTys.size(); ++I) {
+    std::string P = ParamTys[I]->getName().str();
+    llvm::StringRef Name;
+    if (C->Target)
+      Name = C->Target->Params[I]->getName().Name;
+    else if (C->NativeFn && I < C->NativeFn->ParamNames.size())
+      Name = C->NativeFn->ParamNames[I];
+    if (!Name.empty())
+      P += " " + Name.str();
+    Params.push_back(std::move(P));
+  }
+  if (!C->Target && !C->NativeFn)
+    return;
+  std::string Sig =
+      (C->Target ? C->Target->getQualifiedName() : C->NativeFn->Name) + "(" +
+      llvm::join(Params, ", ") + ")";
+  if (ResultTy && !ResultTy->isVoid() && !ResultTy->isError())
+    Sig += " : " + ResultTy->getName().str();
+  // A registered callee has no line of its own: the note is at the call.
+  if (C->Target)
+    diag(C->Target->getLoc(), diag::note_callee_signature) << Sig;
+  else
+    diag(C->getLoc(), diag::note_native_signature) << Name << Sig;
+}
+
+
 const Type *Sema::checkCall(CallExpr *C, bool AsStatement) {
   // Resolve the callee; on failure the arguments are still checked.
   std::string Name;
@@ -608,6 +641,7 @@ const Type *Sema::checkCall(CallExpr *C, bool AsStatement) {
     else
       diag(C->getLoc(), diag::err_call_arity_range)
           << Name << MinArgs << ParamTys.size() << NumArgs << C->getRange();
+    noteSignature(C, Name, ParamTys, ResultTy);
   } else {
     // Missing trailing arguments come from the script parameters' defaults
     // or the binding's `.defaults(...)`.
@@ -627,14 +661,18 @@ const Type *Sema::checkCall(CallExpr *C, bool AsStatement) {
       C->Args.push_back(Arg);
       ++C->NumDefaultArgs;
     }
+    bool Noted = false;
     for (size_t I = 0, E = C->Args.size(); I != E; ++I) {
       if (!C->Args[I])
         continue;
       const Type *ArgTy = C->Args[I]->Ty;
-      if (!convertImplicitly(C->Args[I], ParamTys[I]))
-        diag(C->Args[I]->getLoc(), diag::err_call_arg_type)
-            << I + 1 << Name << ParamTys[I]->getName() << ArgTy->getName()
-            << C->Args[I]->getRange();
+      if (convertImplicitly(C->Args[I], ParamTys[I]))
+        continue;
+      diag(C->Args[I]->getLoc(), diag::err_call_arg_type)
+          << I + 1 << Name << ParamTys[I]->getName() << ArgTy->getName()
+          << C->Args[I]->getRange();
+      if (!std::exchange(Noted, true))
+        noteSignature(C, Name, ParamTys, ResultTy);
     }
   }
 

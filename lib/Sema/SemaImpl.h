@@ -274,6 +274,12 @@ public:
   Expr *makeDefaultArg(const NativeDefault &D, const Type *ParamTy,
                        llvm::SMLoc Loc);
 
+  /// After an argument error in a call of `Name`: a note with the
+  /// callee's signature, its parameters named (at a script callee's
+  /// declaration; at the call for registered C++).
+  void noteSignature(const CallExpr *C, llvm::StringRef Name,
+                     llvm::ArrayRef<const Type *> ParamTys,
+                     const Type *ResultTy);
   //--- SemaRepl.cpp: what only the REPL's prompt allows ----------------------
   /// A loaded module named `Name` that the current one does not require
   /// (at the prompt every module is reachable qualified), or None.
