@@ -437,6 +437,11 @@ Repl::complete(llvm::StringRef Buffer, size_t Pos) const {
     if (Class)
       for (const NativeFunction &M : Class->Members)
         Candidates.push_back((Base + "." + M.Name).str());
+    // `Striker.`: the task's parameters and locals.
+    if (Parts.size() == 1 && Parts[0] != "input" && Parts[0] != "output")
+      if (std::optional<unsigned> T = findTask(Parts[0]))
+        for (const BehaviorLayout::FrameField &F : L->Layout.Tasks[*T].Fields)
+          Candidates.push_back((Base + "." + F.D->getName().Name).str());
   } else {
     for (const debug::DebugTables::Task &T : L->Tables.Tasks)
       Candidates.push_back(T.ShortName);
