@@ -60,7 +60,7 @@ def _call_getter(address, name):
             value.fetch_lazy()
             return value
         except gdb.error as e:
-            # gdb has printed where the signal came (its own stop report).
+            # gdb has already reported the signal and where it came from.
             raise Unreadable("the getter got a signal" if "signaled" in str(e)
                              else "the getter failed: " + _reason(e))
     finally:
