@@ -260,7 +260,9 @@ TEST_F(SemaTest, CallsCheckArityAndArgumentTypes) {
   EXPECT_TRUE(llvm::isa<ConversionExpr>(Good->Args[0]));
   EXPECT_EQ(messages(),
             (Msgs{"argument 1 of 'io::printi' must be 'int', not 'float'",
-                  "'io::prints' takes 1 argument(s), but 0 were given"}));
+                  "'io::printi' is registered as 'printi(int)'",
+                  "'io::prints' takes 1 argument(s), but 0 were given",
+                  "'io::prints' is registered as 'prints(string)'"}));
   ASSERT_EQ(Out.NativeModules.size(), 1u);
 }
 
