@@ -1,0 +1,39 @@
+//===- TraceDecode.h - a robot's trace log as trace lines ------*- C++ -*-===//
+//
+// `bsc trace-decode`: an object compiled with --instrument carries the
+// debugger's tables (DebugTablesSection); a robot's log carries one trace
+// record per cycle (bscript.h, "Trace logs"). Together they give the lines
+// `bsc run --trace` prints, without the behavior's sources or a JIT.
+//
+//===----------------------------------------------------------------------===//
+#ifndef BSC_DEBUG_TRACEDECODE_H
+#define BSC_DEBUG_TRACEDECODE_H
+
+#include "bsc/Basic/Diagnostic.h"
+#include <string>
+
+namespace llvm {
+class raw_ostream;
+}
+
+namespace bsc::debug {
+
+struct TraceDecodeOptions {
+  /// --object: the instrumented object holding the tables.
+  std::string ObjectPath;
+  /// The robot's trace log.
+  std::string LogPath;
+  /// --changes: only the cycles whose line differs from the one before.
+  bool OnlyChanges = false;
+};
+
+/// Prints each cycle of the log as `cycle N: <trace line>` to `OS`, with
+/// the cycle's budget line if a loop ran out of it. Reports an unreadable
+/// object or log, an object without tables and a malformed log into
+/// `Diags` and returns false.
+bool decodeTraceLog(const TraceDecodeOptions &Opts, DiagnosticEngine &Diags,
+                    llvm::raw_ostream &OS);
+
+} // namespace bsc::debug
+
+#endif
