@@ -6,12 +6,17 @@
 #include "llvm/TargetParser/Host.h"
 #include "llvm/Support/Path.h"
 #include "llvm/Support/Program.h"
+#include <cstdlib>
 
 using namespace bsc;
 
+llvm::Triple bsc::getHostTriple() {
+  return llvm::Triple(llvm::sys::getProcessTriple());
+}
+
 llvm::Triple bsc::resolveTargetTriple(llvm::StringRef Name) {
   if (Name.empty())
-    return llvm::Triple(llvm::sys::getDefaultTargetTriple());
+    return getHostTriple();
   if (Name == "i586")
     return llvm::Triple("i586-unknown-linux-gnu");
   if (Name == "x86_64")
@@ -37,7 +42,7 @@ ToolChain::ToolChain(llvm::Triple T, std::vector<std::string> RuntimeSearchDirs)
     : T(std::move(T)), SearchDirs(std::move(RuntimeSearchDirs)) {}
 
 bool ToolChain::hasRuntime() const {
-  llvm::Triple Host(llvm::sys::getProcessTriple());
+  llvm::Triple Host = getHostTriple();
   return (T.getArch() == llvm::Triple::x86 || T.getArch() == Host.getArch()) &&
          T.isOSLinux() && T.isOSBinFormatELF();
 }
@@ -109,4 +114,16 @@ ToolChain::getLinkCommand(llvm::StringRef Object,
     C.Args.insert(C.Args.end(), {"-lstdc++", "-lm"});
   C.Args.insert(C.Args.end(), {"-o", Output.str()});
   return C;
+}
+
+ToolChain bsc::getToolChain(llvm::StringRef Name, llvm::StringRef RuntimeDir,
+                            const char *Argv0) {
+  std::string Override = RuntimeDir.str();
+  if (const char *Env = std::getenv("BSCRIPT_RUNTIME_DIR");
+      Override.empty() && Env)
+    Override = Env;
+  std::string Exe =
+      llvm::sys::fs::getMainExecutable(Argv0, (void *)&bsc::getToolChain);
+  return ToolChain(resolveTargetTriple(Name),
+                   getRuntimeSearchDirs(Override, Exe));
 }

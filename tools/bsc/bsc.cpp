@@ -454,20 +454,6 @@ std::string defaultOutputName(llvm::StringRef Ext) {
 /// without arguments).
 const char *Argv0ForVersion = "bsc";
 
-/// The toolchain of `-target Name` (the host for the empty name), with the
-/// runtime search folders of this bsc: --runtime-dir, else
-/// $BSCRIPT_RUNTIME_DIR, else beside its executable.
-ToolChain getToolChain(llvm::StringRef Name, const char *Argv0) {
-  std::string Override = RuntimeDirArg;
-  if (const char *Env = std::getenv("BSCRIPT_RUNTIME_DIR");
-      Override.empty() && Env)
-    Override = Env;
-  std::string Exe =
-      llvm::sys::fs::getMainExecutable(Argv0, (void *)&getToolChain);
-  return ToolChain(resolveTargetTriple(Name),
-                   getRuntimeSearchDirs(Override, Exe));
-}
-
 /// `bsc --version`: bsc's and LLVM's versions, the default target, and the
 /// runtimes this bsc links programs with (and where it looked).
 void printVersion(llvm::raw_ostream &OS) {
@@ -475,7 +461,7 @@ void printVersion(llvm::raw_ostream &OS) {
      << "LLVM " << BSC_LLVM_VERSION << "\n"
      << "default target: " << resolveTargetTriple("").str() << "\n";
   for (const char *Target : {"x86_64", "i586"}) {
-    ToolChain TC = getToolChain(Target, Argv0ForVersion);
+    ToolChain TC = getToolChain(Target, RuntimeDirArg, Argv0ForVersion);
     OS << "runtime (" << Target << "): ";
     if (std::optional<std::string> Path = TC.findRuntime())
       OS << *Path << "\n";
@@ -1037,7 +1023,8 @@ int main(int argc, char **argv) {
   Opts.BindObjects.assign(BindObjects.begin(), BindObjects.end());
   // `run` and `repl` are for the host's JIT, whatever -target says.
   ToolChain TC = getToolChain(
-      RunCmd || ReplCmd ? llvm::StringRef() : llvm::StringRef(TargetArg), argv[0]);
+      RunCmd || ReplCmd ? llvm::StringRef() : llvm::StringRef(TargetArg),
+      RuntimeDirArg, argv[0]);
   Opts.Target = TC.getTriple();
   if (TC.hasRuntime()) {
     if (std::optional<std::string> Runtime = TC.findRuntime())

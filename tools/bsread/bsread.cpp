@@ -5,7 +5,8 @@
 // OBJ`, without the standard modules), or the reader's errors. Used by
 // test/Bindings and for debugging a binding build without a b-script
 // program at hand. The target is bsc's: `-target` as bsc takes it, the
-// host by default (resolveTargetTriple, the driver's one target policy).
+// host by default, the process's own triple as for bsc, --version and the
+// JIT (resolveTargetTriple: ToolChain.h, the one target policy).
 //
 //   bsread [-target i586|x86_64|TRIPLE] OBJ...
 //

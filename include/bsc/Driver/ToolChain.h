@@ -11,6 +11,15 @@
 // i586) and the host. Every other triple gets objects, assembly and IR but
 // no `io` and no programs.
 //
+// The default target is the host, and the host is one triple everywhere:
+// the process's own (getHostTriple). That is what the host runtime is
+// built for and what `bsc run`'s JIT executes, so `bsc` without -target,
+// `bsc --dump-bindings`, `bsread` and `bsc --version` all name it. LLVM's
+// configured default triple (sys::getDefaultTargetTriple) is not used: on
+// an LLVM configured as a cross compiler it names another machine, and
+// then bsc would compile for a target it has no runtime for while its JIT
+// ran another. Both tools build their ToolChain with getToolChain.
+//
 //===----------------------------------------------------------------------===//
 #ifndef BSC_DRIVER_TOOLCHAIN_H
 #define BSC_DRIVER_TOOLCHAIN_H
@@ -23,6 +32,10 @@
 #include <vector>
 
 namespace bsc {
+
+/// The host: the triple of the running process (sys::getProcessTriple), the
+/// one the host runtime is built for and the JIT runs.
+llvm::Triple getHostTriple();
 
 /// The triple `-target Name` stands for: "i586" is i586-unknown-linux-gnu,
 /// "x86_64" is x86_64-unknown-linux-gnu, the empty string is the host, and
@@ -74,6 +87,13 @@ private:
   llvm::Triple T;
   std::vector<std::string> SearchDirs;
 };
+
+/// The toolchain of `-target Name` (the host for the empty name) with the
+/// runtime search folders of the running tool: `RuntimeDir` (--runtime-dir)
+/// if given, else $BSCRIPT_RUNTIME_DIR if set, else beside the executable
+/// started as `Argv0`. bsc and bsread both take their target from here.
+ToolChain getToolChain(llvm::StringRef Name, llvm::StringRef RuntimeDir,
+                       const char *Argv0);
 
 } // namespace bsc
 
