@@ -1,0 +1,244 @@
+//===- Driver.h - what bsc's commands do -----------------------*- C++ -*-===//
+//
+// The work behind bsc's command line, as clang's Driver library is behind
+// its thin `clang` tool: tools/bsc defines the options (llvm::cl, the
+// tool's interface), copies them into the plain structs below and calls
+// one entry function per command:
+//
+//   compile          a program, an object, assembly, IR or the C header
+//   emitFrontendStage  --emit=tokens|ast|typed-ast|graph
+//   runCommand       `bsc run`
+//   replCommand      `bsc repl`
+//
+// (`bsc trace-decode` is lib/Debug's decodeTraceLog.) Option values are
+// checked here, not in the tool, because what a valid value is (an -O
+// level, a cycle count, a warning group) is policy the tests pin; the
+// structs hold them as the user wrote them, and each is checked where the
+// command used to, so that the order of the messages is the driver's.
+//
+// Every entry reports into the Compilation's DiagnosticEngine; those that
+// return an int print the diagnostics (finishCompilation) and return the
+// exit status.
+//
+//===----------------------------------------------------------------------===//
+#ifndef BSC_DRIVER_DRIVER_H
+#define BSC_DRIVER_DRIVER_H
+
+#include "bsc/CodeGen/Target.h"
+#include "bsc/Debug/Trace.h"
+#include "bsc/Driver/ToolChain.h"
+#include "bsc/Frontend/Frontend.h"
+#include "llvm/Support/Error.h"
+#include "llvm/Support/ToolOutputFile.h"
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace llvm {
+class TargetMachine;
+class raw_ostream;
+} // namespace llvm
+
+namespace bsc {
+
+/// Limit of --cycles: a run of more than a day of 30 Hz cycles is a typo.
+constexpr unsigned MaxCycles = 100000000;
+
+/// Limit of --cycle-limit in milliseconds: a day. Anything longer is a
+/// typo, and itimer values must stay small.
+constexpr unsigned MaxCycleLimitMs = 86400000;
+
+/// Prints the diagnostics of `C` (with `Verify`, checks them against the
+/// sources' `# expected-...` comments instead) and returns the exit status.
+int finishCompilation(Compilation &C, bool Verify = false);
+
+/// finishCompilation, then an internal error (a bug in bsc, not in the
+/// program: see Target.h); returns the exit status 1.
+int finishWithInternalError(Compilation &C, llvm::Error E);
+
+//===-- Option values ---------------------------------------------------===//
+
+/// The options every back-end path needs, checked.
+struct BackendOptions {
+  TargetOptions Target;
+  unsigned Cycles = 1;
+};
+
+/// -target, -mcpu, -O and --cycles as written.
+struct BackendArgs {
+  std::string Target, CPU, OptLevel = "0", Cycles = "1";
+};
+
+/// Checks -O and --cycles and resolves -target; reports and returns false
+/// if one is bad.
+bool parseBackendOptions(DiagnosticEngine &Diags, const BackendArgs &Args,
+                         BackendOptions &Out);
+
+/// Applies -Wno-<group>, -Werror and -Werror=<group> (each without its
+/// `-W`); reports and returns false on one that names no group.
+bool applyWarningOptions(DiagnosticEngine &Diags,
+                         llvm::ArrayRef<std::string> Options);
+
+/// Checks --cycle-budget (1 to 2^32 - 1 loop passes; std::nullopt, the
+/// option not given, is 0: none). Reports and returns false if it is bad.
+bool parseCycleBudget(DiagnosticEngine &Diags,
+                      const std::optional<std::string> &Arg, uint32_t &Passes);
+
+/// Checks `--trace[=changes]` (std::nullopt: not given); reports and
+/// returns false if it is bad.
+bool parseTraceMode(DiagnosticEngine &Diags,
+                    const std::optional<std::string> &Arg,
+                    debug::TraceMode &Mode);
+
+/// Checks --cycle-limit; reports and returns false if it is bad.
+bool parseCycleLimit(DiagnosticEngine &Diags, llvm::StringRef Arg,
+                     unsigned &Ms);
+
+/// Opens `Path` for writing ("-" is stdout); reports failure and returns
+/// null.
+std::unique_ptr<llvm::ToolOutputFile>
+openOutput(DiagnosticEngine &Diags, llvm::StringRef Path, bool Text);
+
+/// The standard modules of `TC`'s target for the front end: its runtime
+/// archive, or, for a target with a runtime that is not found, what was
+/// looked for (reported when `io` is needed). Nothing for other targets.
+void addStandardModules(const ToolChain &TC, FrontendOptions &Opts);
+
+/// What `bsc --version` prints besides the tool's own versions.
+struct VersionInfo {
+  std::string BscVersion, LLVMVersion;
+  /// --runtime-dir and argv[0], to find the runtimes as bsc does.
+  std::string RuntimeDir;
+  const char *Argv0 = "bsc";
+};
+
+/// `bsc --version`: bsc's and LLVM's versions, the default target, and the
+/// runtimes bsc links programs with (and where it looked).
+void printVersion(llvm::raw_ostream &OS, const VersionInfo &Info);
+
+//===-- What the command line asks for ----------------------------------===//
+
+/// `--emit=`: the places the pipeline can stop.
+enum class EmitKind { Default, Tokens, AST, TypedAST, Graph, LLVM, Asm, Obj };
+
+/// The options that choose the top-level command's output.
+struct OutputModes {
+  bool SyntaxOnly = false, Verify = false, CompileOnly = false,
+       AssembleOnly = false, EmitHeader = false, EmitLLVM = false;
+  EmitKind Emit = EmitKind::Default;
+};
+
+/// Reports options that ask for two different outputs (--verify with
+/// -fsyntax-only is one).
+bool checkOutputModes(DiagnosticEngine &Diags, const OutputModes &Modes);
+
+/// `--emit=` with --emit-llvm folded in.
+EmitKind getEmitKind(const OutputModes &Modes);
+
+/// What the top-level command produces when it goes past the front end.
+enum class OutputKind { LLVM, Asm, Obj, Header, Program };
+
+/// The output of checked modes past the front end (-c, -S, --emit=...).
+OutputKind getOutputKind(const OutputModes &Modes);
+
+//===-- Commands --------------------------------------------------------===//
+
+/// `--emit=tokens|ast|typed-ast|graph` (the graph to `OutputFile` or
+/// stdout). Returns the exit status.
+int emitFrontendStage(Compilation &C, const FrontendOptions &Opts,
+                      EmitKind Stage, llvm::StringRef OutputFile);
+
+/// -MD and -MF.
+struct DepFileOptions {
+  bool Enabled = false;
+  /// -MF; empty: the output's name with `.d`.
+  std::string Path;
+};
+
+/// The dependency file's name: Opts.Path, else `Output` with `.d`;
+/// std::nullopt when that would be stdout's ("-").
+std::optional<std::string> getDepFilePath(const DepFileOptions &Opts,
+                                          llvm::StringRef Output);
+
+/// Writes `Output: Inputs...` as make and Ninja read it, one input a line,
+/// with spaces and `#` escaped by `\` and `$` as `$$`.
+void writeDependencies(llvm::raw_ostream &OS, llvm::StringRef Output,
+                       llvm::ArrayRef<std::string> Inputs);
+
+/// -MD: writes the dependency file of `Output`, which depends on every
+/// module file read and every binding object. Nothing without
+/// Opts.Enabled; reports and returns false on failure.
+bool writeDepFile(Compilation &C, const DepFileOptions &Opts,
+                  llvm::StringRef Output,
+                  llvm::ArrayRef<std::string> BindObjects);
+
+/// For a 32-bit x86 target (the robot), reports each binding object that
+/// holds instructions the target CPU lacks: it would die of SIGILL there.
+bool checkBindingCPU(DiagnosticEngine &Diags, const llvm::TargetMachine &TM,
+                     llvm::ArrayRef<std::string> BindObjects);
+
+/// Links `Object` with the runtime shim and the binding objects into the
+/// program `Output` with TC's link command. Reports and returns false.
+bool linkProgram(DiagnosticEngine &Diags, const ToolChain &TC,
+                 llvm::StringRef Object, llvm::StringRef Output,
+                 llvm::ArrayRef<std::string> BindObjects);
+
+/// The top-level command (no subcommand) as written on the command line;
+/// compile checks the values.
+struct CompileOptions {
+  BackendArgs Backend;
+  OutputModes Modes;
+  /// -o; empty: stdout for IR, the header and --emit=graph, `a.out` for a
+  /// program, and for assembly and objects stdout with --emit=, else
+  /// `<first input without .bs>.s` or `.o` in the current folder.
+  std::string OutputFile;
+  /// --export; empty: the behavior's roots.
+  std::vector<std::string> Exports;
+  /// --entry of a program.
+  std::string EntryName;
+  /// --behavior-name; empty: the first input's module.
+  std::string BehaviorName;
+  std::optional<std::string> CycleBudget;
+  bool DebugInfo = false, Instrument = false;
+  DepFileOptions DepFile;
+};
+
+/// The top-level command: checks the output modes, stops at a front-end
+/// stage (emitFrontendStage), after the front end (-fsyntax-only, --verify),
+/// or generates code for the checked behavior and writes what the modes
+/// name (a program is linked with TC's runtime). Returns the exit status
+/// after printing (or verifying) the diagnostics.
+int compile(Compilation &C, const FrontendOptions &FOpts,
+            const CompileOptions &Opts, const ToolChain &TC);
+
+/// `bsc run` as written on the command line.
+struct RunCommandOptions {
+  BackendArgs Backend;
+  bool CyclesGiven = false;
+  std::string EntryName, RecordPath, ReplayPath, CycleLimit;
+  std::optional<std::string> Trace, CycleBudget;
+  bool PrintOutput = false, DebugInfo = false;
+  std::string WorldLibrary, WorldOutput;
+};
+
+/// `bsc run`: the behavior in the host JIT, --cycles calls of --entry.
+/// Returns the exit status.
+int runCommand(Compilation &C, const FrontendOptions &FOpts,
+               const RunCommandOptions &Opts);
+
+/// `bsc repl` as written on the command line.
+struct ReplCommandOptions {
+  BackendArgs Backend;
+  std::string EntryName, CycleLimit, BatchFile, WorldLibrary, WorldOutput;
+  bool DebugInfo = false;
+};
+
+/// `bsc repl`: checks the options, then hands over to the REPL, which loads
+/// (and reloads) the files itself. Returns the exit status.
+int replCommand(Compilation &C, const FrontendOptions &FOpts,
+                const ReplCommandOptions &Opts);
+
+} // namespace bsc
+
+#endif

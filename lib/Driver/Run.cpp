@@ -1,0 +1,111 @@
+//===- Run.cpp - `bsc run` and `bsc repl`: behaviors in the host JIT ------===//
+//
+// Both check their options, then hand over to lib/REPL: `bsc run` loads
+// the behavior, starts a session and runs its cycles (with a --world
+// library feeding it), `bsc repl` lets the REPL load and reload the files
+// itself. Both run on the host whatever -target says (the tool gives them
+// the host's ToolChain).
+//
+//===----------------------------------------------------------------------===//
+#include "bsc/Driver/Driver.h"
+#include "bsc/REPL/Debugger.h"
+#include "bsc/REPL/Repl.h"
+#include "llvm/Support/raw_ostream.h"
+
+using namespace bsc;
+
+/// `--world-output` redirects the world's prints: without `--world` it is
+/// a mistake.
+static bool checkWorldOutputOption(Compilation &C, llvm::StringRef WorldLibrary,
+                                   llvm::StringRef WorldOutput) {
+  if (WorldOutput.empty() || !WorldLibrary.empty())
+    return true;
+  C.Diags.report(llvm::SMLoc(), diag::err_option_needs_option)
+      << "--world-output" << "--world";
+  return false;
+}
+
+/// Loads the checked behavior into the JIT and runs its cycles.
+static int loadAndRun(Compilation &C, const RunCommandOptions &Opts, const LoadOptions &LOpts,
+                      const RunOptions &ROpts, const CallableDecl &Entry) {
+  auto Loaded = loadBehavior(C, Entry, LOpts);
+  if (!Loaded)
+    return finishWithInternalError(C, Loaded.takeError());
+  if (!*Loaded)
+    return finishCompilation(C);
+  if (!Opts.WorldLibrary.empty() && !Opts.ReplayPath.empty()) {
+    // A replay feeds the recorded input; the world would overwrite it.
+    C.Diags.report(llvm::SMLoc(), diag::err_conflicting_options)
+        << "--world" << "--replay";
+    return finishCompilation(C);
+  }
+  if (!checkWorldOutputOption(C, Opts.WorldLibrary, Opts.WorldOutput))
+    return finishCompilation(C);
+  int WorldOutputFd = -1;
+  if (!Opts.WorldOutput.empty() &&
+      (WorldOutputFd = openWorldOutput(C, Opts.WorldOutput)) < 0)
+    return finishCompilation(C);
+  auto Session = startSession(C, **Loaded);
+  if (!Session)
+    return finishWithInternalError(C, Session.takeError());
+  if (*Session)
+    (*Session)->setWorldOutput(WorldOutputFd);
+  if (*Session && (Opts.WorldLibrary.empty() ||
+                   attachWorldLibrary(C, **Loaded, **Session,
+                                      Opts.WorldLibrary, ROpts.CycleLimitMs)))
+    runBehavior(C, **Loaded, **Session, ROpts, llvm::outs());
+  return finishCompilation(C);
+}
+
+int bsc::runCommand(Compilation &C, const FrontendOptions &FOpts,
+                    const RunCommandOptions &Opts) {
+  BackendOptions BOpts;
+  bool OptionsOK = parseBackendOptions(C.Diags, Opts.Backend, BOpts);
+  RunOptions ROpts;
+  ROpts.Cycles = BOpts.Cycles;
+  ROpts.CyclesGiven = Opts.CyclesGiven;
+  ROpts.RecordPath = Opts.RecordPath;
+  ROpts.ReplayPath = Opts.ReplayPath;
+  ROpts.PrintOutput = Opts.PrintOutput;
+  OptionsOK &= parseTraceMode(C.Diags, Opts.Trace, ROpts.Trace);
+  OptionsOK &= parseCycleLimit(C.Diags, Opts.CycleLimit, ROpts.CycleLimitMs);
+  uint32_t CycleBudget = 0;
+  OptionsOK &= parseCycleBudget(C.Diags, Opts.CycleBudget, CycleBudget);
+  if (!runFrontend(C, FOpts) || !OptionsOK)
+    return finishCompilation(C);
+  const CallableDecl *Entry = findProgramEntry(C, Opts.EntryName);
+  if (!Entry)
+    return finishCompilation(C);
+  LoadOptions LOpts;
+  LOpts.OptLevel = BOpts.Target.OptLevel;
+  LOpts.StandardModules = FOpts.StandardModules;
+  LOpts.BindObjects = FOpts.BindObjects;
+  LOpts.DebugInfo = Opts.DebugInfo;
+  LOpts.CycleBudget = CycleBudget;
+  return loadAndRun(C, Opts, LOpts, ROpts, *Entry);
+}
+
+int bsc::replCommand(Compilation &C, const FrontendOptions &FOpts,
+                     const ReplCommandOptions &Opts) {
+  BackendOptions BOpts;
+  bool OK = parseBackendOptions(C.Diags, Opts.Backend, BOpts);
+  ReplOptions ROpts;
+  OK &= parseCycleLimit(C.Diags, Opts.CycleLimit, ROpts.CycleLimitMs);
+  if (FOpts.Inputs.empty()) {
+    C.Diags.report(llvm::SMLoc(), diag::err_no_input_files);
+    OK = false;
+  }
+  OK &= checkWorldOutputOption(C, Opts.WorldLibrary, Opts.WorldOutput);
+  if (!OK)
+    return finishCompilation(C);
+  ROpts.Frontend = FOpts;
+  ROpts.Load.OptLevel = BOpts.Target.OptLevel;
+  ROpts.Load.StandardModules = FOpts.StandardModules;
+  ROpts.Load.BindObjects = FOpts.BindObjects;
+  ROpts.Load.DebugInfo = Opts.DebugInfo;
+  ROpts.EntryName = Opts.EntryName;
+  ROpts.BatchFile = Opts.BatchFile;
+  ROpts.WorldLibrary = Opts.WorldLibrary;
+  ROpts.WorldOutput = Opts.WorldOutput;
+  return runRepl(ROpts, llvm::outs());
+}
