@@ -1,0 +1,301 @@
+//===- Options.cpp - bsc's command line -----------------------------------===//
+//
+// Every option of bsc, its subcommands' included: the tool's interface,
+// defined with llvm::cl as LLVM's tools do, and read after parsing into the
+// option structs of lib/Driver and lib/Debug (readCommandLine). Values
+// are copied as the user wrote them: what a valid one is, is the
+// library's policy (Driver.h), so that every mistake is a `bsc: error:`.
+//
+//===----------------------------------------------------------------------===//
+#include "Options.h"
+#include "llvm/Support/CommandLine.h"
+
+using namespace bsc;
+using namespace bsc::tool;
+namespace cl = llvm::cl;
+
+cl::OptionCategory tool::BscCategory("bsc options");
+cl::SubCommand tool::RunCmd("run", "Run a behavior on the host in a JIT, one call "
+                             "of the entry per cycle");
+cl::SubCommand tool::ReplCmd("repl", "Debug a behavior in a JIT: step cycles, look "
+                               "at tasks, evaluate b-script between cycles");
+cl::SubCommand tool::TraceDecodeCmd(
+    "trace-decode",
+    "Print a robot's trace log as `bsc run --trace` does, with the tables of "
+    "an object compiled with --instrument");
+
+
+namespace {
+/// Where each option is: the compiler (the top level), `bsc run`,
+/// `bsc repl`, `bsc trace-decode`, or several; all are bsc's own.
+#define BSC_TOP cl::cat(BscCategory)
+#define BSC_RUN BSC_TOP, cl::sub(RunCmd)
+#define BSC_REPL BSC_TOP, cl::sub(ReplCmd)
+#define BSC_JIT BSC_RUN, cl::sub(ReplCmd)
+#define BSC_DECODE BSC_TOP, cl::sub(TraceDecodeCmd)
+/// Options shared by the compiler and `bsc run` are in both subcommands...
+#define BSC_BOTH                                                               \
+  BSC_TOP, cl::sub(cl::SubCommand::getTopLevel()), cl::sub(RunCmd)
+/// ...and those the REPL takes too.
+#define BSC_ALL BSC_BOTH, cl::sub(ReplCmd)
+
+cl::list<std::string> InputFiles(cl::Positional, cl::desc("<file.bs>..."),
+                                 BSC_ALL);
+cl::list<std::string>
+    IncludeDirs("I", cl::Prefix, cl::desc("Search folder for required modules"),
+                cl::value_desc("dir"), BSC_ALL);
+cl::opt<std::string>
+    EntryName("entry",
+              cl::desc("The task or func called once per cycle (default: "
+                       "'main' of the first file's module)"),
+              cl::value_desc("Module::name"), cl::init("main"), BSC_ALL);
+cl::list<std::string> ExportNames(
+    "export",
+    cl::desc("Export these funcs and tasks as the object's entries (default: "
+             "the behavior's roots, which nothing in it calls); the rest "
+             "is internal"),
+    cl::value_desc("Module::name,..."), cl::CommaSeparated, BSC_TOP);
+cl::opt<std::string> CyclesArg("cycles",
+                               cl::desc("Execution cycles to run (default 1)"),
+                               cl::value_desc("N"), cl::init("1"), BSC_BOTH);
+cl::opt<std::string>
+    OptLevelArg("O", cl::Prefix,
+                cl::desc("Optimisation level 0..3 (default 0)"),
+                cl::value_desc("level"), cl::init("0"), BSC_ALL);
+
+cl::opt<std::string>
+    RecordFile("record",
+               cl::desc("Write each cycle's input and output as one JSON line"),
+               cl::value_desc("file.jsonl"), BSC_RUN);
+cl::opt<std::string> ReplayFile(
+    "replay",
+    cl::desc("Feed each cycle's input from a JSON-lines file and compare "
+             "the outputs it records"),
+    cl::value_desc("file.jsonl"), BSC_RUN);
+// A string, not an enum: llvm::cl's own message for a bad value is not a
+// `bsc: error:` (parseTraceMode reports it).
+cl::opt<std::string> TraceArg(
+    "trace", cl::ValueOptional,
+    cl::desc("Print the active task hierarchy after each cycle; with "
+             "'=changes', only the cycles where it, a task's state or a "
+             "line changed"),
+    cl::value_desc("changes"), BSC_RUN);
+cl::opt<bool> PrintOutputFlag("print-output",
+                              cl::desc("Print the output after each cycle "
+                                       "as JSON"),
+                              BSC_RUN);
+cl::opt<std::string> CycleLimitArg(
+    "cycle-limit",
+    cl::desc("Stop a cycle that runs longer than this (milliseconds; "
+             "default 3000, 0: no limit)"),
+    cl::value_desc("ms"), cl::init("3000"), BSC_JIT);
+cl::opt<std::string> WorldLibrary(
+    "world",
+    cl::desc("A shared library that feeds input and reads output around "
+             "every cycle (bs_world_init/begin/end/exit, docs/repl.md)"),
+    cl::value_desc("lib.so"), BSC_JIT);
+cl::opt<std::string> WorldOutput(
+    "world-output",
+    cl::desc("Write what the --world library prints to this file instead of "
+             "standard output"),
+    cl::value_desc("file"), BSC_JIT);
+cl::opt<std::string> BatchFile(
+    "batch",
+    cl::desc("Read the REPL's lines from this file, without a prompt (also "
+             "when standard input is not a terminal)"),
+    cl::value_desc("file"), BSC_REPL);
+
+cl::opt<std::string>
+    RuntimeDirArg("runtime-dir",
+                  cl::desc("The folder holding the runtime libraries (default: "
+                           "$BSCRIPT_RUNTIME_DIR, else ../lib/bscript or "
+                           "../lib beside bsc's folder)"),
+                  cl::value_desc("dir"), BSC_ALL);
+cl::opt<bool> DepFileFlag(
+    "MD",
+    cl::desc("Also write a make-style dependency file: the output "
+             "depends on every module file read and every --bind object"),
+    BSC_TOP);
+cl::opt<std::string> DepFilePath(
+    "MF",
+    cl::desc("The dependency file's name (default: the output's, with "
+             "'.d')"),
+    cl::value_desc("file"), BSC_TOP);
+cl::opt<bool> InstrumentFlag(
+    "instrument",
+    cl::desc("Make every task call write the state's trace record, and embed "
+             "the debugger's tables (task names, yield lines) in the object, "
+             "for `bsc trace-decode` of robot trace logs"),
+    BSC_TOP);
+cl::opt<std::string> CycleBudgetArg(
+    "cycle-budget",
+    cl::desc("Give each cycle N loop passes: a task whose loop runs past them "
+             "fails and the cycle returns; the state records the loop "
+             "(bscript.h, \"Cycle budgets\")"),
+    cl::value_desc("N"), BSC_BOTH);
+cl::opt<std::string>
+    TraceObject("object", cl::desc("The object compiled with --instrument"),
+                cl::value_desc("file.o"), BSC_DECODE, cl::Required);
+cl::opt<std::string> TraceLog(cl::Positional, cl::desc("<trace log>"),
+                              BSC_DECODE, cl::Required);
+cl::opt<bool> TraceChangesFlag(
+    "changes",
+    cl::desc("Print only the cycles whose line differs from the cycle "
+             "before's, as `bsc run --trace=changes`"),
+    BSC_DECODE);
+
+cl::opt<bool> SyntaxOnly("fsyntax-only",
+                         cl::desc("Check the program; produce no output"),
+                         BSC_TOP);
+cl::opt<bool> Verify("verify",
+                     cl::desc("Check diagnostics against the source's "
+                              "'# expected-error {{...}}' comments"),
+                     BSC_TOP);
+cl::opt<EmitKind> Emit(
+    "emit", cl::desc("Stop at a stage and print it"),
+    cl::init(EmitKind::Default),
+    cl::values(clEnumValN(EmitKind::Tokens, "tokens",
+                          "the tokens of each file"),
+               clEnumValN(EmitKind::AST, "ast", "the syntax tree (parse only)"),
+               clEnumValN(EmitKind::TypedAST, "typed-ast",
+                          "the syntax tree after semantic checks"),
+               clEnumValN(EmitKind::Graph, "graph",
+                          "the call graph of funcs and tasks (Graphviz DOT)"),
+               clEnumValN(EmitKind::LLVM, "llvm", "the LLVM IR (after -O)"),
+               clEnumValN(EmitKind::Asm, "asm", "the target's assembly"),
+               clEnumValN(EmitKind::Obj, "obj", "the object file")),
+    BSC_TOP);
+cl::opt<bool> EmitLLVMFlag("emit-llvm", cl::desc("Same as --emit=llvm"),
+                           BSC_TOP);
+cl::opt<bool> CompileOnly("c",
+                          cl::desc("Write an object file to embed "
+                                   "(default name: <first file>.o)"),
+                          BSC_TOP);
+cl::opt<bool> AssembleOnly("S",
+                           cl::desc("Write assembly (default name: "
+                                    "<first file>.s)"),
+                           BSC_TOP);
+cl::opt<bool> EmitHeaderFlag(
+    "emit-header",
+    cl::desc("Write the typed C header of the behavior for the target"),
+    BSC_TOP);
+cl::opt<std::string> OutputFile("o", cl::desc("Output file ('-' for stdout)"),
+                                cl::value_desc("file"), BSC_TOP);
+cl::opt<std::string>
+    TargetArg("target",
+              cl::desc("i586 (the robot: Geode, PIC, ELF32), x86_64, or any "
+                       "LLVM triple (default: the host; programs only for "
+                       "the host and i586)"),
+              cl::value_desc("target"), BSC_TOP);
+cl::opt<std::string>
+    CPUArg("mcpu",
+           cl::desc("Target CPU (default: geode for i586, x86-64 for x86_64, "
+                    "else generic or the target's oldest)"),
+           cl::value_desc("cpu"), BSC_TOP);
+cl::opt<std::string> BehaviorNameArg(
+    "behavior-name",
+    cl::desc("Prefix of the exported symbols (default: the first file's "
+             "module name)"),
+    cl::value_desc("name"), BSC_TOP);
+cl::list<std::string>
+    BindObjects("bind",
+                cl::desc("A binding object, archive or shared library "
+                         "registering C++ for the scripts (repeatable; read "
+                         "for -target)"),
+                cl::value_desc("obj"), BSC_ALL);
+cl::opt<bool> DumpBindings("dump-bindings",
+                           cl::desc("Print what the standard modules and the "
+                                    "--bind objects register, and exit"),
+                           BSC_TOP);
+/// -W's help, from the diagnostics' table of warning groups. Defined before
+/// WarningOptions, whose description refers to it.
+const std::string WarningHelp =
+    "-Wno-<group>: silence a group of warnings; -Werror: warnings are "
+    "errors; -Werror=<group>: that group's are (groups: " +
+    DiagnosticEngine::getWarningGroupList() + ")";
+cl::list<std::string> WarningOptions("W", cl::Prefix, cl::desc(WarningHelp),
+                                     cl::value_desc("no-group|error[=group]"),
+                                     BSC_BOTH);
+cl::opt<bool> DebugInfo("g",
+                        cl::desc("Emit DWARF debug information (for `run` "
+                                 "and `repl`: register the JIT's code with "
+                                 "gdb)"),
+                        BSC_ALL);
+
+/// A given option's value; std::nullopt when it is not on the command line.
+std::optional<std::string> given(const cl::opt<std::string> &O) {
+  if (O.getNumOccurrences() == 0)
+    return std::nullopt;
+  return O.getValue();
+}
+
+BackendArgs getBackendArgs() {
+  return {TargetArg, CPUArg, OptLevelArg, CyclesArg};
+}
+
+CompileOptions getCompileOptions() {
+  CompileOptions Opts;
+  Opts.Backend = getBackendArgs();
+  Opts.Modes = {SyntaxOnly,     Verify,       CompileOnly, AssembleOnly,
+                EmitHeaderFlag, EmitLLVMFlag, Emit};
+  Opts.OutputFile = OutputFile;
+  Opts.Exports.assign(ExportNames.begin(), ExportNames.end());
+  Opts.EntryName = EntryName;
+  Opts.BehaviorName = BehaviorNameArg;
+  Opts.CycleBudget = given(CycleBudgetArg);
+  Opts.DebugInfo = DebugInfo;
+  Opts.Instrument = InstrumentFlag;
+  Opts.DepFile = {DepFileFlag, DepFilePath};
+  return Opts;
+}
+
+RunCommandOptions getRunOptions() {
+  RunCommandOptions Opts;
+  Opts.Backend = getBackendArgs();
+  Opts.CyclesGiven = CyclesArg.getNumOccurrences() != 0;
+  Opts.EntryName = EntryName;
+  Opts.RecordPath = RecordFile;
+  Opts.ReplayPath = ReplayFile;
+  Opts.CycleLimit = CycleLimitArg;
+  Opts.Trace = given(TraceArg);
+  Opts.CycleBudget = given(CycleBudgetArg);
+  Opts.PrintOutput = PrintOutputFlag;
+  Opts.DebugInfo = DebugInfo;
+  Opts.WorldLibrary = WorldLibrary;
+  Opts.WorldOutput = WorldOutput;
+  return Opts;
+}
+
+ReplCommandOptions getReplOptions() {
+  ReplCommandOptions Opts;
+  Opts.Backend = getBackendArgs();
+  Opts.EntryName = EntryName;
+  Opts.CycleLimit = CycleLimitArg;
+  Opts.BatchFile = BatchFile;
+  Opts.WorldLibrary = WorldLibrary;
+  Opts.WorldOutput = WorldOutput;
+  Opts.DebugInfo = DebugInfo;
+  return Opts;
+}
+} // namespace
+
+bool tool::verifyGiven() { return Verify; }
+
+std::string tool::getRuntimeDir() { return RuntimeDirArg; }
+
+tool::CommandLine tool::readCommandLine() {
+  CommandLine CL;
+  FrontendOptions &F = CL.Frontend;
+  F.Inputs.assign(InputFiles.begin(), InputFiles.end());
+  F.IncludeDirs.assign(IncludeDirs.begin(), IncludeDirs.end());
+  F.BindObjects.assign(BindObjects.begin(), BindObjects.end());
+  CL.TargetName = TargetArg;
+  CL.RuntimeDir = RuntimeDirArg;
+  CL.Warnings.assign(WarningOptions.begin(), WarningOptions.end());
+  CL.DumpBindings = DumpBindings;
+  CL.Compile = getCompileOptions();
+  CL.Run = getRunOptions();
+  CL.Repl = getReplOptions();
+  CL.TraceDecode = {TraceObject, TraceLog, TraceChangesFlag};
+  return CL;
+}
