@@ -5,10 +5,11 @@
 // tool's interface), copies them into the plain structs below and calls
 // one entry function per command:
 //
-//   compile          a program, an object, assembly, IR or the C header
-//   emitFrontendStage  --emit=tokens|ast|typed-ast|graph
-//   runCommand       `bsc run`
-//   replCommand      `bsc repl`
+//   compile      the top-level command: a program, an object, assembly,
+//                IR, the C header, or a front-end stage (--emit=tokens,
+//                ast, typed-ast, graph: emitFrontendStage)
+//   runCommand   `bsc run`
+//   replCommand  `bsc repl`
 //
 // (`bsc trace-decode` is lib/Debug's decodeTraceLog.) Option values are
 // checked here, not in the tool, because what a valid value is (an -O
