@@ -18,6 +18,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "ReplImpl.h"
+#include <algorithm>
 #include <cstring>
 
 using namespace bsc;
@@ -120,9 +121,13 @@ bool Repl::checkHistory(llvm::SMLoc Loc) {
 
 bool Repl::travelTo(uint32_t Target) {
   uint32_t Now = S->getCycle();
-  // Forward by a few cycles: on from here. Else from the copy before.
-  if (Target <= Now || Target - Now > History->getSnapshotEvery())
-    History->restore(Target, /*Before=*/true, getBlocks());
+  // Forward by a few cycles: on from here. Else from the copy before (the
+  // last one for a cycle past the history, which then runs live).
+  uint32_t Logged = std::min(Target, History->last());
+  if (Target <= Now || (Logged > Now &&
+                        Logged - Now > History->getSnapshotEvery()))
+    History->restore(Logged, /*Before=*/Target <= History->last(),
+                     getBlocks());
   while (S->getCycle() < Target) {
     uint32_t Cycle = S->getCycle() + 1;
     bool FromHistory;
