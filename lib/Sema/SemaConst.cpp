@@ -44,37 +44,225 @@ bool hasConstantShape(const Expr *E) {
            hasConstantShape(llvm::cast<BinaryExpr>(E)->RHS);
   case NodeKind::ConversionExpr:
     return hasConstantShape(llvm::cast<ConversionExpr>(E)->Operand);
-  default:
+  case NodeKind::MemberExpr:
+  case NodeKind::IndexExpr:
+  case NodeKind::CallExpr:
+  case NodeKind::TaskStateExpr:
     return false;
+#define EXPR(Class)
+#define NODE(Class) case NodeKind::Class:
+#include "bsc/AST/ASTNodes.def"
+    llvm_unreachable("not an expression");
   }
+  llvm_unreachable("unknown node kind");
 }
 
-/// int arithmetic as the generated code does it: wrapping, and division
-/// without traps (x / 0 == 0, x % 0 == x, INT_MIN / -1 == INT_MIN).
-int32_t intArith(BinaryOp Op, int32_t L, int32_t R) {
-  uint32_t A = uint32_t(L), B = uint32_t(R);
+/// int division as the generated code does it, without traps: x / 0 == 0,
+/// INT_MIN / -1 == INT_MIN.
+int32_t intDiv(int32_t L, int32_t R) {
+  if (R == 0)
+    return 0;
+  if (L == INT32_MIN && R == -1)
+    return INT32_MIN;
+  return L / R;
+}
+
+/// ...and its remainder: x % 0 == x, INT_MIN % -1 == 0.
+int32_t intRem(int32_t L, int32_t R) {
+  if (R == 0)
+    return L;
+  if (L == INT32_MIN && R == -1)
+    return 0;
+  return L % R;
+}
+
+/// `L op R` for an arithmetic operator on ints (wrapping) or, if `IsFloat`,
+/// IEEE singles; nothing for a float `%`, which Sema allows on ints only.
+std::optional<ConstantValue> foldArithmetic(BinaryOp Op, bool IsFloat,
+                                            const ConstantValue &L,
+                                            const ConstantValue &R) {
+  uint32_t A = uint32_t(L.Int), B = uint32_t(R.Int);
+  ConstantValue V;
   switch (Op) {
   case BinaryOp::Add:
-    return int32_t(A + B);
+    if (IsFloat)
+      V.Float = L.Float + R.Float;
+    else
+      V.Int = int32_t(A + B);
+    return V;
   case BinaryOp::Sub:
-    return int32_t(A - B);
+    if (IsFloat)
+      V.Float = L.Float - R.Float;
+    else
+      V.Int = int32_t(A - B);
+    return V;
   case BinaryOp::Mul:
-    return int32_t(A * B);
+    if (IsFloat)
+      V.Float = L.Float * R.Float;
+    else
+      V.Int = int32_t(A * B);
+    return V;
   case BinaryOp::Div:
-    if (R == 0)
-      return 0;
-    if (L == INT32_MIN && R == -1)
-      return INT32_MIN;
-    return L / R;
+    if (IsFloat)
+      V.Float = L.Float / R.Float;
+    else
+      V.Int = intDiv(L.Int, R.Int);
+    return V;
   case BinaryOp::Rem:
-    if (R == 0)
-      return L;
-    if (L == INT32_MIN && R == -1)
-      return 0;
-    return L % R;
-  default:
-    return 0;
+    if (IsFloat)
+      return std::nullopt;
+    V.Int = intRem(L.Int, R.Int);
+    return V;
+  case BinaryOp::Lt:
+  case BinaryOp::Le:
+  case BinaryOp::Gt:
+  case BinaryOp::Ge:
+  case BinaryOp::Eq:
+  case BinaryOp::Ne:
+  case BinaryOp::And:
+  case BinaryOp::Or:
+    llvm_unreachable("not an arithmetic operator");
   }
+  llvm_unreachable("unknown binary operator");
+}
+
+/// `A op C` for a comparison operator, on numbers, bools or strings.
+template <typename T> bool compare(BinaryOp Op, const T &A, const T &C) {
+  switch (Op) {
+  case BinaryOp::Lt:
+    return A < C;
+  case BinaryOp::Le:
+    return A <= C;
+  case BinaryOp::Gt:
+    return A > C;
+  case BinaryOp::Ge:
+    return A >= C;
+  case BinaryOp::Eq:
+    return A == C;
+  case BinaryOp::Ne:
+    return A != C;
+  case BinaryOp::Mul:
+  case BinaryOp::Div:
+  case BinaryOp::Rem:
+  case BinaryOp::Add:
+  case BinaryOp::Sub:
+  case BinaryOp::And:
+  case BinaryOp::Or:
+    llvm_unreachable("not a comparison");
+  }
+  llvm_unreachable("unknown binary operator");
+}
+
+/// The value of a name: an enum value or a (checked) constant.
+std::optional<ConstantValue> evaluateName(const NameExpr &N) {
+  if (N.Kind == NameKind::EnumValue) {
+    ConstantValue V;
+    V.Int = N.EnumValue;
+    return V;
+  }
+  if (N.Kind == NameKind::Constant)
+    return N.Const->Value;
+  return std::nullopt;
+}
+
+/// `-O` and `!O` on the value `O` of U's operand.
+ConstantValue foldUnary(const UnaryExpr &U, ConstantValue O) {
+  switch (U.Op) {
+  case UnaryOp::Not:
+    O.Bool = !O.Bool;
+    return O;
+  case UnaryOp::Neg:
+    if (U.Ty->isFloat())
+      O.Float = -O.Float;
+    else
+      O.Int = int32_t(0u - uint32_t(O.Int));
+    return O;
+  }
+  llvm_unreachable("unknown unary operator");
+}
+
+/// An explicit or implicit conversion of the value `O` of CE's operand.
+std::optional<ConstantValue> foldConversion(const ConversionExpr &CE,
+                                            const ConstantValue &O) {
+  ConstantValue V;
+  const Type *From = CE.Operand->Ty;
+  if (CE.Ty->isFloat()) {
+    if (!From->isFloat())
+      V.Float = float(O.Int);
+    else
+      V.Float = O.Float;
+  } else if (CE.Ty->isInt()) {
+    if (From->isFloat()) {
+      // llvm.fptosi.sat: NaN is 0, out of range saturates.
+      float F = O.Float;
+      V.Int = std::isnan(F)             ? 0
+              : F >= 2147483648.0f      ? INT32_MAX
+              : F <= -2147483648.0f     ? INT32_MIN
+                                        : int32_t(F);
+    } else if (From->isBool()) {
+      V.Int = O.Bool ? 1 : 0;
+    } else {
+      V.Int = O.Int;
+    }
+  } else if (CE.Ty->isBool()) {
+    V.Bool = O.Bool;
+  } else {
+    return std::nullopt;
+  }
+  return V;
+}
+
+/// A comparison: numbers, bools, enums, task states and strings by value.
+bool foldComparison(const BinaryExpr &B, const ConstantValue &L,
+                    const ConstantValue &R) {
+  if (B.StateTest != BinaryExpr::StateKindTest::None) {
+    // As at run time: the kind of the state the other side holds.
+    bool RunningTest = B.StateTest == BinaryExpr::StateKindTest::Running;
+    int32_t State = B.NamedStateOnLeft ? R.Int : L.Int;
+    bool Is = RunningTest ? State > 0 : State < 0;
+    return B.Op == BinaryOp::Eq ? Is : !Is;
+  }
+  const Type *OpTy = B.LHS->Ty;
+  if (OpTy->isFloat())
+    return compare(B.Op, L.Float, R.Float);
+  if (OpTy->isBool())
+    return compare(B.Op, L.Bool, R.Bool);
+  if (OpTy->isString()) // == and != compare contents.
+    return compare(B.Op, llvm::StringRef(L.String), llvm::StringRef(R.String));
+  return compare(B.Op, L.Int, R.Int);
+}
+
+/// `L op R` on the values of B's operands.
+std::optional<ConstantValue> foldBinary(const BinaryExpr &B,
+                                        const ConstantValue &L,
+                                        const ConstantValue &R) {
+  const Type *OpTy = B.LHS->Ty;
+  ConstantValue V;
+  switch (B.Op) {
+  case BinaryOp::And:
+    V.Bool = L.Bool && R.Bool;
+    return V;
+  case BinaryOp::Or:
+    V.Bool = L.Bool || R.Bool;
+    return V;
+  case BinaryOp::Add:
+  case BinaryOp::Sub:
+  case BinaryOp::Mul:
+  case BinaryOp::Div:
+  case BinaryOp::Rem:
+    if (OpTy->isString())
+      return std::nullopt;
+    return foldArithmetic(B.Op, OpTy->isFloat(), L, R);
+  case BinaryOp::Lt:
+  case BinaryOp::Le:
+  case BinaryOp::Gt:
+  case BinaryOp::Ge:
+  case BinaryOp::Eq:
+  case BinaryOp::Ne:
+    V.Bool = foldComparison(B, L, R);
+    return V;
+  }
+  llvm_unreachable("unknown binary operator");
 }
 } // namespace
 
@@ -160,8 +348,7 @@ Expr *Sema::makeConstantExpr(const ConstantValue &V, const Type *Ty,
 
 std::optional<ConstDecl::ValueFields>
 Sema::evaluateConstant(const Expr *E) {
-  using Value = ConstDecl::ValueFields;
-  Value V;
+  ConstantValue V;
   switch (E->getKind()) {
   case NodeKind::IntLiteralExpr:
     V.Int = llvm::cast<IntLiteralExpr>(E)->Value;
@@ -175,145 +362,44 @@ Sema::evaluateConstant(const Expr *E) {
   case NodeKind::StringLiteralExpr:
     V.String = llvm::cast<StringLiteralExpr>(E)->Value;
     return V;
-  case NodeKind::NameExpr: {
-    const auto *N = llvm::cast<NameExpr>(E);
-    if (N->Kind == NameKind::EnumValue) {
-      V.Int = N->EnumValue;
-      return V;
-    }
-    if (N->Kind == NameKind::Constant)
-      return N->Const->Value;
-    return std::nullopt;
-  }
+  case NodeKind::NameExpr:
+    return evaluateName(*llvm::cast<NameExpr>(E));
   case NodeKind::UnaryExpr: {
     const auto *U = llvm::cast<UnaryExpr>(E);
     if (U->Operator)
       return std::nullopt;
-    std::optional<Value> O = evaluateConstant(U->Operand);
+    std::optional<ConstantValue> O = evaluateConstant(U->Operand);
     if (!O)
       return std::nullopt;
-    if (U->Op == UnaryOp::Not) {
-      O->Bool = !O->Bool;
-    } else if (E->Ty->isFloat()) {
-      O->Float = -O->Float;
-    } else {
-      O->Int = int32_t(0u - uint32_t(O->Int));
-    }
-    return O;
+    return foldUnary(*U, std::move(*O));
   }
   case NodeKind::ConversionExpr: {
     const auto *CE = llvm::cast<ConversionExpr>(E);
-    std::optional<Value> O = evaluateConstant(CE->Operand);
+    std::optional<ConstantValue> O = evaluateConstant(CE->Operand);
     if (!O)
       return std::nullopt;
-    const Type *From = CE->Operand->Ty;
-    if (E->Ty->isFloat()) {
-      if (!From->isFloat())
-        V.Float = float(O->Int);
-      else
-        V.Float = O->Float;
-    } else if (E->Ty->isInt()) {
-      if (From->isFloat()) {
-        // llvm.fptosi.sat: NaN is 0, out of range saturates.
-        float F = O->Float;
-        V.Int = std::isnan(F)             ? 0
-                : F >= 2147483648.0f      ? INT32_MAX
-                : F <= -2147483648.0f     ? INT32_MIN
-                                          : int32_t(F);
-      } else if (From->isBool()) {
-        V.Int = O->Bool ? 1 : 0;
-      } else {
-        V.Int = O->Int;
-      }
-    } else if (E->Ty->isBool()) {
-      V.Bool = O->Bool;
-    } else {
-      return std::nullopt;
-    }
-    return V;
+    return foldConversion(*CE, *O);
   }
   case NodeKind::BinaryExpr: {
     const auto *B = llvm::cast<BinaryExpr>(E);
     if (B->Operator)
       return std::nullopt;
-    std::optional<Value> L = evaluateConstant(B->LHS);
-    std::optional<Value> R = evaluateConstant(B->RHS);
+    std::optional<ConstantValue> L = evaluateConstant(B->LHS);
+    std::optional<ConstantValue> R = evaluateConstant(B->RHS);
     if (!L || !R)
       return std::nullopt;
-    const Type *OpTy = B->LHS->Ty;
-    switch (B->Op) {
-    case BinaryOp::And:
-      V.Bool = L->Bool && R->Bool;
-      return V;
-    case BinaryOp::Or:
-      V.Bool = L->Bool || R->Bool;
-      return V;
-    case BinaryOp::Add:
-    case BinaryOp::Sub:
-    case BinaryOp::Mul:
-    case BinaryOp::Div:
-    case BinaryOp::Rem:
-      if (OpTy->isString())
-        return std::nullopt;
-      if (!OpTy->isFloat()) {
-        V.Int = intArith(B->Op, L->Int, R->Int);
-        return V;
-      }
-      // IEEE single arithmetic (Sema has no `%` on floats).
-      switch (B->Op) {
-      case BinaryOp::Add:
-        V.Float = L->Float + R->Float;
-        break;
-      case BinaryOp::Sub:
-        V.Float = L->Float - R->Float;
-        break;
-      case BinaryOp::Mul:
-        V.Float = L->Float * R->Float;
-        break;
-      default:
-        V.Float = L->Float / R->Float;
-        break;
-      }
-      return V;
-    default:
-      break;
-    }
-    // Comparisons: numbers, bools, enums, task states and strings by value.
-    auto Compare = [&](auto A, auto C) {
-      switch (B->Op) {
-      case BinaryOp::Lt:
-        return A < C;
-      case BinaryOp::Le:
-        return A <= C;
-      case BinaryOp::Gt:
-        return A > C;
-      case BinaryOp::Ge:
-        return A >= C;
-      case BinaryOp::Eq:
-        return A == C;
-      default:
-        return A != C;
-      }
-    };
-    if (B->StateTest != BinaryExpr::StateKindTest::None) {
-      // As at run time: the kind of the state the other side holds.
-      bool RunningTest = B->StateTest == BinaryExpr::StateKindTest::Running;
-      int32_t State = B->NamedStateOnLeft ? R->Int : L->Int;
-      bool Is = RunningTest ? State > 0 : State < 0;
-      V.Bool = B->Op == BinaryOp::Eq ? Is : !Is;
-      return V;
-    }
-    if (OpTy->isFloat())
-      V.Bool = Compare(L->Float, R->Float);
-    else if (OpTy->isBool())
-      V.Bool = Compare(L->Bool, R->Bool);
-    else if (OpTy->isString()) // == and != compare contents.
-      V.Bool = Compare(llvm::StringRef(L->String), llvm::StringRef(R->String));
-    else
-      V.Bool = Compare(L->Int, R->Int);
-    return V;
+    return foldBinary(*B, *L, *R);
   }
-  default:
+  case NodeKind::MemberExpr:
+  case NodeKind::IndexExpr:
+  case NodeKind::CallExpr:
+  case NodeKind::TaskStateExpr:
+  case NodeKind::ErrorExpr:
     return std::nullopt;
+#define EXPR(Class)
+#define NODE(Class) case NodeKind::Class:
+#include "bsc/AST/ASTNodes.def"
+    llvm_unreachable("not an expression");
   }
+  llvm_unreachable("unknown node kind");
 }
