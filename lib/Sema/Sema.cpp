@@ -537,155 +537,174 @@ LookupResult Sema::lookupEnumValue(const Type *ValueTy,
   return R;
 }
 
-LookupResult Sema::lookupQualified(const QualifiedName &N) {
-  LookupResult R;
-  const Ident &Q = N.Parts[0];
-  auto Join = [&](size_t Count) {
-    std::string S;
-    for (size_t I = 0; I != Count; ++I)
-      S += (I ? "::" : "") + N.Parts[I].Name.str();
-    return S;
-  };
+/// The first `Count` parts of `N` joined with `::` (`M::E` of `M::E::v`).
+static std::string joinParts(const QualifiedName &N, size_t Count) {
+  std::string S;
+  for (size_t I = 0; I != Count; ++I)
+    S += (I ? "::" : "") + N.Parts[I].Name.str();
+  return S;
+}
 
+bool Sema::reportMemberOfNonEnum(const QualifiedName &N) {
+  if (N.Parts.size() != 3)
+    return false;
+  diag(N.Parts[0].Loc, diag::err_unknown_qualifier) << joinParts(N, 2);
+  return true;
+}
+
+QualifierModule Sema::findQualifierModule(llvm::StringRef Name) {
   QualifierModule QM;
-  if (Q.Name == CurModule->AST->Name) {
+  if (Name == CurModule->AST->Name) {
     QM.Kind = QualifierModule::Script;
     QM.ScriptModule = CurModule->AST;
-  } else {
-    auto It = CurModule->Requires.find(Q.Name);
-    if (It != CurModule->Requires.end()) {
-      const RequireDecl *Req = It->second;
-      if (Req->Script) {
-        QM.Kind = QualifierModule::Script;
-        QM.ScriptModule = Req->Script;
-      } else if (Req->Native) {
-        QM.Kind = QualifierModule::Native;
-        QM.NativeMod = Req->Native;
-      } else {
-        QM.Kind = QualifierModule::Poison;
-      }
-    } else if (World && Q.Name == World->Name) {
-      QM.Kind = QualifierModule::Native;
-      QM.NativeMod = World;
-    } else if (Repl) {
-      QM = findReplModule(Q.Name);
-    }
+    return QM;
   }
+  auto It = CurModule->Requires.find(Name);
+  if (It != CurModule->Requires.end()) {
+    const RequireDecl *Req = It->second;
+    if (Req->Script) {
+      QM.Kind = QualifierModule::Script;
+      QM.ScriptModule = Req->Script;
+    } else if (Req->Native) {
+      QM.Kind = QualifierModule::Native;
+      QM.NativeMod = Req->Native;
+    } else {
+      QM.Kind = QualifierModule::Poison;
+    }
+  } else if (World && Name == World->Name) {
+    QM.Kind = QualifierModule::Native;
+    QM.NativeMod = World;
+  } else if (Repl) {
+    QM = findReplModule(Name);
+  }
+  return QM;
+}
 
+LookupResult Sema::lookupQualified(const QualifiedName &N) {
+  const Ident &Q = N.Parts[0];
+  QualifierModule QM = findQualifierModule(Q.Name);
   if (N.Parts.size() > 3) {
     if (QM.Kind != QualifierModule::Poison)
-      diag(Q.Loc, diag::err_unknown_qualifier) << Join(N.Parts.size() - 1);
-    return R;
+      diag(Q.Loc, diag::err_unknown_qualifier)
+          << joinParts(N, N.Parts.size() - 1);
+    return LookupResult();
   }
-  const Ident &Second = N.Parts[1];
-
   switch (QM.Kind) {
   case QualifierModule::Poison:
-    return R;
-  case QualifierModule::Script: {
-    if (EnumDecl *E = InfoOf[QM.ScriptModule]->Enums.lookup(Second.Name)) {
-      if (N.Parts.size() == 3)
-        return lookupEnumValue(E->Ty, &E->Values, Join(2), N.Parts[2]);
-      R.Kind = LookupKind::TypeName;
-      R.Ty = E->Ty;
-      return R;
-    }
-    if (ConstDecl *C = InfoOf[QM.ScriptModule]->Consts.lookup(Second.Name)) {
-      if (N.Parts.size() == 3) {
-        diag(Q.Loc, diag::err_unknown_qualifier) << Join(2);
-        return R;
-      }
-      R.Kind = LookupKind::Constant;
-      R.Const = C;
-      return R;
-    }
-    auto It = InfoOf[QM.ScriptModule]->Decls.find(Second.Name);
-    if (It == InfoOf[QM.ScriptModule]->Decls.end()) {
-      diag(Second.Loc, diag::err_no_member_in_module)
-          << Q.Name << Second.Name << Second.getRange();
-      llvm::SmallVector<llvm::StringRef, 16> Names;
-      for (const auto &Entry : InfoOf[QM.ScriptModule]->Decls)
-        Names.push_back(Entry.getKey());
-      for (const auto &Entry : InfoOf[QM.ScriptModule]->Consts)
-        Names.push_back(Entry.getKey());
-      for (const auto &Entry : InfoOf[QM.ScriptModule]->Enums)
-        Names.push_back(Entry.getKey());
-      suggestNearest(Second, Names);
-      return R;
-    }
-    if (N.Parts.size() == 3) {
-      diag(Q.Loc, diag::err_unknown_qualifier) << Join(2);
-      return R;
-    }
-    R.Kind = LookupKind::Callable;
-    R.Callable = It->second;
-    return R;
-  }
-  case QualifierModule::Native: {
-    llvm::StringRef Member = Second.Name;
-    if (const NativeClass *Cls = QM.NativeMod->findClass(Member)) {
-      if (N.Parts.size() == 3) {
-        diag(Q.Loc, diag::err_unknown_qualifier) << Join(2);
-        return R;
-      }
-      R.Kind = LookupKind::TypeName;
-      R.Ty = Types.getClass(Cls);
-      return R;
-    }
-    if (const NativeEnum *E = QM.NativeMod->findEnum(Member)) {
-      const Type *Ty = getEnumType(*QM.NativeMod, *E);
-      if (N.Parts.size() == 3)
-        return lookupEnumValue(Ty, Join(2), N.Parts[2]);
-      R.Kind = LookupKind::TypeName;
-      R.Ty = Ty;
-      return R;
-    }
-    if (const NativeConstant *C = QM.NativeMod->findConstant(Member)) {
-      if (N.Parts.size() == 3) {
-        diag(Q.Loc, diag::err_unknown_qualifier) << Join(2);
-        return R;
-      }
-      R.Kind = LookupKind::Constant;
-      R.Const = getNativeConstant(*C);
-      return R;
-    }
-    const NativeFunction *F = QM.NativeMod->findFunction(Member);
-    if (!F)
-      if (const UnusableMember *U =
-              findUnusable(QM.NativeMod->Unusable, Member)) {
-        diag(Second.Loc, diag::err_member_unusable)
-            << Q.Name.str() + "::" + U->Name << U->Reason << Second.getRange();
-        return R;
-      }
-    if (!F) {
-      diag(Second.Loc, diag::err_no_member_in_module)
-          << Q.Name << Second.Name << Second.getRange();
-      llvm::SmallVector<llvm::StringRef, 16> Names;
-      for (const NativeFunction &NF : QM.NativeMod->Functions)
-        Names.push_back(NF.Name);
-      for (const NativeConstant &NC : QM.NativeMod->Constants)
-        Names.push_back(NC.Name);
-      for (const NativeEnum &NE : QM.NativeMod->Enums)
-        Names.push_back(NE.Name);
-      for (const NativeClass &NC : QM.NativeMod->Classes)
-        Names.push_back(NC.Name);
-      suggestNearest(Second, Names);
-      return R;
-    }
-    if (N.Parts.size() == 3) {
-      diag(Q.Loc, diag::err_unknown_qualifier) << Join(2);
-      return R;
-    }
-    R.Kind = LookupKind::NativeFn;
-    R.NativeFn = F;
-    return R;
-  }
+    return LookupResult();
+  case QualifierModule::Script:
+    return lookupInScriptModule(N, *InfoOf[QM.ScriptModule]);
+  case QualifierModule::Native:
+    return lookupInNativeModule(N, *QM.NativeMod);
   case QualifierModule::None:
-    break;
+    return lookupInEnumQualifier(N);
   }
+  llvm_unreachable("unknown qualifier kind");
+}
 
+LookupResult Sema::lookupInScriptModule(const QualifiedName &N,
+                                        const ModuleInfo &Mod) {
+  LookupResult R;
+  const Ident &Q = N.Parts[0], &Second = N.Parts[1];
+  if (EnumDecl *E = Mod.Enums.lookup(Second.Name)) {
+    if (N.Parts.size() == 3)
+      return lookupEnumValue(E->Ty, &E->Values, joinParts(N, 2), N.Parts[2]);
+    R.Kind = LookupKind::TypeName;
+    R.Ty = E->Ty;
+    return R;
+  }
+  if (ConstDecl *C = Mod.Consts.lookup(Second.Name)) {
+    if (reportMemberOfNonEnum(N))
+      return R;
+    R.Kind = LookupKind::Constant;
+    R.Const = C;
+    return R;
+  }
+  auto It = Mod.Decls.find(Second.Name);
+  if (It == Mod.Decls.end()) {
+    diag(Second.Loc, diag::err_no_member_in_module)
+        << Q.Name << Second.Name << Second.getRange();
+    llvm::SmallVector<llvm::StringRef, 16> Names;
+    for (const auto &Entry : Mod.Decls)
+      Names.push_back(Entry.getKey());
+    for (const auto &Entry : Mod.Consts)
+      Names.push_back(Entry.getKey());
+    for (const auto &Entry : Mod.Enums)
+      Names.push_back(Entry.getKey());
+    suggestNearest(Second, Names);
+    return R;
+  }
+  if (reportMemberOfNonEnum(N))
+    return R;
+  R.Kind = LookupKind::Callable;
+  R.Callable = It->second;
+  return R;
+}
+
+LookupResult Sema::lookupInNativeModule(const QualifiedName &N,
+                                        const NativeModule &Mod) {
+  LookupResult R;
+  const Ident &Q = N.Parts[0], &Second = N.Parts[1];
+  llvm::StringRef Member = Second.Name;
+  if (const NativeClass *Cls = Mod.findClass(Member)) {
+    if (reportMemberOfNonEnum(N))
+      return R;
+    R.Kind = LookupKind::TypeName;
+    R.Ty = Types.getClass(Cls);
+    return R;
+  }
+  if (const NativeEnum *E = Mod.findEnum(Member)) {
+    const Type *Ty = getEnumType(Mod, *E);
+    if (N.Parts.size() == 3)
+      return lookupEnumValue(Ty, joinParts(N, 2), N.Parts[2]);
+    R.Kind = LookupKind::TypeName;
+    R.Ty = Ty;
+    return R;
+  }
+  if (const NativeConstant *C = Mod.findConstant(Member)) {
+    if (reportMemberOfNonEnum(N))
+      return R;
+    R.Kind = LookupKind::Constant;
+    R.Const = getNativeConstant(*C);
+    return R;
+  }
+  const NativeFunction *F = Mod.findFunction(Member);
+  if (!F) {
+    reportNoNativeMember(Q, Second, Mod);
+    return R;
+  }
+  if (reportMemberOfNonEnum(N))
+    return R;
+  R.Kind = LookupKind::NativeFn;
+  R.NativeFn = F;
+  return R;
+}
+
+void Sema::reportNoNativeMember(const Ident &Q, const Ident &Member,
+                                const NativeModule &Mod) {
+  if (const UnusableMember *U = findUnusable(Mod.Unusable, Member.Name)) {
+    diag(Member.Loc, diag::err_member_unusable)
+        << Q.Name.str() + "::" + U->Name << U->Reason << Member.getRange();
+    return;
+  }
+  diag(Member.Loc, diag::err_no_member_in_module)
+      << Q.Name << Member.Name << Member.getRange();
+  llvm::SmallVector<llvm::StringRef, 16> Names;
+  for (const NativeFunction &NF : Mod.Functions)
+    Names.push_back(NF.Name);
+  for (const NativeConstant &NC : Mod.Constants)
+    Names.push_back(NC.Name);
+  for (const NativeEnum &NE : Mod.Enums)
+    Names.push_back(NE.Name);
+  for (const NativeClass &NC : Mod.Classes)
+    Names.push_back(NC.Name);
+  suggestNearest(Member, Names);
+}
+
+LookupResult Sema::lookupInEnumQualifier(const QualifiedName &N) {
   // Not a module: an enum of this module, TaskState, or an enum of a
   // required native module.
+  const Ident &Q = N.Parts[0];
   const Type *EnumTy = nullptr;
   const NativeEnum *Values = nullptr; // TaskState's own names.
   if (EnumDecl *E = CurModule->Enums.lookup(Q.Name)) {
@@ -696,38 +715,43 @@ LookupResult Sema::lookupQualified(const QualifiedName &N) {
   } else if ((EnumTy = findRequiredEnum(Q.Name))) {
     Values = EnumTy->getEnum();
   }
-  if (EnumTy) {
-    if (N.Parts.size() == 3) {
-      diag(Q.Loc, diag::err_unknown_qualifier) << Join(2);
-      return R;
-    }
-    return lookupEnumValue(EnumTy, Values, Q.Name, Second);
+  if (!EnumTy) {
+    reportUnknownQualifier(Q);
+    return LookupResult();
   }
+  if (reportMemberOfNonEnum(N))
+    return LookupResult();
+  return lookupEnumValue(EnumTy, Values, Q.Name, N.Parts[1]);
+}
+
+void Sema::reportUnknownQualifier(const Ident &Q) {
   // A module loaded for another file, or a file the loader would find.
   if (KnownModules.count(Q.Name) ||
       (FindModuleFile && FindModuleFile(*CurModule->AST, Q.Name))) {
     diag(Q.Loc, diag::err_module_not_required) << Q.Name << Q.getRange();
-    return R;
+    return;
   }
   // One error per unknown qualifier: its other uses have the same cause.
   if (!ReportedQualifiers.insert(Q.Name).second)
-    return R;
+    return;
   // Without any native module from a file, the likeliest cause is a
   // missing --bind, not a typo.
   if (Unbound && !hasBindingModules()) {
     noteUnbound({UnboundName::Qualifier, Q.Name.str(), Q.getRange(), ""});
-    return R;
+    return;
   }
   diag(Q.Loc, diag::err_unknown_qualifier) << Q.Name << Q.getRange();
-  // Without any native module from a file, the likeliest cause is a
-  // missing --bind, not a typo.
   if (!hasBindingModules()) {
     if (!NotedUnbound)
       diag(Q.Loc, diag::note_maybe_unbound) << Q.Name;
     NotedUnbound = true;
-    return R;
+    return;
   }
-  // What a qualifier may name here: modules, TaskState, enums.
+  suggestNearest(Q, getQualifierNames());
+}
+
+llvm::SmallVector<llvm::StringRef, 16> Sema::getQualifierNames() {
+  // Modules, TaskState, enums.
   llvm::SmallVector<llvm::StringRef, 16> Names = {CurModule->AST->Name,
                                                   "TaskState"};
   for (const auto &Entry : CurModule->Enums)
@@ -743,8 +767,7 @@ LookupResult Sema::lookupQualified(const QualifiedName &N) {
     for (const NativeEnum &NE : World->Enums)
       Names.push_back(NE.Name);
   }
-  suggestNearest(Q, Names);
-  return R;
+  return Names;
 }
 
 void Sema::reportRedefinition(const Decl &New, const Decl &Prev) {

@@ -119,7 +119,30 @@ public:
   LookupResult lookupUnqualified(const Ident &Id, LookupMode Mode);
   /// lookupUnqualified without diagnostics: Kind Error when not found.
   LookupResult findUnqualified(llvm::StringRef Name, LookupMode Mode);
+  /// `M::x`, `M::E::v`, `E::v` (an enum of this module, TaskState or a
+  /// required native module's): the qualifier first, then the member.
   LookupResult lookupQualified(const QualifiedName &N);
+  /// The module the qualifier `Name` names here, or None.
+  QualifierModule findQualifierModule(llvm::StringRef Name);
+  /// `M::x` and `M::E::v` in script module `Mod`.
+  LookupResult lookupInScriptModule(const QualifiedName &N,
+                                    const ModuleInfo &Mod);
+  /// `M::x` and `M::E::v` in native module `Mod`.
+  LookupResult lookupInNativeModule(const QualifiedName &N,
+                                    const NativeModule &Mod);
+  /// `E::v` where `E` names no module: an enum, or an unknown qualifier.
+  LookupResult lookupInEnumQualifier(const QualifiedName &N);
+  /// `A::B::c` where `A::B` is no enum: reports `A::B` as an unknown
+  /// qualifier and returns true; false for a name of two parts.
+  bool reportMemberOfNonEnum(const QualifiedName &N);
+  /// `Member` is not a usable member of native module `Mod` (named `Q`).
+  void reportNoNativeMember(const Ident &Q, const Ident &Member,
+                            const NativeModule &Mod);
+  /// `Q` names no module or enum here: not required, a missing --bind or a
+  /// typo (once per name).
+  void reportUnknownQualifier(const Ident &Q);
+  /// What a qualifier may name here, for `did you mean`.
+  llvm::SmallVector<llvm::StringRef, 16> getQualifierNames();
   /// The visible value name closest to `Name` by edit distance, if one is
   /// close enough to suggest (`did you mean`).
   std::optional<std::string> findNearValueName(llvm::StringRef Name);
