@@ -2,11 +2,13 @@
 //
 // Private to lib/Sema. One Sema object checks one behavior; its members are
 // split over files by construct (Sema.cpp: module tables and name lookup,
-// SemaDecl.cpp: types, signatures and declarations, SemaStmt.cpp, SemaExpr.cpp,
-// SemaTask.cpp: yields, taskState and the call graph, SemaClass.cpp: members,
-// method calls and operators of registered classes). Keeping all state in
-// one class lets each file stay a plain walk over the tree without threading
-// a context parameter through every function.
+// SemaDecl.cpp: types, signatures and declarations, SemaStmt.cpp,
+// SemaExpr.cpp, SemaCall.cpp, SemaConst.cpp: module constants and constant
+// folding, SemaLoops.cpp: what loops do with yields, SemaTask.cpp: yields,
+// taskState and the call graph, SemaClass.cpp: members, method calls and
+// operators of registered classes, SemaRepl.cpp: the REPL's prompt).
+// Keeping all state in one class lets each file stay a plain walk over the
+// tree without threading a context parameter through every function.
 //
 //===----------------------------------------------------------------------===//
 #ifndef BSC_LIB_SEMA_SEMAIMPL_H
@@ -104,6 +106,17 @@ struct CallEdge {
   unsigned Clock = 0;
 };
 
+/// What a call's callee expects, as checkCall learns it.
+struct CallSignature {
+  std::string Name; ///< The callee as written, for messages.
+  llvm::SmallVector<const Type *, 4> ParamTys;
+  const Type *ResultTy = nullptr; ///< Null: no callee (reported).
+  /// The arguments it needs: the parameters before the first default.
+  size_t MinArgs = 0;
+  /// A constructor's arguments are checked to choose it.
+  bool ArgsChecked = false;
+};
+
 /// The checker. See Sema.cpp for the rules it implements.
 class Sema {
 public:
@@ -178,9 +191,6 @@ public:
   /// A registered constant as a checked module constant (made once), so
   /// that it folds and generates like the script's own.
   ConstDecl *getNativeConstant(const NativeConstant &C);
-  /// Picks the constructor of class `T` for the (checked) arguments of
-  /// `C` and makes `C` a call of it; false after reporting.
-  bool resolveConstructor(CallExpr *C, NameExpr *Callee, const Type *T);
 
   //--- SemaDecl.cpp: types, signatures, declarations, bodies ----------------
   const Type *resolveType(const QualifiedName &N);
@@ -263,8 +273,6 @@ public:
   const Type *checkUnary(UnaryExpr *E);
   const Type *checkBinary(BinaryExpr *E);
   const Type *checkConversion(ConversionExpr *E);
-  /// Checks a call; a call statement may call a task or a void function.
-  const Type *checkCall(CallExpr *C, bool AsStatement);
   void checkAssign(AssignStmt *S);
   const Type *checkAssignTarget(Expr *T, Access A);
   /// Converts `E` to `To` if the language allows it implicitly (wrapping an
@@ -278,6 +286,30 @@ public:
   void promoteToFloat(Expr *&E);
   /// The source text of an expression, for messages.
   std::string getText(const Expr *E) const;
+
+  //--- SemaCall.cpp: calls -------------------------------------------------
+  /// Checks a call; a call statement may call a task or a void function.
+  const Type *checkCall(CallExpr *C, bool AsStatement);
+  /// Resolves C's callee (a name, a method, or a poison expression) to
+  /// what it expects; no ResultTy after reporting.
+  CallSignature resolveCallee(CallExpr *C);
+  /// ...for a callee `N` that is a name: a func, task, registered function
+  /// or class (its constructor).
+  CallSignature resolveNamedCallee(CallExpr *C, NameExpr *N);
+  /// Picks the constructor of class `T` for the (checked) arguments of
+  /// `C` and makes `C` a call of it; false after reporting.
+  bool resolveConstructor(CallExpr *C, NameExpr *Callee, const Type *T);
+  /// Appends the defaults of the parameters C's arguments leave out.
+  void addDefaultArgs(CallExpr *C, const CallSignature &Sig);
+  /// Converts each argument to its parameter's type, reporting those that
+  /// do not convert (and the signature once).
+  void convertArgs(CallExpr *C, const CallSignature &Sig);
+  /// After an argument error in a call of `Name`: a note with the
+  /// callee's signature, its parameters named (at a script callee's
+  /// declaration; at the call for registered C++).
+  void noteSignature(const CallExpr *C, llvm::StringRef Name,
+                     llvm::ArrayRef<const Type *> ParamTys,
+                     const Type *ResultTy);
 
   //--- SemaClass.cpp: registered classes -----------------------------------
   /// The field, property or method `Name` of class `C`, or null after
@@ -296,13 +328,6 @@ public:
   /// A literal for a default argument, typed as the parameter.
   Expr *makeDefaultArg(const NativeDefault &D, const Type *ParamTy,
                        llvm::SMLoc Loc);
-
-  /// After an argument error in a call of `Name`: a note with the
-  /// callee's signature, its parameters named (at a script callee's
-  /// declaration; at the call for registered C++).
-  void noteSignature(const CallExpr *C, llvm::StringRef Name,
-                     llvm::ArrayRef<const Type *> ParamTys,
-                     const Type *ResultTy);
   //--- SemaRepl.cpp: what only the REPL's prompt allows ----------------------
   /// A loaded module named `Name` that the current one does not require
   /// (at the prompt every module is reachable qualified), or None.
