@@ -6,6 +6,13 @@
 
 using namespace bsc;
 
+/// memcpy of `N` bytes, where a block of 0 bytes may be null (a behavior
+/// without `input` or `output`).
+static void copy(void *To, const void *From, size_t N) {
+  if (N)
+    std::memcpy(To, From, N);
+}
+
 CycleHistory::CycleHistory(Sizes S, unsigned SnapshotEvery)
     : S(S), Every(std::max(1u, SnapshotEvery)) {}
 
@@ -13,9 +20,9 @@ void CycleHistory::takeSnapshot(uint32_t Cycle, bool Edited, Blocks Now) {
   Snapshot Snap{Cycle, Edited, {}};
   Snap.Bytes.resize(S.State + S.Input + S.Output);
   unsigned char *P = Snap.Bytes.data();
-  std::memcpy(P, Now.State, S.State);
-  std::memcpy(P + S.State, Now.Input, S.Input);
-  std::memcpy(P + S.State + S.Input, Now.Output, S.Output);
+  copy(P, Now.State, S.State);
+  copy(P + S.State, Now.Input, S.Input);
+  copy(P + S.State + S.Input, Now.Output, S.Output);
   Snapshots.push_back(std::move(Snap));
 }
 
@@ -25,15 +32,15 @@ void CycleHistory::reset(uint32_t Cycle, Blocks Now) {
   Changes.clear();
   Starts.assign(1, 0);
   takeSnapshot(Cycle, /*Edited=*/false, Now);
-  LastInput.assign(static_cast<unsigned char *>(Now.Input),
-                   static_cast<unsigned char *>(Now.Input) + S.Input);
+  LastInput.resize(S.Input);
+  copy(LastInput.data(), Now.Input, S.Input);
 }
 
 /// The 4-byte word `W` of `Bytes` (the last one padded with zeros).
 static uint32_t getWord(const unsigned char *Bytes, size_t Size, uint32_t W) {
   uint32_t V = 0;
   size_t At = size_t(W) * 4;
-  std::memcpy(&V, Bytes + At, std::min<size_t>(4, Size - At));
+  copy(&V, Bytes + At, std::min<size_t>(4, Size - At));
   return V;
 }
 
@@ -46,7 +53,7 @@ void CycleHistory::recordCycle(Blocks Now) {
       Changes.push_back({W, V});
   }
   Starts.push_back(Changes.size());
-  std::memcpy(LastInput.data(), In, S.Input);
+  copy(LastInput.data(), In, S.Input);
   ++Last;
   if ((Last - First) % Every == 0)
     takeSnapshot(Last, /*Edited=*/false, Now);
@@ -64,9 +71,9 @@ uint32_t CycleHistory::restore(uint32_t Cycle, bool Before,
                          });
   assert(It != Snapshots.rend() && "the first cycle has a copy");
   const unsigned char *P = It->Bytes.data();
-  std::memcpy(Into.State, P, S.State);
-  std::memcpy(Into.Input, P + S.State, S.Input);
-  std::memcpy(Into.Output, P + S.State + S.Input, S.Output);
+  copy(Into.State, P, S.State);
+  copy(Into.Input, P + S.State, S.Input);
+  copy(Into.Output, P + S.State + S.Input, S.Output);
   return It->Cycle;
 }
 
@@ -76,7 +83,7 @@ void CycleHistory::applyInput(uint32_t Cycle, void *Input) const {
   size_t Index = Cycle - First;
   for (size_t I = Starts[Index - 1]; I < Starts[Index]; ++I) {
     size_t At = size_t(Changes[I].Word) * 4;
-    std::memcpy(In + At, &Changes[I].Value, std::min<size_t>(4, S.Input - At));
+    copy(In + At, &Changes[I].Value, std::min<size_t>(4, S.Input - At));
   }
 }
 
@@ -88,8 +95,8 @@ void CycleHistory::keepPresent(uint32_t Cycle, Blocks Now) {
   while (!Snapshots.empty() && Snapshots.back().Cycle >= Cycle)
     Snapshots.pop_back();
   takeSnapshot(Cycle, /*Edited=*/true, Now);
-  LastInput.assign(static_cast<unsigned char *>(Now.Input),
-                   static_cast<unsigned char *>(Now.Input) + S.Input);
+  LastInput.resize(S.Input);
+  copy(LastInput.data(), Now.Input, S.Input);
 }
 
 size_t CycleHistory::getMemoryBytes() const {

@@ -99,7 +99,8 @@ std::vector<unsigned char> Repl::copyBlocks() const {
     return Bytes;
   auto Add = [&](const void *P, size_t N) {
     auto *B = static_cast<const unsigned char *>(P);
-    Bytes.insert(Bytes.end(), B, B + N);
+    if (N) // No `input` or `output`: null.
+      Bytes.insert(Bytes.end(), B, B + N);
   };
   Add(S->getState(), S->getInfo().state_size);
   Add(S->getInput(), L->Input.Size);
