@@ -1,12 +1,13 @@
 //===- SemaImpl.h - the checker shared by the lib/Sema files ---*- C++ -*-===//
 //
 // Private to lib/Sema. One Sema object checks one behavior; its members are
-// split over files by construct (Sema.cpp: module tables and name lookup,
-// SemaDecl.cpp: types, signatures and declarations, SemaStmt.cpp,
-// SemaExpr.cpp, SemaCall.cpp, SemaConst.cpp: module constants and constant
-// folding, SemaLoops.cpp: what loops do with yields, SemaTask.cpp: yields,
-// taskState and the call graph, SemaClass.cpp: members, method calls and
-// operators of registered classes, SemaRepl.cpp: the REPL's prompt).
+// split over files by construct (Sema.cpp: module tables, SemaLookup.cpp:
+// name lookup, SemaDecl.cpp: types, signatures and declarations,
+// SemaStmt.cpp, SemaExpr.cpp, SemaCall.cpp, SemaConst.cpp: module constants
+// and constant folding, SemaLoops.cpp: what loops do with yields,
+// SemaTask.cpp: yields, taskState and the call graph, SemaClass.cpp:
+// members, method calls and operators of registered classes, SemaRepl.cpp:
+// the REPL's prompt).
 // Keeping all state in one class lets each file stay a plain walk over the
 // tree without threading a context parameter through every function.
 //
@@ -125,7 +126,7 @@ public:
   /// Checks every module; returns false if an error was reported.
   bool run(llvm::ArrayRef<ModuleAST *> Modules);
 
-  //--- Sema.cpp: reporting, module tables, name lookup ----------------------
+  //--- Sema.cpp: reporting, module tables; SemaLookup.cpp: name lookup -----
   DiagnosticBuilder diag(llvm::SMLoc Loc, diag::Kind K);
   void buildModuleTables(llvm::ArrayRef<ModuleAST *> Modules);
   LookupResult lookup(const QualifiedName &N, LookupMode Mode);
