@@ -215,9 +215,18 @@ static bool isExplained(const Expr *E) {
   case NodeKind::BinaryExpr:
   case NodeKind::TaskStateExpr:
     return true;
-  default:
+  case NodeKind::IntLiteralExpr: // Its value is in its text.
+  case NodeKind::FloatLiteralExpr:
+  case NodeKind::BoolLiteralExpr:
+  case NodeKind::StringLiteralExpr:
+  case NodeKind::ErrorExpr:
     return false;
+#define DECL(Class) case NodeKind::Class:
+#define STMT(Class) case NodeKind::Class:
+#include "bsc/AST/ASTNodes.def"
+    break;
   }
+  llvm_unreachable("not an expression");
 }
 
 /// Adds `E` and the operands below it to `Site` in the order they run.
@@ -261,9 +270,20 @@ static void collectOperands(ExplainSite &Site, const Expr *E, int Parent,
   case NodeKind::ConversionExpr:
     collectOperands(Site, llvm::cast<ConversionExpr>(E)->Operand, Parent);
     return;
-  default:
+  case NodeKind::IntLiteralExpr: // No operands.
+  case NodeKind::FloatLiteralExpr:
+  case NodeKind::BoolLiteralExpr:
+  case NodeKind::StringLiteralExpr:
+  case NodeKind::NameExpr:
+  case NodeKind::TaskStateExpr: // Its task is no value.
+  case NodeKind::ErrorExpr:
     return;
+#define DECL(Class) case NodeKind::Class:
+#define STMT(Class) case NodeKind::Class:
+#include "bsc/AST/ASTNodes.def"
+    break;
   }
+  llvm_unreachable("not an expression");
 }
 
 /// Places the operands' values after the record's header.
