@@ -38,22 +38,25 @@ QualifierModule Sema::findReplModule(llvm::StringRef Name) {
   return QM;
 }
 
-/// The task `N` names at the prompt, or null. An unqualified name that is
-/// a value (a REPL variable, a frame's local, `input`) is no task; one
-/// that names tasks of several modules is reported (`Ambiguous`).
-static TaskDecl *findTaskForField(Sema &S, const NameExpr &N,
-                                  bool &Ambiguous) {
-  Ambiguous = false;
+/// The tasks `N` may name at the prompt: none if it names no task (or an
+/// unqualified value: a REPL variable, a frame's local, `input`), one, or
+/// for an unqualified name the tasks of that name in several modules.
+static llvm::SmallVector<TaskDecl *, 2> findTasksForField(Sema &S,
+                                                         const NameExpr &N) {
   const QualifiedName &Name = N.Name;
+  llvm::SmallVector<TaskDecl *, 2> Found;
+  auto Add = [&](CallableDecl *D) {
+    if (auto *T = llvm::dyn_cast_or_null<TaskDecl>(D))
+      Found.push_back(T);
+  };
   if (Name.Parts.size() == 2) {
     QualifierModule QM = S.findReplModule(Name.Parts[0].Name);
-    if (QM.Kind != QualifierModule::Script)
-      return nullptr;
-    return llvm::dyn_cast_or_null<TaskDecl>(
-        S.InfoOf[QM.ScriptModule]->Decls.lookup(Name.Parts[1].Name));
+    if (QM.Kind == QualifierModule::Script)
+      Add(S.InfoOf[QM.ScriptModule]->Decls.lookup(Name.Parts[1].Name));
+    return Found;
   }
   if (Name.isQualified())
-    return nullptr;
+    return Found;
   llvm::StringRef Id = Name.Parts[0].Name;
   LookupResult L = S.findUnqualified(Id, LookupMode::Value);
   switch (L.Kind) {
@@ -63,10 +66,12 @@ static TaskDecl *findTaskForField(Sema &S, const NameExpr &N,
   case LookupKind::Output:
   case LookupKind::Constant:
   case LookupKind::EnumValue:
-    return nullptr; // A value's member.
+    return Found; // A value's member.
   case LookupKind::Callable:
-    if (auto *T = llvm::dyn_cast<TaskDecl>(L.Callable))
-      return T;
+    if (llvm::isa<TaskDecl>(L.Callable)) {
+      Add(L.Callable);
+      return Found;
+    }
     break;
   case LookupKind::Error:
   case LookupKind::NativeFn:
@@ -74,14 +79,8 @@ static TaskDecl *findTaskForField(Sema &S, const NameExpr &N,
   case LookupKind::TypeName:
     break;
   }
-  TaskDecl *Found = nullptr;
   for (const std::unique_ptr<ModuleInfo> &Info : S.ModuleInfos)
-    if (auto *T = llvm::dyn_cast_or_null<TaskDecl>(Info->Decls.lookup(Id))) {
-      Ambiguous = Found != nullptr;
-      if (Ambiguous)
-        return nullptr;
-      Found = T;
-    }
+    Add(Info->Decls.lookup(Id));
   return Found;
 }
 
@@ -89,21 +88,18 @@ const Type *Sema::checkTaskField(MemberExpr *E, Access A) {
   auto *Base = llvm::dyn_cast<NameExpr>(E->Base);
   if (!Base)
     return nullptr;
-  bool Ambiguous;
-  TaskDecl *Task = findTaskForField(*this, *Base, Ambiguous);
-  if (Ambiguous) {
+  llvm::SmallVector<TaskDecl *, 2> Tasks = findTasksForField(*this, *Base);
+  if (Tasks.empty())
+    return nullptr;
+  if (Tasks.size() > 1) {
     std::vector<std::string> Names;
-    for (const std::unique_ptr<ModuleInfo> &Info : ModuleInfos)
-      if (llvm::isa_and_nonnull<TaskDecl>(
-              Info->Decls.lookup(Base->Name.Parts[0].Name)))
-        Names.push_back("'" + Info->AST->Name + "::" +
-                        Base->Name.Parts[0].Name.str() + "'");
+    for (const TaskDecl *T : Tasks)
+      Names.push_back("'" + T->getQualifiedName() + "'");
     diag(Base->getLoc(), diag::err_repl_ambiguous_task)
         << Base->Name.str() << llvm::join(Names, " or ") << Base->getRange();
     return Types.getError();
   }
-  if (!Task)
-    return nullptr;
+  const TaskDecl *Task = Tasks.front();
   llvm::StringRef Member = E->Member.Name;
   const Decl *Field = nullptr;
   auto Consider = [&](const Decl *D) {
