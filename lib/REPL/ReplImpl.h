@@ -156,7 +156,7 @@ private:
   /// Report and false without a history, or for a cycle outside it
   /// (`Forward`: any cycle after its start is fine).
   bool checkHistory(llvm::SMLoc Loc);
-  bool checkInHistory(uint32_t Cycle, bool Forward, llvm::SMLoc Loc);
+  bool checkInHistory(long long Cycle, bool Forward, llvm::SMLoc Loc);
   /// `requires "M"` at the prompt: loads M (a :reload with M added to the
   /// inputs) unless it is loaded.
   void requireModule(llvm::StringRef Line, llvm::SMLoc Loc);

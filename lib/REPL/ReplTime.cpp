@@ -159,11 +159,11 @@ static bool parseCycle(llvm::StringRef Text, uint32_t &Cycle) {
   return !Text.empty() && !Text.getAsInteger(10, Cycle);
 }
 
-bool Repl::checkInHistory(uint32_t Cycle, bool Forward, llvm::SMLoc Loc) {
+bool Repl::checkInHistory(long long Cycle, bool Forward, llvm::SMLoc Loc) {
   if (Cycle >= History->first() && (Forward || Cycle <= History->last()))
     return true;
   C->Diags.report(Loc, diag::err_repl_outside_history)
-      << (long long)Cycle << History->first() << History->last();
+      << Cycle << History->first() << History->last();
   return false;
 }
 
@@ -190,11 +190,8 @@ void Repl::cmdBack(llvm::StringRef Args, llvm::SMLoc Loc) {
   if (!N || !checkHistory(Loc))
     return;
   long long Target = (long long)S->getCycle() - N;
-  if (Target < History->first()) {
-    C->Diags.report(Loc, diag::err_repl_outside_history)
-        << Target << History->first() << History->last();
+  if (!checkInHistory(Target, /*Forward=*/false, Loc))
     return;
-  }
   if (travelTo(uint32_t(Target)))
     showCycle();
 }
@@ -216,8 +213,12 @@ void Repl::cmdHistory(llvm::StringRef Args, llvm::SMLoc Loc) {
     return;
   }
   if (!ToText.empty()) {
-    parseCycle(FromText, From);
-    parseCycle(ToText, To);
+    // Digits that do not fit a cycle number are no cycle of the history.
+    if (!parseCycle(FromText, From) || !parseCycle(ToText, To)) {
+      C->Diags.report(Loc, diag::err_repl_missing_argument)
+          << "history" << "FROM and TO as cycle numbers";
+      return;
+    }
     if (!checkInHistory(From, false, Loc) || !checkInHistory(To, false, Loc))
       return;
     if (From > To) {
