@@ -331,8 +331,7 @@ ActiveTree debug::buildActiveTree(const DebugTables &T,
   return Tree;
 }
 
-std::string debug::describeActivation(const DebugTables &T,
-                                      const Activation &A) {
+std::string debug::activationState(const DebugTables &T, const Activation &A) {
   std::string S;
   if (A.State == BS_TASK_RUNNING)
     S = "running";
@@ -342,17 +341,44 @@ std::string debug::describeActivation(const DebugTables &T,
     S = "failure";
   else
     S = "state " + std::to_string(A.State);
+  if (activationPlace(T, A).empty())
+    return S;
+  // Waiting at `yield Done::kicked`: the state has that name.
   const DebugTables::Task &Task = T.Tasks[A.Task];
+  size_t Yield = A.Resume - 1;
+  if (Yield < Task.YieldStates.size() && !Task.YieldStates[Yield].empty())
+    return Task.YieldStates[Yield];
+  return S;
+}
+
+std::string debug::activationPlace(const DebugTables &T, const Activation &A) {
   // A task that ended (done) waits at no yield: optimised code does not
   // clear its resume point (lib/CodeGen/CGTask.cpp).
-  if (A.State == BS_TASK_DONE || A.Resume == 0 ||
-      A.Resume > Task.YieldLines.size())
-    return S;
-  size_t Yield = A.Resume - 1;
-  // Waiting at `yield Done::kicked`: the state has that name.
-  if (Yield < Task.YieldStates.size() && !Task.YieldStates[Yield].empty())
-    S = Task.YieldStates[Yield];
-  return S + ", " + Task.File + ":" + std::to_string(Task.YieldLines[Yield]);
+  if (A.State == BS_TASK_DONE || A.Resume == 0 || A.Task >= T.Tasks.size() ||
+      A.Resume > T.Tasks[A.Task].YieldLines.size())
+    return "";
+  const DebugTables::Task &Task = T.Tasks[A.Task];
+  return Task.File + ":" + std::to_string(Task.YieldLines[A.Resume - 1]);
+}
+
+std::string debug::describeActivation(const DebugTables &T,
+                                      const Activation &A) {
+  std::string State = activationState(T, A);
+  std::string Place = activationPlace(T, A);
+  return Place.empty() ? State : State + ", " + Place;
+}
+
+std::vector<FlatTask> debug::flattenActiveTree(const ActiveTree &Tree) {
+  std::vector<FlatTask> Flat;
+  std::function<void(unsigned, int)> Walk = [&](unsigned N, int Parent) {
+    int Self = Flat.size();
+    Flat.push_back({Tree.Nodes[N].Record, Parent});
+    for (unsigned C : Tree.Nodes[N].Children)
+      Walk(C, Self);
+  };
+  for (unsigned R : Tree.Roots)
+    Walk(R, -1);
+  return Flat;
 }
 
 std::string debug::formatTraceLine(const DebugTables &T,

@@ -294,7 +294,7 @@ bool readReplay(Compilation &C, const LoadedBehavior &L, llvm::StringRef Path,
           C.Diags.report(Loc, diag::err_replay_no_world) << K;
           OK = false;
         }
-      } else if (K != "cycle") {
+      } else if (K != "cycle" && K != "tasks") {
         C.Diags.report(Loc, diag::err_replay_unknown_key) << K;
         OK = false;
       }
@@ -309,6 +309,48 @@ bool readReplay(Compilation &C, const LoadedBehavior &L, llvm::StringRef Path,
 }
 } // namespace
 
+/// The cycle's hierarchy as a recording keeps it: depth first, each task
+/// with its state, the yield it waits at, its parent's position and its
+/// parameters and (unless it finished) locals.
+static llvm::json::Array recordTasks(debug::ValueIO &Values,
+                                     const LoadedBehavior &L,
+                                     const BehaviorSession &S) {
+  const auto *State = static_cast<const char *>(S.getState());
+  debug::ActiveTree Tree = debug::buildActiveTree(
+      L.Tables, debug::takeSnapshot(State, &S.getInfo()));
+  llvm::json::Array Tasks;
+  for (const debug::FlatTask &F : debug::flattenActiveTree(Tree)) {
+    llvm::json::Object Task{
+        {"task", L.Tables.Tasks[F.Record.Task].Name},
+        {"state", debug::activationState(L.Tables, F.Record)},
+        {"parent", F.Parent}};
+    std::string Place = debug::activationPlace(L.Tables, F.Record);
+    if (!Place.empty())
+      Task["at"] = Place;
+    llvm::json::Object Params, Locals;
+    for (const BehaviorLayout::FrameField &Field :
+         L.Layout.Tasks[F.Record.Task].Fields) {
+      bool IsParam = llvm::isa<ParamDecl>(Field.D);
+      // A finished task's locals are gone (the next call starts afresh).
+      if (!IsParam && F.Record.Resume == 0)
+        continue;
+      llvm::json::Object &Into = IsParam ? Params : Locals;
+      // Locals of one name in different blocks: `x`, `x#2`, ... in the
+      // frame's order.
+      std::string Name = Field.D->getName().Name.str();
+      for (unsigned N = 2; Into.find(Name) != Into.end(); ++N)
+        Name = Field.D->getName().Name.str() + "#" + std::to_string(N);
+      Into[Name] = Values.read(Field.Ty, State + Field.Offset);
+    }
+    if (!Params.empty())
+      Task["params"] = std::move(Params);
+    if (!Locals.empty())
+      Task["locals"] = std::move(Locals);
+    Tasks.push_back(std::move(Task));
+  }
+  return Tasks;
+}
+
 llvm::json::Value bsc::recordCycle(debug::ValueIO &Values,
                                    const LoadedBehavior &L,
                                    const BehaviorSession &S) {
@@ -317,6 +359,7 @@ llvm::json::Value bsc::recordCycle(debug::ValueIO &Values,
     Rec["input"] = Values.readClass(*L.InputClass, S.getInput());
   if (L.OutputClass)
     Rec["output"] = Values.readClass(*L.OutputClass, S.getOutput());
+  Rec["tasks"] = recordTasks(Values, L, S);
   return Rec;
 }
 

@@ -117,11 +117,24 @@ struct ActiveTree {
 ActiveTree buildActiveTree(const DebugTables &T,
                            llvm::ArrayRef<Activation> Records);
 
+/// `running`, `done`, `failure`, `state 3`, or `Done::kicked` when the
+/// yield it waits at yields a named task state.
+std::string activationState(const DebugTables &T, const Activation &A);
+/// `Behavior.bs:57`, the yield the task waits at; "" when it finished.
+std::string activationPlace(const DebugTables &T, const Activation &A);
 /// `running, Behavior.bs:57` / `done` / `failure, Kick.bs:9` / `state 3,
-/// Head.bs:12` / `Done::kicked, Striker.bs:29`: a task's state (by its
-/// name when the yield it waits at yields a named task state) and the yield
-/// it waits at.
+/// Head.bs:12` / `Done::kicked, Striker.bs:29`: activationState and
+/// activationPlace.
 std::string describeActivation(const DebugTables &T, const Activation &A);
+
+/// A cycle's hierarchy in depth-first order, each node with the position
+/// of its parent in that order (-1 for a root): how a recording stores the
+/// cycle's tasks (docs/repl.md, "The JSON-lines format").
+struct FlatTask {
+  Activation Record;
+  int Parent = -1;
+};
+std::vector<FlatTask> flattenActiveTree(const ActiveTree &Tree);
 
 /// The hierarchy on one line, each path from a root to a leaf, every task
 /// with its describeActivation: `play [running, Soccer.bs:12] >
