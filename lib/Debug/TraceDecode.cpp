@@ -12,8 +12,7 @@ using namespace bsc::debug;
 
 /// The JSON text of the object's DebugTablesSection; std::nullopt without
 /// one. Reports an unreadable object or section and returns false.
-static bool readTablesText(const TraceDecodeOptions &Opts,
-                           DiagnosticEngine &Diags,
+static bool readTablesText(llvm::StringRef ObjectPath, DiagnosticEngine &Diags,
                            llvm::object::ObjectFile &Obj,
                            std::optional<llvm::StringRef> &Text) {
   for (const llvm::object::SectionRef &Sec : Obj.sections()) {
@@ -27,7 +26,7 @@ static bool readTablesText(const TraceDecodeOptions &Opts,
     llvm::Expected<llvm::StringRef> Contents = Sec.getContents();
     if (!Contents) {
       Diags.report(llvm::SMLoc(), diag::err_trace_decode)
-          << Opts.ObjectPath << llvm::toString(Contents.takeError());
+          << ObjectPath << llvm::toString(Contents.takeError());
       return false;
     }
     Text = Contents->split('\0').first;
@@ -35,32 +34,60 @@ static bool readTablesText(const TraceDecodeOptions &Opts,
   return true;
 }
 
-bool debug::decodeTraceLog(const TraceDecodeOptions &Opts,
-                           DiagnosticEngine &Diags, llvm::raw_ostream &OS) {
-  auto Fail = [&](const std::string &Path, const std::string &Why) {
-    Diags.report(llvm::SMLoc(), diag::err_trace_decode) << Path << Why;
-    return false;
-  };
-  auto Obj = llvm::object::ObjectFile::createObjectFile(Opts.ObjectPath);
-  if (!Obj)
-    return Fail(Opts.ObjectPath, llvm::toString(Obj.takeError()));
+static bool fail(DiagnosticEngine &Diags, llvm::StringRef Path,
+                 const std::string &Why) {
+  Diags.report(llvm::SMLoc(), diag::err_trace_decode) << Path << Why;
+  return false;
+}
+
+std::optional<DebugTables> debug::readObjectTables(llvm::StringRef ObjectPath,
+                                                   DiagnosticEngine &Diags) {
+  auto Obj = llvm::object::ObjectFile::createObjectFile(ObjectPath);
+  if (!Obj) {
+    fail(Diags, ObjectPath, llvm::toString(Obj.takeError()));
+    return std::nullopt;
+  }
   std::optional<llvm::StringRef> Text;
-  if (!readTablesText(Opts, Diags, *Obj->getBinary(), Text))
-    return false;
+  if (!readTablesText(ObjectPath, Diags, *Obj->getBinary(), Text))
+    return std::nullopt;
   if (!Text) {
-    Diags.report(llvm::SMLoc(), diag::err_no_debug_tables) << Opts.ObjectPath;
-    return false;
+    Diags.report(llvm::SMLoc(), diag::err_no_debug_tables) << ObjectPath;
+    return std::nullopt;
   }
   llvm::Expected<DebugTables> Tables = parseDebugTables(*Text);
-  if (!Tables)
-    return Fail(Opts.ObjectPath, llvm::toString(Tables.takeError()));
-  auto Log = llvm::MemoryBuffer::getFile(Opts.LogPath, /*IsText=*/false,
+  if (!Tables) {
+    fail(Diags, ObjectPath, llvm::toString(Tables.takeError()));
+    return std::nullopt;
+  }
+  return std::move(*Tables);
+}
+
+std::optional<std::vector<LoggedCycle>>
+debug::readTraceLog(llvm::StringRef LogPath, const DebugTables &Tables,
+                    DiagnosticEngine &Diags) {
+  auto Log = llvm::MemoryBuffer::getFile(LogPath, /*IsText=*/false,
                                          /*RequiresNullTerminator=*/false);
-  if (!Log)
-    return Fail(Opts.LogPath, Log.getError().message());
-  auto Cycles = parseTraceLog((*Log)->getBuffer(), *Tables);
+  if (!Log) {
+    fail(Diags, LogPath, Log.getError().message());
+    return std::nullopt;
+  }
+  auto Cycles = parseTraceLog((*Log)->getBuffer(), Tables);
+  if (!Cycles) {
+    fail(Diags, LogPath, llvm::toString(Cycles.takeError()));
+    return std::nullopt;
+  }
+  return std::move(*Cycles);
+}
+
+bool debug::decodeTraceLog(const TraceDecodeOptions &Opts,
+                           DiagnosticEngine &Diags, llvm::raw_ostream &OS) {
+  std::optional<DebugTables> Tables = readObjectTables(Opts.ObjectPath, Diags);
+  if (!Tables)
+    return false;
+  std::optional<std::vector<LoggedCycle>> Cycles =
+      readTraceLog(Opts.LogPath, *Tables, Diags);
   if (!Cycles)
-    return Fail(Opts.LogPath, llvm::toString(Cycles.takeError()));
+    return false;
   TraceFilter Traces(Opts.OnlyChanges ? TraceMode::Changes
                                       : TraceMode::EveryCycle);
   for (const LoggedCycle &Cycle : *Cycles) {

@@ -28,16 +28,16 @@ static bool isIdentifier(llvm::StringRef S) {
   return llvm::all_of(S, [](char C) { return llvm::isAlnum(C) || C == '_'; });
 }
 
-unsigned bsc::addSourceFile(Compilation &C, llvm::StringRef Path) {
+unsigned bsc::addSourceFile(Compilation &C, llvm::StringRef Path,
+                           unsigned MaxMiB) {
   if (llvm::sys::fs::is_directory(Path)) {
     C.Diags.report(llvm::SMLoc(), diag::err_file_is_directory) << Path;
     return 0;
   }
   uint64_t Size = 0;
   if (!llvm::sys::fs::file_size(Path, Size) &&
-      Size > uint64_t(MaxSourceFileMiB) * 1024 * 1024) {
-    C.Diags.report(llvm::SMLoc(), diag::err_file_too_large)
-        << Path << MaxSourceFileMiB;
+      Size > uint64_t(MaxMiB) * 1024 * 1024) {
+    C.Diags.report(llvm::SMLoc(), diag::err_file_too_large) << Path << MaxMiB;
     return 0;
   }
   // Not a null-terminated view: the lexer works on the buffer's bounds, and

@@ -257,7 +257,7 @@ struct ReplayLine {
 /// carets) and checks the shape of each line. Returns false after reporting.
 bool readReplay(Compilation &C, const LoadedBehavior &L, llvm::StringRef Path,
                 std::vector<ReplayLine> &Lines) {
-  unsigned ID = addSourceFile(C, Path);
+  unsigned ID = addSourceFile(C, Path, MaxRecordingMiB);
   if (!ID)
     return false;
   llvm::StringRef Text = C.SM.getMemoryBuffer(ID)->getBuffer();

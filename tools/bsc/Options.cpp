@@ -23,6 +23,9 @@ cl::SubCommand tool::TraceDecodeCmd(
     "trace-decode",
     "Print a robot's trace log as `bsc run --trace` does, with the tables of "
     "an object compiled with --instrument");
+cl::SubCommand tool::TimelineCmd(
+    "timeline",
+    "Draw a recorded run, or two to compare, as one self-contained HTML page");
 
 
 namespace {
@@ -33,6 +36,7 @@ namespace {
 #define BSC_REPL BSC_TOP, cl::sub(ReplCmd)
 #define BSC_JIT BSC_RUN, cl::sub(ReplCmd)
 #define BSC_DECODE BSC_TOP, cl::sub(TraceDecodeCmd)
+#define BSC_TIMELINE BSC_TOP, cl::sub(TimelineCmd)
 /// Options shared by the compiler and `bsc run` are in both subcommands...
 #define BSC_BOTH                                                               \
   BSC_TOP, cl::sub(cl::SubCommand::getTopLevel()), cl::sub(RunCmd)
@@ -138,6 +142,20 @@ cl::opt<std::string>
                 cl::value_desc("file.o"), BSC_DECODE, cl::Required);
 cl::opt<std::string> TraceLog(cl::Positional, cl::desc("<trace log>"),
                               BSC_DECODE, cl::Required);
+cl::list<std::string>
+    TimelineRecords(cl::Positional,
+                    cl::desc("<recording.jsonl> [<other.jsonl>]"),
+                    BSC_TIMELINE);
+cl::opt<std::string> TimelineObject(
+    "object",
+    cl::desc("The object compiled with --instrument: the records are robot "
+             "trace logs"),
+    cl::value_desc("file.o"), BSC_TIMELINE);
+cl::opt<std::string> TimelineOutput(
+    "o",
+    cl::desc("The page to write (default: the first record's name with "
+             "'.html')"),
+    cl::value_desc("file.html"), BSC_TIMELINE);
 cl::opt<bool> TraceChangesFlag(
     "changes",
     cl::desc("Print only the cycles whose line differs from the cycle "
@@ -297,5 +315,8 @@ tool::CommandLine tool::readCommandLine() {
   CL.Run = getRunOptions();
   CL.Repl = getReplOptions();
   CL.TraceDecode = {TraceObject, TraceLog, TraceChangesFlag};
+  CL.Timeline = {{TimelineRecords.begin(), TimelineRecords.end()},
+                 TimelineObject,
+                 TimelineOutput};
   return CL;
 }

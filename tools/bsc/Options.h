@@ -10,6 +10,7 @@
 
 #include "bsc/Debug/TraceDecode.h"
 #include "bsc/Driver/Driver.h"
+#include "bsc/Timeline/Timeline.h"
 #include "llvm/Support/CommandLine.h"
 #include <string>
 #include <vector>
@@ -18,7 +19,7 @@ namespace bsc::tool {
 
 /// bsc's own options (those of LLVM's libraries are hidden).
 extern llvm::cl::OptionCategory BscCategory;
-extern llvm::cl::SubCommand RunCmd, ReplCmd, TraceDecodeCmd;
+extern llvm::cl::SubCommand RunCmd, ReplCmd, TraceDecodeCmd, TimelineCmd;
 
 /// The command line after parsing.
 struct CommandLine {
@@ -31,6 +32,7 @@ struct CommandLine {
   RunCommandOptions Run;
   ReplCommandOptions Repl;
   debug::TraceDecodeOptions TraceDecode;
+  timeline::TimelineOptions Timeline;
 };
 
 CommandLine readCommandLine();

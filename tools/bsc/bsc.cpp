@@ -2,7 +2,7 @@
 //
 // Dispatches each command to the library that does it, as clang's driver
 // does; the options are in Options.cpp, the work in lib/Driver (Driver.h)
-// and lib/Debug:
+// lib/Debug and lib/Timeline:
 //
 //   bsc [options] FILE.bs...          compile (Driver.h's compile): a
 //                                     program, -c, -S, --emit-header, or a
@@ -10,6 +10,7 @@
 //   bsc run [options] FILE.bs...      JIT on the host, N cycles of the entry
 //   bsc repl [options] FILE.bs...     the debugger
 //   bsc trace-decode --object B.o LOG a robot's trace log
+//   bsc timeline REC [REC2] -o P.html a run drawn (lib/Timeline)
 //
 // Everything the user can get wrong on the command line (a bad option value,
 // a missing entry, an unknown target, an unwritable output, a missing
@@ -60,6 +61,11 @@ int dispatch(Compilation &C, CommandLine &CL, const char *Argv0) {
     return checkSubcommandOptions(C.Diags, ReplCmd)
                ? replCommand(C, Opts, CL.Repl)
                : finish(C);
+  if (TimelineCmd) {
+    if (checkSubcommandOptions(C.Diags, TimelineCmd))
+      timeline::writeTimeline(C, CL.Timeline, llvm::outs());
+    return finish(C);
+  }
   if (TraceDecodeCmd) {
     debug::decodeTraceLog(CL.TraceDecode, C.Diags, llvm::outs());
     return finish(C);
@@ -71,7 +77,8 @@ int dispatch(Compilation &C, CommandLine &CL, const char *Argv0) {
 int main(int argc, char **argv) {
   llvm::InitLLVM X(argc, argv);
   for (cl::SubCommand *Sub :
-       {&cl::SubCommand::getTopLevel(), &RunCmd, &TraceDecodeCmd, &ReplCmd})
+       {&cl::SubCommand::getTopLevel(), &RunCmd, &TraceDecodeCmd, &ReplCmd,
+        &TimelineCmd})
     cl::HideUnrelatedOptions(BscCategory, *Sub);
   Argv0ForVersion = argv[0];
   cl::SetVersionPrinter(printBscVersion);

@@ -10,7 +10,10 @@
 #define BSC_DEBUG_TRACEDECODE_H
 
 #include "bsc/Basic/Diagnostic.h"
+#include "bsc/Debug/Trace.h"
+#include <optional>
 #include <string>
+#include <vector>
 
 namespace llvm {
 class raw_ostream;
@@ -33,6 +36,16 @@ struct TraceDecodeOptions {
 /// `Diags` and returns false.
 bool decodeTraceLog(const TraceDecodeOptions &Opts, DiagnosticEngine &Diags,
                     llvm::raw_ostream &OS);
+
+/// The tables an instrumented object embeds; reports an unreadable object
+/// or one without tables and returns std::nullopt.
+std::optional<DebugTables> readObjectTables(llvm::StringRef ObjectPath,
+                                            DiagnosticEngine &Diags);
+/// A robot's trace log read with `Tables`; reports an unreadable or
+/// malformed log (naming the byte and the cycle) and returns std::nullopt.
+std::optional<std::vector<LoggedCycle>>
+readTraceLog(llvm::StringRef LogPath, const DebugTables &Tables,
+             DiagnosticEngine &Diags);
 
 } // namespace bsc::debug
 

@@ -28,6 +28,9 @@ namespace bsc {
 /// A source file larger than this is refused before it is read: a behavior
 /// module is a few kilobytes, and the limit keeps garbage input bounded.
 constexpr unsigned MaxSourceFileMiB = 64;
+/// A recording read whole (`--replay`, `bsc timeline`): 100,000 cycles of a
+/// behavior with its tasks are some 70 MiB.
+constexpr unsigned MaxRecordingMiB = 1024;
 
 /// The modules every target with a runtime provides (FrontendOptions::
 /// StandardModules); named for the message when a target has none.
@@ -75,7 +78,8 @@ struct Compilation {
 
 /// Reads one source file into the SourceMgr; reports a missing, unreadable,
 /// oversized file or a directory and returns 0 (buffer IDs start at 1).
-unsigned addSourceFile(Compilation &C, llvm::StringRef Path);
+unsigned addSourceFile(Compilation &C, llvm::StringRef Path,
+                       unsigned MaxMiB = MaxSourceFileMiB);
 
 /// The module name of a file: its name without the `.bs` extension.
 std::string moduleNameForPath(llvm::StringRef Path);

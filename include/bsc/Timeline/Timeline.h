@@ -1,0 +1,49 @@
+//===- Timeline.h - a recorded run as one HTML page ------------*- C++ -*-===//
+//
+// `bsc timeline RECORD [OTHER] -o run.html` (docs/repl.md, "A run as a
+// picture"): reads a recording of `bsc run --record` or the REPL's
+// `:record` (whose lines carry each cycle's active tasks), or a robot's
+// trace log with the tables of an `--instrument` object, and writes one
+// self-contained page that draws it: a lane per task, a cursor over the
+// cycles, plots and search. Given two recordings, it aligns them by cycle
+// and marks the first cycle where they differ.
+//
+// The page's script and markup are lib/Timeline/page/, embedded at build
+// time; the data it draws is docs/repl.md's "The timeline's data".
+//
+//===----------------------------------------------------------------------===//
+#ifndef BSC_TIMELINE_TIMELINE_H
+#define BSC_TIMELINE_TIMELINE_H
+
+#include <string>
+#include <vector>
+
+namespace llvm {
+class raw_ostream;
+}
+
+namespace bsc {
+struct Compilation;
+
+namespace timeline {
+
+struct TimelineOptions {
+  /// One recording, or two to compare.
+  std::vector<std::string> Records;
+  /// --object: the records are robot trace logs, this object's tables name
+  /// their tasks.
+  std::string ObjectPath;
+  /// -o; empty: the first record's name with `.html`.
+  std::string OutputPath;
+};
+
+/// Writes the page. With two records, prints their first difference (or
+/// that they do not differ) to `OS`. Reports unreadable, malformed or
+/// mismatched records and unwritable output to C.Diags and returns false.
+bool writeTimeline(Compilation &C, const TimelineOptions &Opts,
+                   llvm::raw_ostream &OS);
+
+} // namespace timeline
+} // namespace bsc
+
+#endif

@@ -1,0 +1,227 @@
+//===- ReadRun.cpp - recordings and robot logs as runs --------------------===//
+//
+// A recording is read as `--replay` reads one: in the SourceMgr, so that
+// every error is at its line with a caret; a line is checked, handed to the
+// RunBuilder and dropped. A robot's trace log is decoded with the object's
+// tables as `bsc trace-decode` decodes it.
+//
+//===----------------------------------------------------------------------===//
+#include "TimelineImpl.h"
+#include "bsc/Basic/JSON.h"
+#include "bsc/Debug/TraceDecode.h"
+#include "bsc/Frontend/Frontend.h"
+
+using namespace bsc;
+using namespace bsc::timeline;
+
+/// A robot's log starts with a little-endian cycle number, so it has a NUL
+/// byte within its first bytes; a recording is text that starts with `{`.
+static bool looksLikeRecording(llvm::StringRef Text) {
+  llvm::StringRef Head = Text.take_front(4096);
+  return Head.ltrim().starts_with("{") && !Head.contains('\0');
+}
+
+namespace {
+/// Checks one parsed line and turns it into a cycle for the builder.
+class LineReader {
+public:
+  LineReader(Compilation &C, llvm::SMLoc Loc) : C(C), Loc(Loc) {}
+
+  /// Reports what is wrong with the line and returns false.
+  bool read(const llvm::json::Value &Line, std::optional<uint32_t> Previous,
+            uint32_t &Cycle, std::vector<CycleTask> &Tasks) {
+    const llvm::json::Object *O = Line.getAsObject();
+    if (!O) {
+      C.Diags.report(Loc, diag::err_record_not_object);
+      return false;
+    }
+    for (const auto &KV : *O)
+      if (!llvm::is_contained({"cycle", "input", "output", "tasks"},
+                              llvm::StringRef(KV.first))) {
+        C.Diags.report(Loc, diag::err_record_unknown_key) << KV.first.str();
+        return false;
+      }
+    const llvm::json::Value *CycleValue = O->get("cycle");
+    if (!CycleValue) {
+      C.Diags.report(Loc, diag::err_record_no_cycle);
+      return false;
+    }
+    std::optional<int64_t> N = CycleValue->getAsInteger();
+    if (!N || *N < 1 || *N > int64_t(UINT32_MAX)) {
+      C.Diags.report(Loc, diag::err_record_bad_cycle);
+      return false;
+    }
+    Cycle = *N;
+    if (Previous && Cycle <= *Previous) {
+      C.Diags.report(Loc, diag::err_record_cycle_order) << Cycle << *Previous;
+      return false;
+    }
+    for (llvm::StringRef Key : {"input", "output"})
+      if (const llvm::json::Value *V = O->get(Key); V && !V->getAsObject())
+        return bad(Key, "an object");
+    const llvm::json::Value *TaskList = O->get("tasks");
+    if (!TaskList) {
+      C.Diags.report(Loc, diag::err_record_no_tasks);
+      return false;
+    }
+    const llvm::json::Array *A = TaskList->getAsArray();
+    if (!A)
+      return bad("tasks", "an array");
+    for (size_t I = 0; I < A->size(); ++I)
+      if (!readTask((*A)[I], I, Tasks))
+        return false;
+    return true;
+  }
+
+private:
+  bool bad(llvm::StringRef What, llvm::StringRef Must) {
+    C.Diags.report(Loc, diag::err_record_bad_member) << What << Must;
+    return false;
+  }
+
+  bool readTask(const llvm::json::Value &V, size_t I,
+                std::vector<CycleTask> &Tasks) {
+    std::string Name = "tasks[" + std::to_string(I) + "]";
+    const llvm::json::Object *O = V.getAsObject();
+    if (!O)
+      return bad(Name, "an object with 'task', 'state' and 'parent'");
+    for (const auto &KV : *O)
+      if (!llvm::is_contained(
+              {"task", "state", "at", "parent", "params", "locals"},
+              llvm::StringRef(KV.first)))
+        return bad(Name + "." + KV.first.str(),
+                   "left out: a task has 'task', 'state', 'at', 'parent', "
+                   "'params' and 'locals'");
+    CycleTask T;
+    std::optional<llvm::StringRef> Task = O->getString("task");
+    if (!Task || Task->empty())
+      return bad(Name + ".task", "the task's name");
+    T.Name = *Task;
+    std::optional<llvm::StringRef> State = O->getString("state");
+    if (!State || State->empty())
+      return bad(Name + ".state", "the task's state, as 'running'");
+    T.State = *State;
+    if (const llvm::json::Value *At = O->get("at")) {
+      if (!At->getAsString())
+        return bad(Name + ".at", "the yield it waits at, as \"Kick.bs:10\"");
+      T.Place = *At->getAsString();
+    }
+    std::optional<int64_t> Parent = O->getInteger("parent");
+    if (!Parent || *Parent < -1 || *Parent >= int64_t(I))
+      return bad(Name + ".parent",
+                 "-1 (a root) or the position of an earlier task");
+    T.Parent = *Parent;
+    for (const auto &[Key, Into] :
+         {std::pair{"params", &T.Params}, std::pair{"locals", &T.Locals}})
+      if (const llvm::json::Value *F = O->get(Key)) {
+        if (!F->getAsObject())
+          return bad(Name + "." + Key, "an object");
+        *Into = F->getAsObject();
+      }
+    for (const CycleTask &Earlier : Tasks)
+      if (Earlier.Name == T.Name)
+        return bad(Name + ".task", "a task the line does not name already");
+    Tasks.push_back(T);
+    return true;
+  }
+
+  Compilation &C;
+  llvm::SMLoc Loc;
+};
+} // namespace
+
+bool timeline::readRecording(Compilation &C, llvm::StringRef Path, Run &R) {
+  unsigned ID = addSourceFile(C, Path, MaxRecordingMiB);
+  if (!ID)
+    return false;
+  llvm::StringRef Text = C.SM.getMemoryBuffer(ID)->getBuffer();
+  if (!looksLikeRecording(Text)) {
+    C.Diags.report(llvm::SMLoc(), diag::err_timeline_not_recording) << Path;
+    return false;
+  }
+  R.Name = Path.str();
+  RunBuilder Builder(R);
+  std::optional<uint32_t> Previous;
+  while (!Text.empty()) {
+    auto [Raw, Rest] = Text.split('\n');
+    Text = Rest;
+    if (Raw.trim().empty())
+      continue;
+    llvm::SMLoc Loc = llvm::SMLoc::getFromPointer(Raw.data());
+    llvm::Expected<llvm::json::Value> V = parseJSON(Raw);
+    if (!V) {
+      // The caret goes under the byte the error is at.
+      llvm::handleAllErrors(V.takeError(), [&](const JSONReadError &E) {
+        C.Diags.report(llvm::SMLoc::getFromPointer(Raw.data() + E.Offset),
+                       diag::err_replay_json)
+            << E.Message;
+      });
+      return false;
+    }
+    uint32_t Cycle = 0;
+    std::vector<CycleTask> Tasks;
+    if (!LineReader(C, Loc).read(*V, Previous, Cycle, Tasks))
+      return false;
+    const llvm::json::Object *O = V->getAsObject();
+    Builder.addCycle(Cycle, O->get("input"), O->get("output"), Tasks);
+    Previous = Cycle;
+  }
+  if (!Previous) {
+    C.Diags.report(llvm::SMLoc(), diag::err_record_empty) << Path;
+    return false;
+  }
+  Builder.finish();
+  return true;
+}
+
+bool timeline::readRobotLog(Compilation &C, llvm::StringRef ObjectPath,
+                            llvm::StringRef LogPath, Run &R) {
+  std::optional<debug::DebugTables> Tables =
+      debug::readObjectTables(ObjectPath, C.Diags);
+  if (!Tables)
+    return false;
+  // Read first to tell a recording given by mistake from a broken log.
+  auto Head = llvm::MemoryBuffer::getFileSlice(LogPath, 4096, 0);
+  if (Head && looksLikeRecording((*Head)->getBuffer())) {
+    C.Diags.report(llvm::SMLoc(), diag::err_timeline_not_log) << LogPath;
+    return false;
+  }
+  std::optional<std::vector<debug::LoggedCycle>> Cycles =
+      debug::readTraceLog(LogPath, *Tables, C.Diags);
+  if (!Cycles)
+    return false;
+  if (Cycles->empty()) {
+    C.Diags.report(llvm::SMLoc(), diag::err_record_empty) << LogPath;
+    return false;
+  }
+  R.Name = LogPath.str();
+  R.FromRobotLog = true;
+  RunBuilder Builder(R);
+  std::optional<uint32_t> Previous;
+  for (const debug::LoggedCycle &Logged : *Cycles) {
+    if (Previous && Logged.Cycle <= *Previous) {
+      C.Diags.report(llvm::SMLoc(), diag::err_trace_decode)
+          << LogPath
+          << ("cycle " + std::to_string(Logged.Cycle) + " after cycle " +
+              std::to_string(*Previous) +
+              ": a log's cycles increase (were two runs written to one "
+              "file?)");
+      return false;
+    }
+    debug::ActiveTree Tree = debug::buildActiveTree(*Tables, Logged.Records);
+    std::vector<std::string> Texts; // Keeps the states and places alive.
+    std::vector<debug::FlatTask> Flat = debug::flattenActiveTree(Tree);
+    Texts.reserve(2 * Flat.size());
+    std::vector<CycleTask> Tasks;
+    for (const debug::FlatTask &F : Flat) {
+      Texts.push_back(debug::activationState(*Tables, F.Record));
+      Texts.push_back(debug::activationPlace(*Tables, F.Record));
+      Tasks.push_back({Tables->Tasks[F.Record.Task].Name,
+                       Texts[Texts.size() - 2], Texts.back(), F.Parent});
+    }
+    Builder.addCycle(Logged.Cycle, nullptr, nullptr, Tasks);
+    Previous = Logged.Cycle;
+  }
+  Builder.finish();
+  return true;
+}

@@ -1,0 +1,72 @@
+//===- Timeline.cpp - bsc timeline: read the runs, compare, write ---------===//
+#include "bsc/Timeline/Timeline.h"
+#include "TimelineImpl.h"
+#include "bsc/Frontend/Frontend.h"
+#include "llvm/Support/FileSystem.h"
+#include "llvm/Support/Path.h"
+#include "llvm/Support/ToolOutputFile.h"
+#include "llvm/Support/raw_ostream.h"
+
+using namespace bsc;
+using namespace bsc::timeline;
+
+/// `run.jsonl` -> `run.html`, beside it.
+static std::string defaultOutput(llvm::StringRef Record) {
+  llvm::SmallString<128> Path(Record);
+  llvm::sys::path::replace_extension(Path, "html");
+  return std::string(Path);
+}
+
+bool timeline::writeTimeline(Compilation &C, const TimelineOptions &Opts,
+                             llvm::raw_ostream &OS) {
+  if (Opts.Records.empty() || Opts.Records.size() > 2) {
+    C.Diags.report(llvm::SMLoc(), diag::err_timeline_records)
+        << static_cast<long long>(Opts.Records.size());
+    return false;
+  }
+  std::vector<Run> Runs(Opts.Records.size());
+  for (size_t I = 0; I < Runs.size(); ++I) {
+    bool Read = Opts.ObjectPath.empty()
+                    ? readRecording(C, Opts.Records[I], Runs[I])
+                    : readRobotLog(C, Opts.ObjectPath, Opts.Records[I], Runs[I]);
+    if (!Read)
+      return false;
+  }
+  std::optional<Difference> Diff;
+  if (Runs.size() == 2)
+    Diff = findFirstDifference(Runs[0], Runs[1]);
+
+  std::string Output = Opts.OutputPath.empty()
+                           ? defaultOutput(Opts.Records.front())
+                           : Opts.OutputPath;
+  std::error_code EC;
+  llvm::ToolOutputFile Page(Output, EC, llvm::sys::fs::OF_None);
+  if (EC) {
+    C.Diags.report(llvm::SMLoc(), diag::err_cannot_write_output)
+        << Output << EC.message();
+    return false;
+  }
+  std::vector<const Run *> Drawn;
+  for (const Run &R : Runs)
+    Drawn.push_back(&R);
+  writePage(Page.os(), Drawn, Diff);
+  Page.os().close();
+  if (Page.os().has_error()) {
+    C.Diags.report(llvm::SMLoc(), diag::err_cannot_write_output)
+        << Output << Page.os().error().message();
+    Page.os().clear_error();
+    return false;
+  }
+  Page.keep();
+
+  if (Runs.size() == 2) {
+    if (!Diff) {
+      OS << "the runs do not differ\n";
+    } else {
+      OS << "first difference at cycle " << Diff->Cycle << ":\n";
+      for (const std::string &Note : Diff->Notes)
+        OS << "  " << Note << "\n";
+    }
+  }
+  return true;
+}

@@ -1,0 +1,139 @@
+//===- TimelineImpl.h - the runs bsc timeline draws ------------*- C++ -*-===//
+//
+// A run is kept as changes, not as cycles: each leaf of `input` and
+// `output` and each task field as the cycles where its value changed, each
+// task as segments of consecutive cycles with the same state, yield and
+// parent. 100,000 cycles of a behavior whose tasks sit in one state for
+// hundreds of cycles shrink to a few thousand entries; the page draws and
+// searches them, and comparing two runs walks them (Difference.cpp).
+//
+// The readers (ReadRun.cpp) hand each cycle to a RunBuilder (RunBuilder.cpp)
+// and keep nothing else; Page.cpp writes the result into the page.
+//
+//===----------------------------------------------------------------------===//
+#ifndef BSC_LIB_TIMELINE_TIMELINEIMPL_H
+#define BSC_LIB_TIMELINE_TIMELINEIMPL_H
+
+#include "llvm/ADT/ArrayRef.h"
+#include "llvm/ADT/StringMap.h"
+#include "llvm/Support/JSON.h"
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace llvm {
+class raw_ostream;
+}
+
+namespace bsc {
+struct Compilation;
+
+namespace timeline {
+
+/// A value over the cycles: the cycles where it changed, ascending, and
+/// the value from each on. Null means absent (a task field while its task
+/// is not active).
+struct Series {
+  std::string Path;
+  std::vector<uint32_t> ChangeCycles;
+  std::vector<llvm::json::Value> Values;
+  /// The value at `Cycle`; null before the first change.
+  const llvm::json::Value &at(uint32_t Cycle) const;
+};
+
+/// Consecutive cycles in which a task was active with the same state,
+/// yield and parent.
+struct Segment {
+  uint32_t Start, End; ///< Inclusive.
+  std::string State;   ///< `running`, `done`, `Done::kicked`, ...
+  std::string Place;   ///< `Kick.bs:10`; "" when it finished.
+  int Parent;          ///< Index into Run::Tasks; -1 for a root.
+};
+
+struct TaskLane {
+  std::string Name; ///< `Module::task`.
+  std::vector<Segment> Segments;
+  struct Field {
+    std::string Name;
+    bool IsParam;
+    Series Values;
+  };
+  std::vector<Field> Fields;
+  /// The segment holding `Cycle`, or null.
+  const Segment *at(uint32_t Cycle) const;
+};
+
+struct Run {
+  std::string Name;         ///< The file as given.
+  bool FromRobotLog = false; ///< No input, output or fields.
+  /// The cycles present: inclusive ranges, ascending.
+  std::vector<std::pair<uint32_t, uint32_t>> Cycles;
+  /// In the order they first ran (depth first within a cycle).
+  std::vector<TaskLane> Tasks;
+  /// The leaves of `input` and `output` (`input.ball.x`,
+  /// `output.wide[6]`), sorted by path.
+  std::vector<Series> Leaves;
+  bool hasCycle(uint32_t Cycle) const;
+  uint32_t numCycles() const;
+};
+
+/// One task of a cycle, as a reader found it.
+struct CycleTask {
+  llvm::StringRef Name, State, Place;
+  int Parent = -1; ///< Index into the cycle's tasks, before this one.
+  const llvm::json::Object *Params = nullptr, *Locals = nullptr;
+};
+
+/// Folds cycles, in increasing order, into a Run.
+class RunBuilder {
+public:
+  explicit RunBuilder(Run &R) : R(R) {}
+  void addCycle(uint32_t Cycle, const llvm::json::Value *Input,
+                const llvm::json::Value *Output,
+                llvm::ArrayRef<CycleTask> Tasks);
+  /// Sorts the leaves; the run is complete.
+  void finish();
+
+private:
+  void addLeaves(std::string &Path, const llvm::json::Value &V,
+                 uint32_t Cycle);
+  unsigned laneFor(llvm::StringRef Task);
+  void addFields(TaskLane &Lane, const llvm::json::Object *Fields,
+                 bool IsParam, uint32_t Cycle);
+
+  Run &R;
+  llvm::StringMap<unsigned> LeafIndex, LaneIndex;
+  /// Per leaf, and per lane and field, the last cycle that set it: what a
+  /// cycle did not set is absent (null) from then on.
+  std::vector<uint32_t> LeafSetIn;
+  std::vector<std::vector<uint32_t>> FieldSetIn;
+};
+
+/// Sets `V` as the series' value from `Cycle` on, if it differs.
+void setValue(Series &S, uint32_t Cycle, const llvm::json::Value &V);
+
+/// Reads a recording (JSON lines with `tasks`) into `R`. Reports a file
+/// that cannot be read, is not a recording, or has a malformed line, and
+/// returns false.
+bool readRecording(Compilation &C, llvm::StringRef Path, Run &R);
+/// Reads a robot's trace log with the tables of an instrumented object.
+bool readRobotLog(Compilation &C, llvm::StringRef ObjectPath,
+                  llvm::StringRef LogPath, Run &R);
+
+/// The first cycle where two runs differ, and each thing that differs in
+/// it (`output.motion: A "walk", B "kick"`).
+struct Difference {
+  uint32_t Cycle;
+  std::vector<std::string> Notes;
+};
+std::optional<Difference> findFirstDifference(const Run &A, const Run &B);
+
+/// Writes the page drawing `Runs`.
+void writePage(llvm::raw_ostream &OS, llvm::ArrayRef<const Run *> Runs,
+               const std::optional<Difference> &Diff);
+
+} // namespace timeline
+} // namespace bsc
+
+#endif
