@@ -16,7 +16,8 @@ BUILD=${BSC_BUILD_DIR:-$ROOT/build}
 # Debian packages the build, the tests and the examples need.
 PACKAGES=(cmake ninja-build g++ gcc-multilib g++-multilib python3 file
           llvm-19-dev llvm-19-tools clang-19 lld-19 libgtest-dev
-          libeigen3-dev libedit-dev zlib1g-dev libzstd-dev qemu-user gdb)
+          libeigen3-dev libedit-dev zlib1g-dev libzstd-dev qemu-user gdb
+          chromium fonts-dejavu-core)  # chromium: the timeline page's tests
 
 install_missing() {
   local missing=()

@@ -7,7 +7,7 @@
 #    (`:step 10000`, printing each cycle's output changes, and `:run 10000`),
 #    less a session that steps once; best of 5, on one core.
 #  - time travel (issue 26) over 100,000 cycles of the paper's soccer
-#    behavior driven by a world library (bench/soccer_world.cpp around
+#    behavior driven by a world library (examples/soccer/world_library.cpp around
 #    examples/soccer's world): `:run 100000` against `bsc run --cycles
 #    100000` of the same world (the cost of keeping the history), then
 #    `:goto 50000` from the end, `:goto 99999`, `:history output.motion`
@@ -75,7 +75,7 @@ echo "10,000 cycles of the paper's soccer behavior: :step $(diff_s "$step" "$one
 
 # Time travel over 100,000 cycles with a world.
 g++ -std=c++20 -O2 -fPIC -shared -I../examples/soccer -I/usr/include/eigen3 \
-  soccer_world.cpp ../examples/soccer/SoccerWorld.cpp -o "$OUT/world.so"
+  ../examples/soccer/world_library.cpp ../examples/soccer/SoccerWorld.cpp -o "$OUT/world.so"
 W=(--world "$OUT/world.so" "${E[@]}")
 printf ':run 100000\n' > "$OUT/run100k.txt"
 { echo ':run 100000'; for _ in $(seq 1000); do echo ':goto 50000'; echo ':goto 99999'; done; } > "$OUT/goto.txt"

@@ -12,9 +12,11 @@
 #   %bsc_include  the public headers (bscript/bscript.h for C embeddings)
 #   %eigen_include Eigen's headers (the soccer bindings use Eigen::Vector2f)
 #   %run-i586     runs a 32-bit x86 program (natively, else qemu-i386)
+#   %browser      utils/browser.py: a page in headless Chromium, driven by
+#                 the DevTools protocol (the timeline's tests)
 # The suite needs ../shared (the conformance programs and the bench
-# reference) and gdb (dev.sh installs it): without either it stops rather
-# than report green with less in it. Feature: i586-native (this kernel runs
+# reference), gdb and chromium (dev.sh installs both): without any of them
+# it stops rather than report green with less in it. Feature: i586-native (this kernel runs
 # 32-bit programs itself, so gdb can debug them; elsewhere they run in
 # qemu-i386 and the one gdb-on-i586 test is reported unsupported).
 import os
@@ -64,6 +66,13 @@ if not os.path.isfile(os.path.join(config.eigen_include, "Eigen", "Dense")):
 if not shutil.which("gdb"):
     lit_config.fatal("gdb not found: the debug-info tests need it "
                      "(dev.sh installs it)")
+
+if not shutil.which("chromium"):
+    lit_config.fatal("chromium not found: the timeline page's tests need it "
+                     "(dev.sh installs it)")
+config.substitutions.append(
+    ("%browser", config.python_executable + " " +
+     os.path.join(config.bsc_src_root, "utils", "browser.py")))
 
 
 def runs_i586_natively():

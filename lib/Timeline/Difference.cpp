@@ -108,6 +108,9 @@ std::vector<std::string> compareCycle(const Run &A, const Run &B,
     Notes.push_back("task " + (TA ? TA : TB)->Name + ": A " +
                     describeTask(A, SA) + "; B " + describeTask(B, SB));
   }
+  // A robot's log has no values to compare with.
+  if (A.FromRobotLog || B.FromRobotLog)
+    return Notes;
   static const Series Absent;
   for (const auto &[SA, SB] : P.Values) {
     const llvm::json::Value &VA = (SA ? SA : &Absent)->at(Cycle);

@@ -15,7 +15,8 @@ using namespace bsc;
 using namespace bsc::timeline;
 
 /// A robot's log starts with a little-endian cycle number, so it has a NUL
-/// byte within its first bytes; a recording is text that starts with `{`.
+/// byte within its first bytes (cycle numbers below 2^24); a recording is
+/// text that starts with `{`.
 static bool looksLikeRecording(llvm::StringRef Text) {
   llvm::StringRef Head = Text.take_front(4096);
   return Head.ltrim().starts_with("{") && !Head.contains('\0');
@@ -130,16 +131,24 @@ private:
 };
 } // namespace
 
+bool timeline::isRecording(llvm::StringRef Path) {
+  auto Head = llvm::MemoryBuffer::getFileSlice(Path, 4096, 0);
+  return Head && looksLikeRecording((*Head)->getBuffer());
+}
+
 bool timeline::readRecording(Compilation &C, llvm::StringRef Path, Run &R) {
   unsigned ID = addSourceFile(C, Path, MaxRecordingMiB);
-  if (!ID)
-    return false;
-  llvm::StringRef Text = C.SM.getMemoryBuffer(ID)->getBuffer();
+  return ID && readRecordingBuffer(C, ID, Path, R);
+}
+
+bool timeline::readRecordingBuffer(Compilation &C, unsigned BufferID,
+                                   llvm::StringRef Name, Run &R) {
+  llvm::StringRef Text = C.SM.getMemoryBuffer(BufferID)->getBuffer();
   if (!looksLikeRecording(Text)) {
-    C.Diags.report(llvm::SMLoc(), diag::err_timeline_not_recording) << Path;
+    C.Diags.report(llvm::SMLoc(), diag::err_timeline_not_recording) << Name;
     return false;
   }
-  R.Name = Path.str();
+  R.Name = Name.str();
   RunBuilder Builder(R);
   std::optional<uint32_t> Previous;
   while (!Text.empty()) {
@@ -167,27 +176,17 @@ bool timeline::readRecording(Compilation &C, llvm::StringRef Path, Run &R) {
     Previous = Cycle;
   }
   if (!Previous) {
-    C.Diags.report(llvm::SMLoc(), diag::err_record_empty) << Path;
+    C.Diags.report(llvm::SMLoc(), diag::err_record_empty) << Name;
     return false;
   }
   Builder.finish();
   return true;
 }
 
-bool timeline::readRobotLog(Compilation &C, llvm::StringRef ObjectPath,
+bool timeline::readRobotLog(Compilation &C, const debug::DebugTables &Tables,
                             llvm::StringRef LogPath, Run &R) {
-  std::optional<debug::DebugTables> Tables =
-      debug::readObjectTables(ObjectPath, C.Diags);
-  if (!Tables)
-    return false;
-  // Read first to tell a recording given by mistake from a broken log.
-  auto Head = llvm::MemoryBuffer::getFileSlice(LogPath, 4096, 0);
-  if (Head && looksLikeRecording((*Head)->getBuffer())) {
-    C.Diags.report(llvm::SMLoc(), diag::err_timeline_not_log) << LogPath;
-    return false;
-  }
   std::optional<std::vector<debug::LoggedCycle>> Cycles =
-      debug::readTraceLog(LogPath, *Tables, C.Diags);
+      debug::readTraceLog(LogPath, Tables, C.Diags);
   if (!Cycles)
     return false;
   if (Cycles->empty()) {
@@ -208,15 +207,15 @@ bool timeline::readRobotLog(Compilation &C, llvm::StringRef ObjectPath,
               "file?)");
       return false;
     }
-    debug::ActiveTree Tree = debug::buildActiveTree(*Tables, Logged.Records);
+    debug::ActiveTree Tree = debug::buildActiveTree(Tables, Logged.Records);
     std::vector<std::string> Texts; // Keeps the states and places alive.
     std::vector<debug::FlatTask> Flat = debug::flattenActiveTree(Tree);
     Texts.reserve(2 * Flat.size());
     std::vector<CycleTask> Tasks;
     for (const debug::FlatTask &F : Flat) {
-      Texts.push_back(debug::activationState(*Tables, F.Record));
-      Texts.push_back(debug::activationPlace(*Tables, F.Record));
-      Tasks.push_back({Tables->Tasks[F.Record.Task].Name,
+      Texts.push_back(debug::activationState(Tables, F.Record));
+      Texts.push_back(debug::activationPlace(Tables, F.Record));
+      Tasks.push_back({Tables.Tasks[F.Record.Task].Name,
                        Texts[Texts.size() - 2], Texts.back(), F.Parent});
     }
     Builder.addCycle(Logged.Cycle, nullptr, nullptr, Tasks);

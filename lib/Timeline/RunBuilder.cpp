@@ -46,61 +46,75 @@ void timeline::setValue(Series &S, uint32_t Cycle,
   S.Values.push_back(V);
 }
 
-void RunBuilder::addLeaves(std::string &Path, const llvm::json::Value &V,
-                           uint32_t Cycle) {
+/// Calls `Leaf` with the path and value of each number, string, bool or
+/// null in `V`: `.member` for an object's members, `[i]` for elements.
+static void forEachLeaf(
+    std::string &Path, const llvm::json::Value &V,
+    llvm::function_ref<void(llvm::StringRef, const llvm::json::Value &)> Leaf) {
   size_t Length = Path.size();
   if (const llvm::json::Object *O = V.getAsObject()) {
     for (const auto &KV : *O) {
-      Path += "." + KV.first.str();
-      addLeaves(Path, KV.second, Cycle);
+      (Path += ".") += llvm::StringRef(KV.first);
+      forEachLeaf(Path, KV.second, Leaf);
       Path.resize(Length);
     }
     return;
   }
   if (const llvm::json::Array *A = V.getAsArray()) {
     for (size_t I = 0; I < A->size(); ++I) {
-      Path += "[" + std::to_string(I) + "]";
-      addLeaves(Path, (*A)[I], Cycle);
+      ((Path += "[") += std::to_string(I)) += "]";
+      forEachLeaf(Path, (*A)[I], Leaf);
       Path.resize(Length);
     }
     return;
   }
-  auto [It, New] = LeafIndex.try_emplace(Path, R.Leaves.size());
-  if (New) {
-    R.Leaves.push_back({Path, {}, {}});
-    LeafSetIn.push_back(0);
-  }
-  setValue(R.Leaves[It->second], Cycle, V);
-  LeafSetIn[It->second] = Cycle;
+  Leaf(Path, V);
+}
+
+void RunBuilder::addLeaves(std::string &Path, const llvm::json::Value &V,
+                           uint32_t Cycle) {
+  forEachLeaf(Path, V, [&](llvm::StringRef Leaf, const llvm::json::Value &V) {
+    auto [It, New] = LeafIndex.try_emplace(Leaf, R.Leaves.size());
+    if (New) {
+      R.Leaves.push_back({Leaf.str(), {}, {}});
+      LeafSetIn.push_back(0);
+    }
+    setValue(R.Leaves[It->second], Cycle, V);
+    LeafSetIn[It->second] = Cycle;
+  });
 }
 
 unsigned RunBuilder::laneFor(llvm::StringRef Task) {
   auto [It, New] = LaneIndex.try_emplace(Task, R.Tasks.size());
   if (New) {
     R.Tasks.push_back({Task.str(), {}, {}});
+    FieldIndex.emplace_back();
     FieldSetIn.emplace_back();
   }
   return It->second;
 }
 
-void RunBuilder::addFields(TaskLane &Lane, const llvm::json::Object *Fields,
+void RunBuilder::addFields(unsigned Lane, const llvm::json::Object *Fields,
                            bool IsParam, uint32_t Cycle) {
   if (!Fields)
     return;
-  std::vector<uint32_t> &SetIn = FieldSetIn[&Lane - R.Tasks.data()];
+  TaskLane &T = R.Tasks[Lane];
+  // A class or array field is its leaves (`target.x`), which plot.
+  std::string Path;
   for (const auto &KV : *Fields) {
-    auto It = llvm::find_if(Lane.Fields, [&](const TaskLane::Field &F) {
-      return F.Name == KV.first && F.IsParam == IsParam;
-    });
-    if (It == Lane.Fields.end()) {
-      Lane.Fields.push_back({KV.first.str(), IsParam, {}});
-      Lane.Fields.back().Values.Path =
-          Lane.Name + "." + KV.first.str();
-      SetIn.push_back(0);
-      It = Lane.Fields.end() - 1;
-    }
-    setValue(It->Values, Cycle, KV.second);
-    SetIn[It - Lane.Fields.begin()] = Cycle;
+    Path = KV.first.str();
+    forEachLeaf(Path, KV.second,
+                [&](llvm::StringRef Name, const llvm::json::Value &V) {
+                  auto [It, New] = FieldIndex[Lane].try_emplace(
+                      (IsParam ? "p" : "l") + Name.str(), T.Fields.size());
+                  if (New) {
+                    T.Fields.push_back({Name.str(), IsParam, {}});
+                    T.Fields.back().Values.Path = T.Name + "." + Name.str();
+                    FieldSetIn[Lane].push_back(0);
+                  }
+                  setValue(T.Fields[It->second].Values, Cycle, V);
+                  FieldSetIn[Lane][It->second] = Cycle;
+                });
   }
 }
 
@@ -139,8 +153,8 @@ void RunBuilder::addCycle(uint32_t Cycle, const llvm::json::Value *Input,
       Segs.back().End = Cycle;
     else
       Segs.push_back({Cycle, Cycle, T.State.str(), T.Place.str(), Parent});
-    addFields(R.Tasks[L], T.Params, /*IsParam=*/true, Cycle);
-    addFields(R.Tasks[L], T.Locals, /*IsParam=*/false, Cycle);
+    addFields(L, T.Params, /*IsParam=*/true, Cycle);
+    addFields(L, T.Locals, /*IsParam=*/false, Cycle);
   }
   for (size_t L = 0; L < R.Tasks.size(); ++L)
     for (size_t F = 0; F < R.Tasks[L].Fields.size(); ++F)

@@ -1,6 +1,7 @@
 //===- Timeline.cpp - bsc timeline: read the runs, compare, write ---------===//
 #include "bsc/Timeline/Timeline.h"
 #include "TimelineImpl.h"
+#include "bsc/Debug/TraceDecode.h"
 #include "bsc/Frontend/Frontend.h"
 #include "llvm/Support/FileSystem.h"
 #include "llvm/Support/Path.h"
@@ -24,11 +25,20 @@ bool timeline::writeTimeline(Compilation &C, const TimelineOptions &Opts,
         << static_cast<long long>(Opts.Records.size());
     return false;
   }
+  // With --object, each record is a robot's log or a recording, so that
+  // the robot's run compares with the JIT's.
+  std::optional<debug::DebugTables> Tables;
+  if (!Opts.ObjectPath.empty()) {
+    Tables = debug::readObjectTables(Opts.ObjectPath, C.Diags);
+    if (!Tables)
+      return false;
+  }
   std::vector<Run> Runs(Opts.Records.size());
   for (size_t I = 0; I < Runs.size(); ++I) {
-    bool Read = Opts.ObjectPath.empty()
-                    ? readRecording(C, Opts.Records[I], Runs[I])
-                    : readRobotLog(C, Opts.ObjectPath, Opts.Records[I], Runs[I]);
+    llvm::StringRef Path = Opts.Records[I];
+    bool Read = Tables && !isRecording(Path)
+                    ? readRobotLog(C, *Tables, Path, Runs[I])
+                    : readRecording(C, Path, Runs[I]);
     if (!Read)
       return false;
   }

@@ -28,6 +28,9 @@ class raw_ostream;
 
 namespace bsc {
 struct Compilation;
+namespace debug {
+struct DebugTables;
+}
 
 namespace timeline {
 
@@ -54,6 +57,8 @@ struct Segment {
 struct TaskLane {
   std::string Name; ///< `Module::task`.
   std::vector<Segment> Segments;
+  /// Its parameters and kept locals; one of a class or array type is its
+  /// leaves (`target.x`).
   struct Field {
     std::string Name;
     bool IsParam;
@@ -99,11 +104,13 @@ private:
   void addLeaves(std::string &Path, const llvm::json::Value &V,
                  uint32_t Cycle);
   unsigned laneFor(llvm::StringRef Task);
-  void addFields(TaskLane &Lane, const llvm::json::Object *Fields,
+  void addFields(unsigned Lane, const llvm::json::Object *Fields,
                  bool IsParam, uint32_t Cycle);
 
   Run &R;
   llvm::StringMap<unsigned> LeafIndex, LaneIndex;
+  /// Per lane, its fields by `p` or `l` (parameter or local) and name.
+  std::vector<llvm::StringMap<unsigned>> FieldIndex;
   /// Per leaf, and per lane and field, the last cycle that set it: what a
   /// cycle did not set is absent (null) from then on.
   std::vector<uint32_t> LeafSetIn;
@@ -113,16 +120,22 @@ private:
 /// Sets `V` as the series' value from `Cycle` on, if it differs.
 void setValue(Series &S, uint32_t Cycle, const llvm::json::Value &V);
 
+/// Whether the file starts as a recording (JSON text), not a robot's log.
+bool isRecording(llvm::StringRef Path);
 /// Reads a recording (JSON lines with `tasks`) into `R`. Reports a file
 /// that cannot be read, is not a recording, or has a malformed line, and
 /// returns false.
 bool readRecording(Compilation &C, llvm::StringRef Path, Run &R);
+/// The same for a recording already in C.SM, named `Name`.
+bool readRecordingBuffer(Compilation &C, unsigned BufferID,
+                         llvm::StringRef Name, Run &R);
 /// Reads a robot's trace log with the tables of an instrumented object.
-bool readRobotLog(Compilation &C, llvm::StringRef ObjectPath,
+bool readRobotLog(Compilation &C, const debug::DebugTables &Tables,
                   llvm::StringRef LogPath, Run &R);
 
 /// The first cycle where two runs differ, and each thing that differs in
-/// it (`output.motion: A "walk", B "kick"`).
+/// it (`output.motion: A "walk", B "kick"`). A robot's log has only tasks:
+/// against it only the tasks compare.
 struct Difference {
   uint32_t Cycle;
   std::vector<std::string> Notes;

@@ -148,8 +148,9 @@ cl::list<std::string>
                     BSC_TIMELINE);
 cl::opt<std::string> TimelineObject(
     "object",
-    cl::desc("The object compiled with --instrument: the records are robot "
-             "trace logs"),
+    cl::desc("The object compiled with --instrument whose tables name the "
+             "tasks of robot trace logs (a record may also be a recording, "
+             "to compare the robot's run with the JIT's)"),
     cl::value_desc("file.o"), BSC_TIMELINE);
 cl::opt<std::string> TimelineOutput(
     "o",

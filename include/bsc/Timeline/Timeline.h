@@ -30,8 +30,8 @@ namespace timeline {
 struct TimelineOptions {
   /// One recording, or two to compare.
   std::vector<std::string> Records;
-  /// --object: the records are robot trace logs, this object's tables name
-  /// their tasks.
+  /// --object: the records may be robot trace logs (or recordings, to
+  /// compare with one), whose tasks this object's tables name.
   std::string ObjectPath;
   /// -o; empty: the first record's name with `.html`.
   std::string OutputPath;

@@ -1,6 +1,7 @@
-// A world library (`bsc repl --world`) around examples/soccer's world, for
-// bench/repl.sh's time-travel figures: the robot walks to the ball, kicks
-// it 2 m away, and walks after it, so the input changes every cycle.
+// A world library (`bsc run --world`, `bsc repl --world`) around this
+// folder's world, for bench/repl.sh's figures and the timeline's tests: the
+// robot walks to the ball, kicks it 2 m away, and walks after it, so the
+// input changes every cycle.
 #include "SoccerSim.h"
 
 extern "C" void *bs_world_init(void *, void *) {
