@@ -10,16 +10,20 @@
 #include "bsc/Basic/JSON.h"
 #include "bsc/Debug/TraceDecode.h"
 #include "bsc/Frontend/Frontend.h"
+#include "llvm/ADT/StringMap.h"
+#include "llvm/Support/FileSystem.h"
 
 using namespace bsc;
 using namespace bsc::timeline;
 
 /// A robot's log starts with a little-endian cycle number, so it has a NUL
 /// byte within its first bytes (cycle numbers below 2^24); a recording is
-/// text that starts with `{`.
+/// text that starts with `{`. Text of blank lines is a recording without
+/// cycles, which is what it is reported as: not a damaged log.
 static bool looksLikeRecording(llvm::StringRef Text) {
   llvm::StringRef Head = Text.take_front(4096);
-  return Head.ltrim().starts_with("{") && !Head.contains('\0');
+  llvm::StringRef Start = Head.ltrim();
+  return (Start.empty() || Start.starts_with("{")) && !Head.contains('\0');
 }
 
 namespace {
@@ -89,10 +93,11 @@ private:
     for (const auto &KV : *O)
       if (!llvm::is_contained(
               {"task", "state", "at", "parent", "params", "locals"},
-              llvm::StringRef(KV.first)))
-        return bad(Name + "." + KV.first.str(),
-                   "left out: a task has 'task', 'state', 'at', 'parent', "
-                   "'params' and 'locals'");
+              llvm::StringRef(KV.first))) {
+        C.Diags.report(Loc, diag::err_record_task_unknown_key)
+            << KV.first.str() << Name;
+        return false;
+      }
     CycleTask T;
     std::optional<llvm::StringRef> Task = O->getString("task");
     if (!Task || Task->empty())
@@ -119,24 +124,45 @@ private:
           return bad(Name + "." + Key, "an object");
         *Into = F->getAsObject();
       }
-    for (const CycleTask &Earlier : Tasks)
-      if (Earlier.Name == T.Name)
-        return bad(Name + ".task", "a task the line does not name already");
+    // A set, not a search of the earlier tasks: a line of a megabyte can
+    // list tens of thousands.
+    auto [Earlier, New] = Positions.try_emplace(T.Name, I);
+    if (!New) {
+      C.Diags.report(Loc, diag::err_record_task_twice)
+          << "tasks[" + std::to_string(Earlier->second) + "]" << Name
+          << T.Name;
+      return false;
+    }
     Tasks.push_back(T);
     return true;
   }
 
   Compilation &C;
   llvm::SMLoc Loc;
+  /// The line's tasks so far, by name: their positions.
+  llvm::StringMap<size_t> Positions;
 };
 } // namespace
 
 bool timeline::isRecording(llvm::StringRef Path) {
-  auto Head = llvm::MemoryBuffer::getFileSlice(Path, 4096, 0);
+  // Only the bytes that are there: a slice past the end of the file is
+  // filled with NULs, which made every recording shorter than the slice a
+  // log.
+  uint64_t Size = 0;
+  if (llvm::sys::fs::file_size(Path, Size))
+    return false;
+  auto Head = llvm::MemoryBuffer::getFileSlice(
+      Path, std::min<uint64_t>(Size, 4096), 0);
   return Head && looksLikeRecording((*Head)->getBuffer());
 }
 
 bool timeline::readRecording(Compilation &C, llvm::StringRef Path, Run &R) {
+  // addSourceFile's message for a directory speaks of b-script files.
+  if (llvm::sys::fs::is_directory(Path)) {
+    C.Diags.report(llvm::SMLoc(), diag::err_cannot_open_file)
+        << Path << std::make_error_code(std::errc::is_a_directory).message();
+    return false;
+  }
   unsigned ID = addSourceFile(C, Path, MaxRecordingMiB);
   return ID && readRecordingBuffer(C, ID, Path, R);
 }

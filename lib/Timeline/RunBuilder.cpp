@@ -2,6 +2,7 @@
 #include "TimelineImpl.h"
 #include "llvm/ADT/STLExtras.h"
 #include <algorithm>
+#include <cmath>
 
 using namespace bsc;
 using namespace bsc::timeline;
@@ -38,6 +39,11 @@ uint32_t Run::numCycles() const {
 
 void timeline::setValue(Series &S, uint32_t Cycle,
                         const llvm::json::Value &V) {
+  // A number beyond a double's range (`1e999` in a file, which parses as
+  // infinity) is kept as a recording writes infinity: the page's data is
+  // JSON, which has no bare infinity.
+  if (std::optional<double> D = V.getAsNumber(); D && !std::isfinite(*D))
+    return setValue(S, Cycle, *D > 0 ? "Infinity" : "-Infinity");
   if (!S.Values.empty() && S.Values.back() == V)
     return;
   if (S.Values.empty() && V.kind() == llvm::json::Value::Null)

@@ -49,6 +49,13 @@ bool timeline::writeTimeline(Compilation &C, const TimelineOptions &Opts,
   std::string Output = Opts.OutputPath.empty()
                            ? defaultOutput(Opts.Records.front())
                            : Opts.OutputPath;
+  // `-o run.jsonl`, or a record named `run.html`, would lose the run.
+  for (const std::string &Record : Opts.Records)
+    if (llvm::sys::fs::equivalent(Output, Record)) {
+      C.Diags.report(llvm::SMLoc(), diag::err_timeline_output_is_record)
+          << Record;
+      return false;
+    }
   std::error_code EC;
   llvm::ToolOutputFile Page(Output, EC, llvm::sys::fs::OF_None);
   if (EC) {
