@@ -5,7 +5,7 @@
 #   ./dev.sh test   install what is missing, build, run the whole test suite
 #   ./dev.sh sanitize  the same suite with bsc built with ASan and UBSan
 #                   (in build-sanitize/)
-#   ./dev.sh fuzz frontend|binding|jsonl [SECONDS]
+#   ./dev.sh fuzz frontend|binding|jsonl|timeline [SECONDS]
 #                   a libFuzzer campaign on one target (fuzz/README.md)
 # Both work on a fresh Debian 12 machine as root (apt), and are what CI runs.
 set -euo pipefail
@@ -77,8 +77,9 @@ sanitize() {
 # from the test suite, and crashing inputs written to build-fuzz/.
 fuzz() {
   local target=${1:-} seconds=${2:-3600}
-  [[ $target == frontend || $target == binding || $target == jsonl ]] ||
-    { echo "usage: $0 fuzz frontend|binding|jsonl [SECONDS]" >&2; exit 2; }
+  [[ $target == frontend || $target == binding || $target == jsonl ||
+     $target == timeline ]] ||
+    { echo "usage: $0 fuzz frontend|binding|jsonl|timeline [SECONDS]" >&2; exit 2; }
   PACKAGES+=(libclang-rt-19-dev)
   install_missing
   BUILD=${BSC_BUILD_DIR:-$ROOT/build-fuzz}
@@ -91,6 +92,9 @@ fuzz() {
   elif [[ $target == jsonl ]]; then
     cmake --build "$BUILD" --target bsc-fuzz-jsonl
     seeds=("$ROOT/fuzz/corpus/jsonl")
+  elif [[ $target == timeline ]]; then
+    cmake --build "$BUILD" --target bsc-fuzz-timeline
+    seeds=("$ROOT/fuzz/corpus/timeline")
   else
     cmake --build "$BUILD" --target bsc-fuzz-frontend
   fi
