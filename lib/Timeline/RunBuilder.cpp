@@ -172,4 +172,10 @@ void RunBuilder::finish() {
   llvm::sort(R.Leaves, [](const Series &A, const Series &B) {
     return A.Path < B.Path;
   });
+  // A JSON object keeps no order: parameters first, then locals, by name.
+  for (TaskLane &T : R.Tasks)
+    llvm::sort(T.Fields, [](const TaskLane::Field &A, const TaskLane::Field &B) {
+      return std::make_pair(!A.IsParam, llvm::StringRef(A.Name)) <
+             std::make_pair(!B.IsParam, llvm::StringRef(B.Name));
+    });
 }

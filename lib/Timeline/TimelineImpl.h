@@ -97,7 +97,7 @@ public:
   void addCycle(uint32_t Cycle, const llvm::json::Value *Input,
                 const llvm::json::Value *Output,
                 llvm::ArrayRef<CycleTask> Tasks);
-  /// Sorts the leaves; the run is complete.
+  /// Sorts the leaves and fields; the run is complete.
   void finish();
 
 private:
