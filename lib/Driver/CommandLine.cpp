@@ -128,6 +128,15 @@ bool bsc::checkCommandLine(DiagnosticEngine &Diags,
       OK = false;
       continue;
     }
+    // `-O2` given to a subcommand: llvm::cl finds attached values only
+    // among the subcommand's own options and would print its own error.
+    if (Attached && Sub != &cl::SubCommand::getTopLevel() &&
+        !cl::getRegisteredOptions(*Sub).count(O->ArgStr)) {
+      Diags.report(llvm::SMLoc(), diag::err_conflicting_options)
+          << ("-" + O->ArgStr.str()) << Sub->getName();
+      OK = false;
+      continue;
+    }
     // `-o FILE`: the next word is the value, whatever it looks like.
     if (O->getValueExpectedFlag() == cl::ValueRequired && !Attached &&
         !Arg.contains('='))
