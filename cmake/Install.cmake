@@ -23,7 +23,7 @@ install(FILES include/bscript/Bind.h include/bscript/bscript.h
 # to, where the links expect them (test/Install/installed-docs.test).
 install(FILES README.md DESTINATION share/doc/bscript)
 install(DIRECTORY docs/ DESTINATION share/doc/bscript/docs
-  FILES_MATCHING PATTERN "*.md")
+  FILES_MATCHING PATTERN "*.md" PATTERN "*.png")
 install(DIRECTORY examples/embedding DESTINATION share/doc/bscript/examples)
 install(FILES tools/gdb/bscript_printers.py DESTINATION share/bscript/gdb)
 install(EXPORT bscriptTargets NAMESPACE bscript::
