@@ -83,16 +83,7 @@ printf ':run 100000\n:history output.motion\n' > "$OUT/history.txt"
 printf ':run 1\n' > "$OUT/run1.txt"
 # run_seconds CYCLES: the best wall time of five `bsc run`s with the world.
 run_seconds() {
-  python3 - "${PIN[@]}" "$BSC" run --cycles "$1" "${W[@]}" <<'PY'
-import subprocess, sys, time
-best = None
-for _ in range(5):
-    t = time.perf_counter()
-    subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, check=True)
-    t = time.perf_counter() - t
-    best = t if best is None else min(best, t)
-print("%.4f" % best)
-PY
+  python3 best_time.py 5 "${PIN[@]}" "$BSC" run --cycles "$1" "${W[@]}"
 }
 live=$(diff_s "$(run_seconds 100000)" "$(run_seconds 1)")
 one=$(seconds "$OUT/run1.txt" "${W[@]}")

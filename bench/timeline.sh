@@ -48,18 +48,7 @@ g++ -std=c++20 -O2 -fPIC -shared -I../examples/soccer -I/usr/include/eigen3 \
   ../examples/soccer/world_library.cpp ../examples/soccer/SoccerWorld.cpp -o "$OUT/world.so"
 
 # best CMD...: the best wall time of three runs of CMD.
-best() {
-  python3 - "$@" <<'PY'
-import subprocess, sys, time
-best = None
-for _ in range(3):
-    t = time.perf_counter()
-    subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, check=True)
-    t = time.perf_counter() - t
-    best = t if best is None else min(best, t)
-print("%.3f" % best)
-PY
-}
+best() { python3 best_time.py 3 "$@"; }
 per_1000() { awk -v b="$(stat -c %s "$1")" -v n=$CYCLES 'BEGIN { printf "%.1f", b / 1024 / (n / 1000) }'; }
 
 # measure NAME ENTRY FILE: the figures of one behavior.

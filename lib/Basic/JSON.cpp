@@ -7,6 +7,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "bsc/Basic/JSON.h"
+#include "bsc/Basic/Diagnostic.h"
 #include "llvm/Support/raw_ostream.h"
 
 using namespace bsc;
@@ -90,4 +91,17 @@ llvm::Expected<llvm::json::Value> bsc::parseJSON(llvm::StringRef Text) {
   if (!V)
     return convertParseError(Text, V.takeError());
   return V;
+}
+
+std::optional<llvm::json::Value> bsc::parseJSONLine(DiagnosticEngine &Diags,
+                                                    llvm::StringRef Line) {
+  llvm::Expected<llvm::json::Value> V = parseJSON(Line);
+  if (V)
+    return std::move(*V);
+  llvm::handleAllErrors(V.takeError(), [&](const JSONReadError &E) {
+    Diags.report(llvm::SMLoc::getFromPointer(Line.data() + E.Offset),
+                 diag::err_replay_json)
+        << E.Message;
+  });
+  return std::nullopt;
 }

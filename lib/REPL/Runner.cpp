@@ -268,14 +268,8 @@ bool readReplay(Compilation &C, const LoadedBehavior &L, llvm::StringRef Path,
     llvm::SMLoc Loc = llvm::SMLoc::getFromPointer(R.data());
     if (R.trim().empty())
       continue;
-    llvm::Expected<llvm::json::Value> V = parseJSON(R);
+    std::optional<llvm::json::Value> V = parseJSONLine(C.Diags, R);
     if (!V) {
-      // The caret goes under the byte the error is at.
-      llvm::handleAllErrors(V.takeError(), [&](const JSONReadError &E) {
-        C.Diags.report(llvm::SMLoc::getFromPointer(R.data() + E.Offset),
-                       diag::err_replay_json)
-            << E.Message;
-      });
       OK = false;
       continue;
     }

@@ -195,16 +195,9 @@ bool timeline::readRecordingBuffer(Compilation &C, unsigned BufferID,
     if (Raw.trim().empty())
       continue;
     llvm::SMLoc Loc = llvm::SMLoc::getFromPointer(Raw.data());
-    llvm::Expected<llvm::json::Value> V = parseJSON(Raw);
-    if (!V) {
-      // The caret goes under the byte the error is at.
-      llvm::handleAllErrors(V.takeError(), [&](const JSONReadError &E) {
-        C.Diags.report(llvm::SMLoc::getFromPointer(Raw.data() + E.Offset),
-                       diag::err_replay_json)
-            << E.Message;
-      });
+    std::optional<llvm::json::Value> V = parseJSONLine(C.Diags, Raw);
+    if (!V)
       return false;
-    }
     uint32_t Cycle = 0;
     std::vector<CycleTask> Tasks;
     if (!LineReader(C, Loc).read(*V, Previous, Cycle, Tasks))

@@ -17,6 +17,7 @@
 #include "llvm/ADT/StringRef.h"
 #include "llvm/Support/Error.h"
 #include "llvm/Support/JSON.h"
+#include <optional>
 #include <string>
 
 namespace bsc {
@@ -56,6 +57,13 @@ public:
 /// arrays and objects deeper than MaxJSONDepth, gives a JSONReadError (and
 /// no other kind of error).
 llvm::Expected<llvm::json::Value> parseJSON(llvm::StringRef Text);
+
+class DiagnosticEngine;
+/// parseJSON of one line of a recording held in the engine's SourceMgr;
+/// an error is reported there (`invalid JSON: ...`, the caret under the
+/// byte) and gives std::nullopt.
+std::optional<llvm::json::Value> parseJSONLine(DiagnosticEngine &Diags,
+                                               llvm::StringRef Line);
 
 } // namespace bsc
 
