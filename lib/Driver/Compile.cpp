@@ -236,9 +236,8 @@ bool CompileJob::writeText(bool Header) {
   if (!Out)
     return false;
   if (Header)
-    writeBehaviorHeader(C.Checked, Layout, CGOpts.BehaviorName,
-                        TM->getTargetTriple(), TM->createDataLayout(),
-                        Out->os());
+    writeBehaviorHeader(Layout, CGOpts.BehaviorName, TM->getTargetTriple(),
+                        TM->createDataLayout(), Out->os());
   else
     M->print(Out->os(), nullptr);
   Out->keep();

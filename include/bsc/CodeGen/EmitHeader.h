@@ -16,9 +16,9 @@
 namespace bsc {
 
 /// Writes the header of behavior `Name` compiled for `T` with layout `L`.
-void writeBehaviorHeader(const Behavior &B, const BehaviorLayout &L,
-                         llvm::StringRef Name, const llvm::Triple &T,
-                         const llvm::DataLayout &DL, llvm::raw_ostream &OS);
+void writeBehaviorHeader(const BehaviorLayout &L, llvm::StringRef Name,
+                         const llvm::Triple &T, const llvm::DataLayout &DL,
+                         llvm::raw_ostream &OS);
 
 } // namespace bsc
 

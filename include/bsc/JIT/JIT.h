@@ -148,14 +148,6 @@ private:
   bool ProcessSymbols = false; ///< The process-symbol generator is added.
 };
 
-/// A behavior running in the JIT: its state and its `input` and `output`
-/// objects, advanced one cycle at a time by `bsc run` or the REPL. Each cycle
-/// runs under a guard: a watchdog stops a cycle that runs longer than its
-/// limit (a loop without `yield`), and a signal raised in registered C++
-/// (SIGSEGV, ...) ends the cycle instead of the process.
-/// Either leaves the state as it was at that moment; the driver reports it
-/// and stops. The guard uses SIGALRM and the fault signals while the session
-/// lives, and puts the previous handlers back at its end.
 /// The hooks of a world library (`bsc run --world LIB.so`, docs/repl.md
 /// "A closed loop"): C functions the library exports. Init's result
 /// becomes the state's user pointer (bs_state_set_user); Begin runs before
@@ -169,6 +161,14 @@ struct WorldHooks {
   void (*Exit)(void *User) = nullptr;
 };
 
+/// A behavior running in the JIT: its state and its `input` and `output`
+/// objects, advanced one cycle at a time by `bsc run` or the REPL. Each cycle
+/// runs under a guard: a watchdog stops a cycle that runs longer than its
+/// limit (a loop without `yield`), and a signal raised in registered C++
+/// (SIGSEGV, ...) ends the cycle instead of the process.
+/// Either leaves the state as it was at that moment; the driver reports it
+/// and stops. The guard uses SIGALRM and the fault signals while the session
+/// lives, and puts the previous handlers back at its end.
 class BehaviorSession {
 public:
   /// Initialises a state for the behavior whose info struct is `InfoSymbol`

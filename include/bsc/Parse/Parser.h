@@ -1,4 +1,15 @@
 //===- Parser.h - b-script source to AST -----------------------*- C++ -*-===//
+//
+// The second phase: a module's text becomes its syntax tree (bsc/AST).
+// The lexer (Lexer.h) turns indentation into INDENT/DEDENT tokens, so the
+// parser is an ordinary recursive descent over tokens, one function per
+// construct (lib/Parse: ParseStmt.cpp, ParseExpr.cpp; ParseHabits.cpp
+// recognises habits from other languages and says what b-script writes
+// instead). It never fails: an error is reported and its part of the tree
+// becomes an ErrorStmt or ErrorExpr, so Sema and the language tools see
+// every module whole. Names are not resolved here (that is Sema).
+//
+//===----------------------------------------------------------------------===//
 #ifndef BSC_PARSE_PARSER_H
 #define BSC_PARSE_PARSER_H
 

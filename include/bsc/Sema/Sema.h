@@ -1,4 +1,16 @@
 //===- Sema.h - checking a behavior ----------------------------*- C++ -*-===//
+//
+// The third phase: the parsed modules of a behavior, checked together
+// (whole program). Sema resolves names across modules and the registered
+// C++ (bsc/Bind), types every expression, enforces the task rules of
+// docs/language.md (a task is called, not stored; its state is read with
+// taskState; no recursion through tasks), folds constants, and records what
+// later phases need in a Behavior: the tasks, the call graph, the entry.
+// Errors go to the DiagnosticEngine; a behavior with errors is not handed
+// to CodeGen. The REPL's lines are checked by the same code (SemaRepl.cpp)
+// against the loaded behavior.
+//
+//===----------------------------------------------------------------------===//
 #ifndef BSC_SEMA_SEMA_H
 #define BSC_SEMA_SEMA_H
 

@@ -5,7 +5,8 @@
 // lib/Timeline/CMakeLists.txt) into one strict-mode function: they share
 // one scope of plain function declarations and top-level consts.
 //
-// The data (format 1, see the spec) is read from the JSON script element.
+// The data (format 1: docs/repl.md, "The timeline's data") is read from the
+// JSON script element.
 // Everything drawn over cycles goes onto canvases, painted per pixel column
 // with a binary search to the interval under the column, so drawing costs
 // O(pixels * log n) whatever the number of cycles. Each canvas keeps a "base"
