@@ -108,6 +108,8 @@ struct DescriptorSym {
   std::string SectionName;
 };
 
+class DescriptorDecoder;
+
 class ObjectReader {
 public:
   ObjectReader(const llvm::object::ELFObjectFileBase &Obj, llvm::StringRef File,
@@ -120,6 +122,7 @@ public:
   void readModules(std::vector<BoundModule> &Out);
 
 private:
+  friend class DescriptorDecoder; // DescriptorDecoder.cpp
   const llvm::object::ELFObjectFileBase &Obj;
   std::string File;
   BindErrors &Errs;
