@@ -352,8 +352,7 @@ std::optional<Repl::Compiled> Repl::compileLine(llvm::StringRef Text) {
   return R;
 }
 
-std::string Repl::formatValue(const Type *T, const llvm::json::Value &V) {
-  // An enum's value by name, unquoted, as the script writes it.
+std::string repl::formatValue(const Type *T, const llvm::json::Value &V) {
   if (T->isEnum())
     if (std::optional<llvm::StringRef> Name = V.getAsString())
       return Name->str();

@@ -55,6 +55,10 @@ struct Breakpoint {
   Probe If;
 };
 
+/// A value as the REPL prints it: an enum's value by name, unquoted, as
+/// the script writes it; anything else as JSON.
+std::string formatValue(const Type *T, const llvm::json::Value &V);
+
 /// Splits `EXPR [N]` (`:until`, `:history`): a number at the end is N
 /// unless the expression needs it (`x == 2` ends in an operand; `x 100`
 /// does not). N is empty without one.
@@ -99,7 +103,6 @@ private:
   void destroySlot(Slot &S);
   /// The value as the REPL prints it: `(int) 3`.
   std::string describe(const Type *T, const void *Addr);
-  std::string formatValue(const Type *T, const llvm::json::Value &V);
 
   // Commands: each takes the text after its name and the place of the line
   // (for carets).

@@ -132,6 +132,156 @@ std::string describeState(const debug::DebugTables::Task &T,
   return getStateName(A.State).value_or("state " + std::to_string(A.State));
 }
 
+/// Prints what `:why` shows of one cycle's log: per task its conditions,
+/// each with its operands, and where the call ended.
+class WhyPrinter {
+public:
+  WhyPrinter(const LoadedBehavior &L, debug::ValueIO &Values, CycleLog &Log,
+             llvm::raw_ostream &OS)
+      : L(L), Values(Values), Log(Log), OS(OS) {}
+
+  /// The entry func is -1; tasks by their index.
+  std::string taskName(int T) const {
+    return T < 0 ? L.Entry->getName().Name.str() : L.Tables.Tasks[T].ShortName;
+  }
+
+  void printTask(int T, const TaskLog &TL) {
+    OS << "  " << taskName(T);
+    if (TL.Calls > 1)
+      OS << " (called " << TL.Calls << " times; the conditions of all calls)";
+    OS << ":\n";
+    // Each condition once, in the order of first evaluation.
+    std::vector<unsigned> Order;
+    std::map<unsigned, std::vector<const uint8_t *>> BySite;
+    for (auto [Number, Record] : TL.Conditions) {
+      std::vector<const uint8_t *> &Rs = BySite[Number];
+      if (Rs.empty())
+        Order.push_back(Number);
+      Rs.push_back(Record);
+    }
+    if (Order.empty())
+      OS << "    no condition evaluated\n";
+    const CallableDecl *Owner = T < 0 ? L.Entry : L.Layout.Tasks[T].Decl;
+    for (unsigned Number : Order)
+      printCondition(Owner, Number, BySite[Number]);
+    if (T >= 0)
+      printCallEnd(L.Tables.Tasks[T], TL);
+  }
+
+private:
+  static bool isTrue(const ExplainSite &Site, const uint8_t *Record) {
+    return Record[Site.Operands[0].Offset] != 0;
+  }
+
+  std::string formatOperand(const ExplainSite::Operand &O,
+                            const uint8_t *Record) {
+    const uint8_t *V = Record + O.Offset;
+    if (O.Ty->isTaskState())
+      return describeTaskState(readWord<int32_t>(V));
+    return formatValue(O.Ty, Values.read(O.Ty, V));
+  }
+
+  /// One condition: its line (and the func it is in, if not `Owner`), its
+  /// last value and each operand that ran, under the operand that encloses
+  /// it.
+  void printCondition(const CallableDecl *Owner, unsigned Number,
+                      llvm::ArrayRef<const uint8_t *> Records) {
+    const ExplainSite &Site = L.Layout.ExplainSites[Number - 1];
+    const uint8_t *Last = Records.back();
+    OS << "    " << Site.File << ":" << Site.Line;
+    if (Site.In != Owner)
+      OS << " (" << Site.In->getName().Name << ")";
+    OS << ": " << (Site.Kind == ExplainSite::For ? "for" : "if") << " ("
+       << Site.Operands[0].Text << ") is "
+       << (isTrue(Site, Last) ? "true" : "false");
+    if (Records.size() > 1)
+      printEvaluations(Site, Records);
+    OS << "\n";
+    printOperands(Site, Last);
+  }
+
+  /// `, the last of 3 evaluations (1 true, 2 false)`.
+  void printEvaluations(const ExplainSite &Site,
+                        llvm::ArrayRef<const uint8_t *> Records) {
+    unsigned True = llvm::count_if(
+        Records, [&](const uint8_t *R) { return isTrue(Site, R); });
+    OS << ", the last of " << Records.size()
+       << (Log.Overflow ? " recorded" : "") << " evaluations (";
+    if (True == 0 || True == Records.size())
+      OS << (True ? "all true" : "all false");
+    else
+      OS << True << " true, " << Records.size() - True << " false";
+    OS << ")";
+  }
+
+  void printOperands(const ExplainSite &Site, const uint8_t *Last) {
+    uint64_t Mask = readWord<uint64_t>(Last + 8);
+    std::vector<unsigned> Depth(Site.Operands.size(), 0);
+    for (size_t I = 1; I < Site.Operands.size(); ++I) {
+      const ExplainSite::Operand &O = Site.Operands[I];
+      // Under an operand that did not run, nothing ran.
+      if (O.Parent > 0 && !(Mask & (uint64_t(1) << O.Parent)))
+        continue;
+      Depth[I] = O.Parent > 0 ? Depth[O.Parent] + 1 : 0;
+      OS << std::string(6 + 2 * Depth[I], ' ') << O.Text;
+      if (Mask & (uint64_t(1) << I))
+        OS << " = " << formatOperand(O, Last) << "\n";
+      else
+        OS << ": not evaluated\n";
+    }
+  }
+
+  /// Where the task's call ended: the yield it stopped at, or its end.
+  void printCallEnd(const debug::DebugTables::Task &Info, const TaskLog &TL) {
+    if (TL.Open || !TL.End) {
+      OS << "    "
+         << (Log.Overflow ? "the log was full before the call ended"
+                          : "the cycle was stopped during the call")
+         << "\n";
+      return;
+    }
+    const debug::Activation &A = *TL.End;
+    std::string Yield;
+    if (A.Resume > 0 && A.Resume <= Info.YieldLines.size())
+      Yield = Info.File + ":" + std::to_string(Info.YieldLines[A.Resume - 1]);
+    if (A.State > 0)
+      OS << "    stopped at the yield on " << Yield << ": "
+         << describeState(Info, A) << "\n";
+    else if (!Yield.empty())
+      OS << "    ended at the yield on " << Yield << ": "
+         << describeState(Info, A) << "\n";
+    else
+      OS << "    ended: " << describeState(Info, A) << "\n";
+  }
+
+  const LoadedBehavior &L;
+  debug::ValueIO &Values;
+  CycleLog &Log;
+  llvm::raw_ostream &OS;
+};
+
+/// The order `:why` prints the tasks of a cycle in: the entry func's own
+/// conditions, then the tasks as `:tasks` orders them (the hierarchy,
+/// depth first), then any the hierarchy lacks.
+std::vector<int> whyOrder(const CycleLog &Log, const debug::ActiveTree &Tree) {
+  std::vector<int> Order;
+  if (Log.Tasks.count(-1))
+    Order.push_back(-1);
+  std::function<void(unsigned)> Visit = [&](unsigned N) {
+    int T = int(Tree.Nodes[N].Record.Task);
+    if (Log.Tasks.count(T) && !llvm::is_contained(Order, T))
+      Order.push_back(T);
+    for (unsigned Child : Tree.Nodes[N].Children)
+      Visit(Child);
+  };
+  for (unsigned R : Tree.Roots)
+    Visit(R);
+  for (const auto &[T, TL] : Log.Tasks)
+    if (!llvm::is_contained(Order, T))
+      Order.push_back(T);
+  return Order;
+}
+
 } // namespace
 
 void Repl::cmdWhy(llvm::StringRef Args, llvm::SMLoc Loc) {
@@ -164,139 +314,24 @@ void Repl::cmdWhy(llvm::StringRef Args, llvm::SMLoc Loc) {
   }
   CycleLog Log = decodeLog(L->Layout, *Header,
                            reinterpret_cast<const uint8_t *>(Header + 1));
-
-  auto TaskName = [&](int T) -> std::string {
-    return T < 0 ? L->Entry->getName().Name.str()
-                 : L->Tables.Tasks[T].ShortName;
-  };
-  auto FormatOperand = [&](const ExplainSite::Operand &O,
-                           const uint8_t *Record) {
-    const uint8_t *V = Record + O.Offset;
-    if (O.Ty->isTaskState())
-      return describeTaskState(readWord<int32_t>(V));
-    return formatValue(O.Ty, Values->read(O.Ty, V));
-  };
-  auto IsTrue = [](const ExplainSite &Site, const uint8_t *Record) {
-    return Record[Site.Operands[0].Offset] != 0;
-  };
-
-  // One condition: its line (and the func it is in, if not `Owner`), its
-  // last value and each operand that ran, under the operand that encloses
-  // it.
-  auto PrintCondition = [&](const CallableDecl *Owner, unsigned Number,
-                            llvm::ArrayRef<const uint8_t *> Records) {
-    const ExplainSite &Site = L->Layout.ExplainSites[Number - 1];
-    const uint8_t *Last = Records.back();
-    OS << "    " << Site.File << ":" << Site.Line;
-    if (Site.In != Owner)
-      OS << " (" << Site.In->getName().Name << ")";
-    OS << ": " << (Site.Kind == ExplainSite::For ? "for" : "if") << " ("
-       << Site.Operands[0].Text << ") is "
-       << (IsTrue(Site, Last) ? "true" : "false");
-    if (Records.size() > 1) {
-      unsigned True = llvm::count_if(
-          Records, [&](const uint8_t *R) { return IsTrue(Site, R); });
-      OS << ", the last of " << Records.size()
-         << (Log.Overflow ? " recorded" : "") << " evaluations (";
-      if (True == 0 || True == Records.size())
-        OS << (True ? "all true" : "all false");
-      else
-        OS << True << " true, " << Records.size() - True << " false";
-      OS << ")";
-    }
-    OS << "\n";
-    uint64_t Mask = readWord<uint64_t>(Last + 8);
-    std::vector<unsigned> Depth(Site.Operands.size(), 0);
-    for (size_t I = 1; I < Site.Operands.size(); ++I) {
-      const ExplainSite::Operand &O = Site.Operands[I];
-      // Under an operand that did not run, nothing ran.
-      if (O.Parent > 0 && !(Mask & (uint64_t(1) << O.Parent)))
-        continue;
-      Depth[I] = O.Parent > 0 ? Depth[O.Parent] + 1 : 0;
-      OS << std::string(6 + 2 * Depth[I], ' ') << O.Text;
-      if (Mask & (uint64_t(1) << I))
-        OS << " = " << FormatOperand(O, Last) << "\n";
-      else
-        OS << ": not evaluated\n";
-    }
-  };
-
-  auto PrintTask = [&](int T, const TaskLog &TL) {
-    OS << "  " << TaskName(T);
-    if (TL.Calls > 1)
-      OS << " (called " << TL.Calls << " times; the conditions of all calls)";
-    OS << ":\n";
-    // Each condition once, in the order of first evaluation.
-    std::vector<unsigned> Order;
-    std::map<unsigned, std::vector<const uint8_t *>> BySite;
-    for (auto [Number, Record] : TL.Conditions) {
-      std::vector<const uint8_t *> &Rs = BySite[Number];
-      if (Rs.empty())
-        Order.push_back(Number);
-      Rs.push_back(Record);
-    }
-    if (Order.empty())
-      OS << "    no condition evaluated\n";
-    const CallableDecl *Owner = T < 0 ? L->Entry : L->Layout.Tasks[T].Decl;
-    for (unsigned Number : Order)
-      PrintCondition(Owner, Number, BySite[Number]);
-    if (T < 0)
-      return;
-    const debug::DebugTables::Task &Info = L->Tables.Tasks[T];
-    if (TL.Open || !TL.End) {
-      OS << "    "
-         << (Log.Overflow ? "the log was full before the call ended"
-                          : "the cycle was stopped during the call")
-         << "\n";
-      return;
-    }
-    const debug::Activation &A = *TL.End;
-    std::string Yield;
-    if (A.Resume > 0 && A.Resume <= Info.YieldLines.size())
-      Yield = Info.File + ":" + std::to_string(Info.YieldLines[A.Resume - 1]);
-    if (A.State > 0)
-      OS << "    stopped at the yield on " << Yield << ": "
-         << describeState(Info, A) << "\n";
-    else if (!Yield.empty())
-      OS << "    ended at the yield on " << Yield << ": "
-         << describeState(Info, A) << "\n";
-    else
-      OS << "    ended: " << describeState(Info, A) << "\n";
-  };
-
+  WhyPrinter Why(*L, *Values, Log, OS);
   if (Wanted) {
     auto It = Log.Tasks.find(*Wanted);
     if (It == Log.Tasks.end() || (*Wanted >= 0 && !It->second.Calls)) {
-      OS << TaskName(*Wanted) << " did not run in cycle " << Cycle << "\n";
+      OS << Why.taskName(*Wanted) << " did not run in cycle " << Cycle << "\n";
       return;
     }
     OS << "cycle " << Cycle << ":\n";
-    PrintTask(*Wanted, It->second);
+    Why.printTask(*Wanted, It->second);
   } else {
     OS << "cycle " << Cycle << ":\n";
-    // The entry func's own conditions, then the tasks as `:tasks` orders
-    // them (the hierarchy, depth first), then any the hierarchy lacks.
-    std::vector<int> Order;
-    if (Log.Tasks.count(-1))
-      Order.push_back(-1);
-    debug::ActiveTree Tree = debug::buildActiveTree(
-        L->Tables, debug::takeSnapshot(S->getState(), &S->getInfo()));
-    std::function<void(unsigned)> Visit = [&](unsigned N) {
-      int T = int(Tree.Nodes[N].Record.Task);
-      if (Log.Tasks.count(T) && !llvm::is_contained(Order, T))
-        Order.push_back(T);
-      for (unsigned Child : Tree.Nodes[N].Children)
-        Visit(Child);
-    };
-    for (unsigned R : Tree.Roots)
-      Visit(R);
-    for (const auto &[T, TL] : Log.Tasks)
-      if (!llvm::is_contained(Order, T))
-        Order.push_back(T);
+    std::vector<int> Order = whyOrder(
+        Log, debug::buildActiveTree(L->Tables, debug::takeSnapshot(
+                                                   S->getState(), &S->getInfo())));
     if (Order.empty())
       OS << "  no task ran and no condition was evaluated\n";
     for (int T : Order)
-      PrintTask(T, Log.Tasks[T]);
+      Why.printTask(T, Log.Tasks[T]);
   }
   if (Log.Overflow)
     OS << "the log of cycle " << Cycle << " was full: " << Log.Overflow
