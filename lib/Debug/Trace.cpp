@@ -165,6 +165,117 @@ static llvm::Error badTables(const llvm::Twine &Why) {
                                  "damaged debug tables: " + Why);
 }
 
+/// A task's yields: lines, named states (optional: tables of older objects
+/// have none), constant states or null, and the state word when a yield
+/// computes its state.
+static llvm::Error parseYields(const llvm::json::Object &O,
+                               const llvm::json::Array &Yields,
+                               const DebugTables &T, size_t NumTasks,
+                               DebugTables::Task &Task) {
+  for (const llvm::json::Value &Y : Yields) {
+    std::optional<int64_t> L = Y.getAsInteger();
+    if (!L)
+      return badTables("a yield line is not a number");
+    Task.YieldLines.push_back(*L);
+  }
+  if (const llvm::json::Array *States = O.getArray("yieldStates")) {
+    if (States->size() != Yields.size())
+      return badTables("the yield states do not match the yields");
+    for (const llvm::json::Value &S : *States) {
+      std::optional<llvm::StringRef> Str = S.getAsString();
+      if (!Str)
+        return badTables("a yield state is not a string");
+      Task.YieldStates.push_back(Str->str());
+    }
+  }
+  const llvm::json::Array *Values = O.getArray("yieldValues");
+  if (!Values || Values->size() != Yields.size())
+    return badTables("the yield values do not match the yields");
+  bool Computed = false;
+  for (const llvm::json::Value &V : *Values) {
+    std::optional<int64_t> I = V.getAsInteger();
+    if (I ? *I != int32_t(*I) : V.kind() != llvm::json::Value::Null)
+      return badTables("a yield value is neither a task state nor null");
+    Computed |= !I;
+    Task.YieldValues.push_back(I ? std::optional<int32_t>(*I) : std::nullopt);
+  }
+  if (std::optional<int64_t> Word = O.getInteger("stateWord")) {
+    if (*Word < int64_t(NumTasks * T.SlotBytes) || *Word % 4 != 0 ||
+        *Word + 4 > int64_t(T.RecordSize))
+      return badTables("a state word is outside the record");
+    Task.StateWord = *Word;
+  }
+  if (Computed && !Task.StateWord)
+    return badTables("a task yields computed states but has no state word");
+  return llvm::Error::success();
+}
+
+/// One entry of the task list; `T` has the record's layout already.
+static llvm::Expected<DebugTables::Task>
+parseTask(const llvm::json::Value &V, const DebugTables &T, size_t NumTasks) {
+  const llvm::json::Object *O = V.getAsObject();
+  if (!O)
+    return badTables("a task is not an object");
+  DebugTables::Task Task;
+  auto Name = O->getString("name"), Short = O->getString("short"),
+       File = O->getString("file");
+  auto Line = O->getInteger("line");
+  const llvm::json::Array *Yields = O->getArray("yields"),
+                          *Callers = O->getArray("callers"),
+                          *Fields = O->getArray("fields");
+  if (!Name || !Short || !File || !Line || !Yields || !Callers || !Fields)
+    return badTables("a task lacks a member");
+  Task.Name = Name->str();
+  Task.ShortName = Short->str();
+  Task.File = File->str();
+  Task.Line = *Line;
+  if (llvm::Error E = parseYields(*O, *Yields, T, NumTasks, Task))
+    return std::move(E);
+  for (const llvm::json::Value &C : *Callers) {
+    std::optional<int64_t> I = C.getAsInteger();
+    if (!I || *I < 0 || size_t(*I) >= NumTasks)
+      return badTables("a caller is not a task");
+    Task.Callers.push_back(*I);
+  }
+  for (const llvm::json::Value &F : *Fields) {
+    const llvm::json::Object *FO = F.getAsObject();
+    auto FName = FO ? FO->getString("name") : std::nullopt;
+    auto FType = FO ? FO->getString("type") : std::nullopt;
+    if (!FName || !FType)
+      return badTables("a field lacks a name or type");
+    Task.Fields.push_back({FName->str(), FType->str(),
+                           FO->getBoolean("param").value_or(false)});
+  }
+  return Task;
+}
+
+/// `--cycle-budget`: the passes, the loops, the word naming the loop that
+/// ran out.
+static llvm::Error parseBudget(const llvm::json::Object &Budget,
+                               DebugTables &T) {
+  std::optional<int64_t> Passes = Budget.getInteger("passes");
+  const llvm::json::Array *Loops = Budget.getArray("loops");
+  if (!Passes || *Passes <= 0 || *Passes > int64_t(UINT32_MAX) || !Loops)
+    return badTables("no valid budget");
+  T.Budget = *Passes;
+  for (const llvm::json::Value &V : *Loops) {
+    const llvm::json::Object *O = V.getAsObject();
+    auto Owner = O ? O->getString("owner") : std::nullopt;
+    auto File = O ? O->getString("file") : std::nullopt;
+    auto Line = O ? O->getInteger("line") : std::nullopt;
+    if (!Owner || !File || !Line)
+      return badTables("a loop lacks its owner, file or line");
+    T.Loops.push_back({Owner->str(), File->str(), unsigned(*Line)});
+  }
+  if (std::optional<int64_t> Word = Budget.getInteger("word")) {
+    if (*Word < int64_t(T.Tasks.size() * T.SlotBytes) || *Word % 4 != 0 ||
+        *Word + 4 > int64_t(T.RecordSize))
+      return badTables("the budget word is outside the record");
+    T.BudgetWord = *Word;
+  }
+  return llvm::Error::success();
+}
+
 llvm::Expected<DebugTables> debug::parseDebugTables(llvm::StringRef Text) {
   llvm::Expected<llvm::json::Value> Parsed = parseJSON(Text);
   if (!Parsed)
@@ -191,97 +302,14 @@ llvm::Expected<DebugTables> debug::parseDebugTables(llvm::StringRef Text) {
   T.RecordSize = *Size;
   T.SlotBytes = *SlotBytes;
   for (const llvm::json::Value &V : *Tasks) {
-    const llvm::json::Object *O = V.getAsObject();
-    if (!O)
-      return badTables("a task is not an object");
-    DebugTables::Task Task;
-    auto Name = O->getString("name"), Short = O->getString("short"),
-         File = O->getString("file");
-    auto Line = O->getInteger("line");
-    const llvm::json::Array *Yields = O->getArray("yields"),
-                            *Callers = O->getArray("callers"),
-                            *Fields = O->getArray("fields");
-    if (!Name || !Short || !File || !Line || !Yields || !Callers || !Fields)
-      return badTables("a task lacks a member");
-    Task.Name = Name->str();
-    Task.ShortName = Short->str();
-    Task.File = File->str();
-    Task.Line = *Line;
-    for (const llvm::json::Value &Y : *Yields) {
-      std::optional<int64_t> L = Y.getAsInteger();
-      if (!L)
-        return badTables("a yield line is not a number");
-      Task.YieldLines.push_back(*L);
-    }
-    // Optional: tables of older objects have no state names.
-    if (const llvm::json::Array *States = O->getArray("yieldStates")) {
-      if (States->size() != Yields->size())
-        return badTables("the yield states do not match the yields");
-      for (const llvm::json::Value &S : *States) {
-        std::optional<llvm::StringRef> Str = S.getAsString();
-        if (!Str)
-          return badTables("a yield state is not a string");
-        Task.YieldStates.push_back(Str->str());
-      }
-    }
-    const llvm::json::Array *Values = O->getArray("yieldValues");
-    if (!Values || Values->size() != Yields->size())
-      return badTables("the yield values do not match the yields");
-    bool Computed = false;
-    for (const llvm::json::Value &V : *Values) {
-      std::optional<int64_t> I = V.getAsInteger();
-      if (I ? *I != int32_t(*I) : V.kind() != llvm::json::Value::Null)
-        return badTables("a yield value is neither a task state nor null");
-      Computed |= !I;
-      Task.YieldValues.push_back(I ? std::optional<int32_t>(*I) : std::nullopt);
-    }
-    if (std::optional<int64_t> Word = O->getInteger("stateWord")) {
-      if (*Word < int64_t(Tasks->size() * T.SlotBytes) ||
-          *Word % 4 != 0 || *Word + 4 > int64_t(T.RecordSize))
-        return badTables("a state word is outside the record");
-      Task.StateWord = *Word;
-    }
-    if (Computed && !Task.StateWord)
-      return badTables("a task yields computed states but has no state word");
-    for (const llvm::json::Value &C : *Callers) {
-      std::optional<int64_t> I = C.getAsInteger();
-      if (!I || *I < 0 || size_t(*I) >= Tasks->size())
-        return badTables("a caller is not a task");
-      Task.Callers.push_back(*I);
-    }
-    for (const llvm::json::Value &F : *Fields) {
-      const llvm::json::Object *FO = F.getAsObject();
-      auto FName = FO ? FO->getString("name") : std::nullopt;
-      auto FType = FO ? FO->getString("type") : std::nullopt;
-      if (!FName || !FType)
-        return badTables("a field lacks a name or type");
-      Task.Fields.push_back({FName->str(), FType->str(),
-                             FO->getBoolean("param").value_or(false)});
-    }
-    T.Tasks.push_back(std::move(Task));
+    llvm::Expected<DebugTables::Task> Task = parseTask(V, T, Tasks->size());
+    if (!Task)
+      return Task.takeError();
+    T.Tasks.push_back(std::move(*Task));
   }
-  if (const llvm::json::Object *Budget = Root->getObject("budget")) {
-    std::optional<int64_t> Passes = Budget->getInteger("passes");
-    const llvm::json::Array *Loops = Budget->getArray("loops");
-    if (!Passes || *Passes <= 0 || *Passes > int64_t(UINT32_MAX) || !Loops)
-      return badTables("no valid budget");
-    T.Budget = *Passes;
-    for (const llvm::json::Value &V : *Loops) {
-      const llvm::json::Object *O = V.getAsObject();
-      auto Owner = O ? O->getString("owner") : std::nullopt;
-      auto File = O ? O->getString("file") : std::nullopt;
-      auto Line = O ? O->getInteger("line") : std::nullopt;
-      if (!Owner || !File || !Line)
-        return badTables("a loop lacks its owner, file or line");
-      T.Loops.push_back({Owner->str(), File->str(), unsigned(*Line)});
-    }
-    if (std::optional<int64_t> Word = Budget->getInteger("word")) {
-      if (*Word < int64_t(T.Tasks.size() * T.SlotBytes) || *Word % 4 != 0 ||
-          *Word + 4 > int64_t(T.RecordSize))
-        return badTables("the budget word is outside the record");
-      T.BudgetWord = *Word;
-    }
-  }
+  if (const llvm::json::Object *Budget = Root->getObject("budget"))
+    if (llvm::Error E = parseBudget(*Budget, T))
+      return std::move(E);
   return T;
 }
 
