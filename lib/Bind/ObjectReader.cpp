@@ -57,104 +57,150 @@ ObjectReader::locate(uint64_t Addr) const {
 /// library is an error, never a read out of bounds). The relocation
 /// sections are the allocated SHT_REL/RELA/RELR sections: what
 /// ELFObjectFile::dynamic_relocation_sections finds through the dynamic
-/// table, whose entries it does not check.
-template <class ELFT>
-void ObjectReader::indexDynamic(const ELFObjectFile<ELFT> &EObj) {
-  const ELFFile<ELFT> &EF = EObj.getELFFile();
-  auto Damaged = [&](const Twine &What, Error E) {
-    DynDamaged = true;
-    Errs.add(File, "", diag::err_bind_damaged,
-             {what().str(), (What + ": " + toString(std::move(E))).str()});
-  };
-  Expected<typename ELFT::ShdrRange> Secs = EF.sections();
-  if (!Secs)
-    return Damaged("section table", Secs.takeError());
-  auto SectionName = [&](const typename ELFT::Shdr &S) -> std::string {
+/// table, whose entries it does not check. Fills the reader's Sections,
+/// SymbolAt, DynDescriptors and RelocsBySection.
+template <class ELFT> class bind::DynamicIndexer {
+public:
+  DynamicIndexer(ObjectReader &R, const ELFFile<ELFT> &EF) : R(R), EF(EF) {}
+
+  void run() {
+    Expected<typename ELFT::ShdrRange> Sections = EF.sections();
+    if (!Sections)
+      return damaged("section table", Sections.takeError());
+    Secs = *Sections;
+    for (const auto &S : Secs)
+      if ((S.sh_flags & ELF::SHF_ALLOC) && S.sh_size)
+        R.Sections.push_back({S.sh_addr, S.sh_size, uint64_t(&S - Secs.begin())});
+    // Symbols: .dynsym (what is exported) and .symtab when not stripped.
+    for (const auto &SymSec : Secs)
+      if (SymSec.sh_type == ELF::SHT_DYNSYM || SymSec.sh_type == ELF::SHT_SYMTAB)
+        indexSymbols(SymSec);
+    markExported();
+    for (const auto &RelSec : Secs)
+      if (RelSec.sh_flags & ELF::SHF_ALLOC)
+        indexRelocations(RelSec);
+  }
+
+private:
+  void damaged(const Twine &What, Error E) {
+    R.DynDamaged = true;
+    R.Errs.add(R.File, "", diag::err_bind_damaged,
+               {R.what().str(), (What + ": " + toString(std::move(E))).str()});
+  }
+
+  std::string sectionName(const typename ELFT::Shdr &S) {
     Expected<StringRef> N = EF.getSectionName(S);
     if (N)
       return N->str();
     consumeError(N.takeError());
     return "?";
-  };
-  for (const auto &S : *Secs)
-    if ((S.sh_flags & ELF::SHF_ALLOC) && S.sh_size)
-      Sections.push_back({S.sh_addr, S.sh_size, uint64_t(&S - Secs->begin())});
+  }
 
-  // Symbols: .dynsym (what is exported) and .symtab when not stripped.
-  std::vector<Pointee> DynSyms;
-  StringMap<DescriptorSym> Descriptors;
-  for (const auto &SymSec : *Secs) {
+  void indexSymbols(const typename ELFT::Shdr &SymSec) {
     bool IsDynSym = SymSec.sh_type == ELF::SHT_DYNSYM;
-    if (!IsDynSym && SymSec.sh_type != ELF::SHT_SYMTAB)
-      continue;
-    std::string SecName = SectionName(SymSec);
+    std::string SecName = sectionName(SymSec);
     Expected<typename ELFT::SymRange> Syms = EF.symbols(&SymSec);
-    if (!Syms) {
-      Damaged("symbol table '" + SecName + "'", Syms.takeError());
-      continue;
+    if (!Syms)
+      return damaged("symbol table '" + SecName + "'", Syms.takeError());
+    Expected<StringRef> StrTab = EF.getStringTableForSymtab(SymSec, Secs);
+    if (!StrTab)
+      return damaged("symbol table '" + SecName + "'", StrTab.takeError());
+    for (const auto &Sym : *Syms)
+      addSymbol(Sym, *StrTab, IsDynSym);
+  }
+
+  void addSymbol(const typename ELFT::Sym &Sym, StringRef StrTab,
+                 bool IsDynSym) {
+    Pointee Pt;
+    Expected<StringRef> Name = Sym.getName(StrTab);
+    if (Name)
+      Pt.Name = Name->str();
+    else
+      consumeError(Name.takeError());
+    Pt.Binding = Sym.getBinding();
+    uint8_t Type = Sym.getType();
+    unsigned Shndx = Sym.st_shndx;
+    Pt.Defined = Shndx != ELF::SHN_UNDEF && Shndx < Secs.size() &&
+                 Type != ELF::STT_SECTION && Type != ELF::STT_FILE;
+    if (Pt.Defined) {
+      Pt.SectionIndex = Shndx;
+      Pt.Offset = Sym.st_value - Secs[Shndx].sh_addr;
+      uint8_t Vis = Sym.getVisibility();
+      Pt.Exported = IsDynSym && hasExternalLinkage(Pt.Binding) &&
+                    (Vis == ELF::STV_DEFAULT || Vis == ELF::STV_PROTECTED);
     }
-    Expected<StringRef> StrTab = EF.getStringTableForSymtab(SymSec, *Secs);
-    if (!StrTab) {
-      Damaged("symbol table '" + SecName + "'", StrTab.takeError());
-      continue;
+    if (IsDynSym)
+      DynSyms.push_back(Pt);
+    if (!Pt.Defined || Pt.Name.empty())
+      return;
+    if (StringRef(Pt.Name).starts_with("bs_module_") && Type != ELF::STT_FUNC) {
+      auto [It, New] = Descriptors.try_emplace(
+          Pt.Name, DescriptorSym{Pt.Name, Pt.SectionIndex, Pt.Offset,
+                                 Pt.Exported,
+                                 sectionName(Secs[Pt.SectionIndex])});
+      if (!New)
+        It->second.Exported |= Pt.Exported;
     }
-    for (const auto &Sym : *Syms) {
-      Pointee Pt;
-      Expected<StringRef> Name = Sym.getName(*StrTab);
-      if (Name)
-        Pt.Name = Name->str();
-      else
-        consumeError(Name.takeError());
-      Pt.Binding = Sym.getBinding();
-      uint8_t Type = Sym.getType();
-      unsigned Shndx = Sym.st_shndx;
-      Pt.Defined = Shndx != ELF::SHN_UNDEF && Shndx < Secs->size() &&
-                   Type != ELF::STT_SECTION && Type != ELF::STT_FILE;
-      if (Pt.Defined) {
-        Pt.SectionIndex = Shndx;
-        Pt.Offset = Sym.st_value - (*Secs)[Shndx].sh_addr;
-        uint8_t Vis = Sym.getVisibility();
-        Pt.Exported = IsDynSym && hasExternalLinkage(Pt.Binding) &&
-                      (Vis == ELF::STV_DEFAULT || Vis == ELF::STV_PROTECTED);
-      }
-      if (IsDynSym)
-        DynSyms.push_back(Pt);
-      if (!Pt.Defined || Pt.Name.empty())
-        continue;
-      if (StringRef(Pt.Name).starts_with("bs_module_") &&
-          Type != ELF::STT_FUNC) {
-        auto [It, New] = Descriptors.try_emplace(
-            Pt.Name,
-            DescriptorSym{Pt.Name, Pt.SectionIndex, Pt.Offset, Pt.Exported,
-                          SectionName((*Secs)[Pt.SectionIndex])});
-        if (!New)
-          It->second.Exported |= Pt.Exported;
-      }
-      addSymbolAt(std::move(Pt));
+    R.addSymbolAt(std::move(Pt));
+  }
+
+  /// A symbol of .symtab that .dynsym exports too is exported; the
+  /// descriptors in the order of the object, so that messages and dumps are
+  /// stable.
+  void markExported() {
+    StringSet<> Exported;
+    for (const Pointee &Pt : DynSyms)
+      if (Pt.Exported)
+        Exported.insert(Pt.Name);
+    for (auto &Entry : R.SymbolAt)
+      Entry.second.Exported |= Exported.contains(Entry.second.Name);
+    for (auto &Entry : Descriptors)
+      R.DynDescriptors.push_back(Entry.second);
+    llvm::sort(R.DynDescriptors,
+               [](const DescriptorSym &A, const DescriptorSym &B) {
+                 return std::tie(A.SectionIndex, A.Offset) <
+                        std::tie(B.SectionIndex, B.Offset);
+               });
+  }
+
+  void indexRelocations(const typename ELFT::Shdr &RelSec) {
+    std::string RelName = sectionName(RelSec);
+    auto Bad = [&](Error E) {
+      damaged("relocation section '" + RelName + "'", std::move(E));
+    };
+    if (RelSec.sh_type == ELF::SHT_RELA) {
+      Expected<typename ELFT::RelaRange> Relas = EF.relas(RelSec);
+      if (!Relas)
+        return Bad(Relas.takeError());
+      for (const auto &Rel : *Relas)
+        addRelocation(Rel.r_offset, Rel.getType(false), Rel.getSymbol(false),
+                      int64_t(Rel.r_addend));
+    } else if (RelSec.sh_type == ELF::SHT_REL) {
+      Expected<typename ELFT::RelRange> Rels = EF.rels(RelSec);
+      if (!Rels)
+        return Bad(Rels.takeError());
+      for (const auto &Rel : *Rels)
+        addRelocation(Rel.r_offset, Rel.getType(false), Rel.getSymbol(false),
+                      std::nullopt);
+    } else if (RelSec.sh_type == ELF::SHT_RELR) {
+      // -z pack-relative-relocs: RELATIVE relocations, addends in place.
+      Expected<typename ELFT::RelrRange> Relrs = EF.relrs(RelSec);
+      if (!Relrs)
+        return Bad(Relrs.takeError());
+      uint32_t Relative = R.Is386 ? uint32_t(ELF::R_386_RELATIVE)
+                                  : uint32_t(ELF::R_X86_64_RELATIVE);
+      for (const auto &Rel : EF.decode_relrs(*Relrs))
+        addRelocation(Rel.r_offset, Relative, 0, std::nullopt);
     }
   }
-  // A symbol of .symtab that .dynsym exports too is exported.
-  StringSet<> Exported;
-  for (const Pointee &Pt : DynSyms)
-    if (Pt.Exported)
-      Exported.insert(Pt.Name);
-  for (auto &Entry : SymbolAt)
-    Entry.second.Exported |= Exported.contains(Entry.second.Name);
-  for (auto &Entry : Descriptors)
-    DynDescriptors.push_back(Entry.second);
-  // In the order of the object, so that messages and dumps are stable.
-  llvm::sort(DynDescriptors, [](const DescriptorSym &A, const DescriptorSym &B) {
-    return std::tie(A.SectionIndex, A.Offset) <
-           std::tie(B.SectionIndex, B.Offset);
-  });
 
-  // Dynamic relocations, by the place they patch.
-  auto Add = [&](uint64_t Where, uint32_t Type, uint32_t SymIndex,
-                 std::optional<int64_t> Addend) {
-    std::optional<std::pair<uint64_t, uint64_t>> Loc = locate(Where);
+  /// A dynamic relocation, by the place it patches.
+  void addRelocation(uint64_t Where, uint32_t Type, uint32_t SymIndex,
+                     std::optional<int64_t> Addend) {
+    std::optional<std::pair<uint64_t, uint64_t>> Loc = R.locate(Where);
     if (!Loc)
       return; // Patches nothing that a descriptor could point at.
-    Reloc &Rel = RelocsBySection[Loc->first][Loc->second];
+    Reloc &Rel = R.RelocsBySection[Loc->first][Loc->second];
     Rel = Reloc();
     Rel.Type = Type;
     if (SymIndex != 0) {
@@ -171,54 +217,28 @@ void ObjectReader::indexDynamic(const ELFObjectFile<ELFT> &EObj) {
       return;
     }
     // REL (i386) and RELR: the addend is the pointer-sized value in place.
-    Expected<StringRef> Data = contents(Loc->first);
+    Expected<StringRef> Data = R.contents(Loc->first);
     if (!Data) {
       Rel.Damage = toString(Data.takeError());
       return;
     }
-    if (Loc->second + P > Data->size())
+    if (Loc->second + R.P > Data->size())
       return; // .bss: zero
     const char *B = Data->data() + Loc->second;
-    Rel.Addend = P == 4 ? int64_t(support::endian::read32le(B))
-                        : int64_t(support::endian::read64le(B));
-  };
-  for (const auto &RelSec : *Secs) {
-    if (!(RelSec.sh_flags & ELF::SHF_ALLOC))
-      continue;
-    std::string RelName = SectionName(RelSec);
-    auto Bad = [&](Error E) {
-      Damaged("relocation section '" + RelName + "'", std::move(E));
-    };
-    if (RelSec.sh_type == ELF::SHT_RELA) {
-      Expected<typename ELFT::RelaRange> Relas = EF.relas(RelSec);
-      if (!Relas) {
-        Bad(Relas.takeError());
-        continue;
-      }
-      for (const auto &R : *Relas)
-        Add(R.r_offset, R.getType(false), R.getSymbol(false),
-            int64_t(R.r_addend));
-    } else if (RelSec.sh_type == ELF::SHT_REL) {
-      Expected<typename ELFT::RelRange> Rels = EF.rels(RelSec);
-      if (!Rels) {
-        Bad(Rels.takeError());
-        continue;
-      }
-      for (const auto &R : *Rels)
-        Add(R.r_offset, R.getType(false), R.getSymbol(false), std::nullopt);
-    } else if (RelSec.sh_type == ELF::SHT_RELR) {
-      // -z pack-relative-relocs: RELATIVE relocations, addends in place.
-      Expected<typename ELFT::RelrRange> Relrs = EF.relrs(RelSec);
-      if (!Relrs) {
-        Bad(Relrs.takeError());
-        continue;
-      }
-      uint32_t Relative = Is386 ? uint32_t(ELF::R_386_RELATIVE)
-                                : uint32_t(ELF::R_X86_64_RELATIVE);
-      for (const auto &R : EF.decode_relrs(*Relrs))
-        Add(R.r_offset, Relative, 0, std::nullopt);
-    }
+    Rel.Addend = R.P == 4 ? int64_t(support::endian::read32le(B))
+                          : int64_t(support::endian::read64le(B));
   }
+
+  ObjectReader &R;
+  const ELFFile<ELFT> &EF;
+  typename ELFT::ShdrRange Secs{nullptr, nullptr};
+  std::vector<Pointee> DynSyms;
+  StringMap<DescriptorSym> Descriptors;
+};
+
+template <class ELFT>
+void ObjectReader::indexDynamic(const ELFObjectFile<ELFT> &EObj) {
+  DynamicIndexer<ELFT>(*this, EObj.getELFFile()).run();
 }
 
 Expected<Pointee> ObjectReader::pointeeAt(uint64_t Sec, uint64_t Off) {

@@ -109,6 +109,7 @@ struct DescriptorSym {
 };
 
 class DescriptorDecoder;
+template <class ELFT> class DynamicIndexer;
 
 class ObjectReader {
 public:
@@ -122,7 +123,8 @@ public:
   void readModules(std::vector<BoundModule> &Out);
 
 private:
-  friend class DescriptorDecoder; // DescriptorDecoder.cpp
+  friend class DescriptorDecoder;                  // DescriptorDecoder.cpp
+  template <class ELFT> friend class DynamicIndexer; // ObjectReader.cpp
   const llvm::object::ELFObjectFileBase &Obj;
   std::string File;
   BindErrors &Errs;
