@@ -40,6 +40,11 @@ public:
   Error run();
 
 private:
+  Error checkProgramHeaders();
+  Error checkSection(const Shdr &S);
+  Error checkSymbols(const Shdr &S);
+  Error checkOverlaps();
+
   const ELFFile<ELFT> &EF;
   typename ELFT::ShdrRange Secs;
   /// The bytes of the file each section (or header: Sec null) occupies.
@@ -158,23 +163,8 @@ template <class ELFT> Error SectionChecker<ELFT>::run() {
                              "section table: " +
                                  toString(SecsOrErr.takeError()));
   Secs = *SecsOrErr;
-  // Segments of a shared library: ELFFile::dynamicEntries (which the
-  // reader's PIE check and the loader use) takes PT_DYNAMIC's offset and
-  // size on trust. A relocatable object's program headers are never read.
-  if (EF.getHeader().e_type == ELF::ET_DYN) {
-    Expected<typename ELFT::PhdrRange> Phdrs = EF.program_headers();
-    if (!Phdrs)
-      return createStringError(inconvertibleErrorCode(),
-                               "program header table: " +
-                                   toString(Phdrs.takeError()));
-    for (const auto &P : *Phdrs)
-      if (P.p_offset > EF.getBufSize() ||
-          P.p_filesz > EF.getBufSize() - P.p_offset)
-        return createStringError(
-            inconvertibleErrorCode(),
-            "program header " + std::to_string(&P - Phdrs->begin()) +
-                " describes bytes beyond the end of the file");
-  }
+  if (Error E = checkProgramHeaders())
+    return E;
   // No section table (e_shoff 0): nothing to walk; the reader then finds no
   // descriptors.
   if (Secs.empty())
@@ -188,94 +178,133 @@ template <class ELFT> Error SectionChecker<ELFT>::run() {
         "section 0 has type " +
             getELFSectionTypeName(EF.getHeader().e_machine, Secs[0].sh_type) +
             " (expected SHT_NULL)");
+  for (const Shdr &S : Secs.drop_front())
+    if (Error E = checkSection(S))
+      return E;
+  if (Error E = checkOverlaps())
+    return E;
+  // Relocations last: their symbols are counted in tables checked above,
+  // and a damaged symbol table is reported as itself.
   for (const Shdr &S : Secs.drop_front()) {
-    // Section 0 is the null section (its fields may extend the header);
-    // so is a section of type SHT_NULL: nothing reads it.
-    if (S.sh_type == ELF::SHT_NULL)
-      continue;
-    if (S.sh_addralign & (S.sh_addralign - 1))
-      return damaged(S,
-                     indexOf(S) + " has sh_addralign " +
-                         Twine(uint64_t(S.sh_addralign)) +
-                         ", which is not a power of two");
-    if (S.sh_link >= Secs.size())
-      return damaged(S,
-                     indexOf(S) + " has sh_link " + Twine(S.sh_link) +
-                         ", which is not a section");
-    // The descriptors are data in the file (bindings.md).
-    if (S.sh_type != ELF::SHT_PROGBITS && nameOf(S) == "bs_modules")
+    Error E = S.sh_type == ELF::SHT_REL    ? checkRelocations(S, EF.rels(S))
+              : S.sh_type == ELF::SHT_RELA ? checkRelocations(S, EF.relas(S))
+                                           : Error::success();
+    if (E)
+      return E;
+  }
+  return Error::success();
+}
+
+/// Segments of a shared library: ELFFile::dynamicEntries (which the
+/// reader's PIE check and the loader use) takes PT_DYNAMIC's offset and
+/// size on trust. A relocatable object's program headers are never read.
+template <class ELFT> Error SectionChecker<ELFT>::checkProgramHeaders() {
+  if (EF.getHeader().e_type != ELF::ET_DYN)
+    return Error::success();
+  Expected<typename ELFT::PhdrRange> Phdrs = EF.program_headers();
+  if (!Phdrs)
+    return createStringError(inconvertibleErrorCode(),
+                             "program header table: " +
+                                 toString(Phdrs.takeError()));
+  for (const auto &P : *Phdrs)
+    if (P.p_offset > EF.getBufSize() ||
+        P.p_filesz > EF.getBufSize() - P.p_offset)
       return createStringError(
           inconvertibleErrorCode(),
-          "section 'bs_modules': " + indexOf(S) + " has type " +
-              getELFSectionTypeName(EF.getHeader().e_machine, S.sh_type) +
-              " (expected SHT_PROGBITS)");
-    // Code without bytes: the JIT would run zeros.
-    if (S.sh_type == ELF::SHT_NOBITS && (S.sh_flags & ELF::SHF_EXECINSTR))
-      return damaged(S, indexOf(S) + " holds code but has type SHT_NOBITS");
-    if (S.sh_type == ELF::SHT_NOBITS &&
-        EF.getHeader().e_type == ELF::ET_REL && S.sh_size > MaxZeroFillSize)
-      return damaged(S, indexOf(S) + " has sh_size 0x" +
-                            Twine::utohexstr(S.sh_size) +
-                            ", more than bsc allows for zero-filled data (0x" +
-                            Twine::utohexstr(MaxZeroFillSize) + ")");
-    if (S.sh_type != ELF::SHT_NOBITS) {
-      Expected<ArrayRef<uint8_t>> Contents = EF.getSectionContents(S);
-      if (!Contents)
-        return damaged(S, Contents.takeError());
-      if (S.sh_size)
-        Extents.push_back({uint64_t(S.sh_offset), uint64_t(S.sh_size), &S});
-    }
-    switch (S.sh_type) {
-    case ELF::SHT_SYMTAB:
-    case ELF::SHT_DYNSYM: {
-      Expected<typename ELFT::SymRange> Syms = EF.symbols(&S);
-      if (!Syms)
-        return damaged(S, Syms.takeError());
-      Expected<StringRef> Strings = EF.getStringTableForSymtab(S, Secs);
-      if (!Strings)
-        return damaged(S, Strings.takeError());
-      if (S.sh_info > Syms->size())
-        return damaged(S,
-                       indexOf(S) + " has sh_info " + Twine(S.sh_info) +
-                           " beyond its " + Twine(Syms->size()) + " symbols");
-      // The walks skip a symbol whose name cannot be read, which would
-      // silently lose a descriptor or a thunk.
-      for (const auto &Sym : *Syms) {
-        std::string Which =
-            "symbol " + std::to_string(&Sym - Syms->begin());
-        if (Sym.st_name >= Strings->size())
-          return damaged(S, Which + " has its name outside the string table");
-        // A section index must name a section (or be one of the reserved
-        // ones bsc reads: undefined, absolute, common); a section symbol
-        // is named after its section, which ELFObjectFile looks up
-        // without checking.
-        uint16_t Shndx = Sym.st_shndx;
-        bool Reserved = Shndx >= ELF::SHN_LORESERVE;
-        if (Shndx == ELF::SHN_XINDEX ||
-            (!Reserved && Shndx >= Secs.size()) ||
-            (Sym.getType() == ELF::STT_SECTION && (Shndx == 0 || Reserved)))
-          return damaged(S, Which + " has section index " + Twine(Shndx) +
-                                ", which is not a section");
-      }
-      break;
-    }
-    case ELF::SHT_RELR:
-      if (Expected<typename ELFT::RelrRange> Relrs = EF.relrs(S); !Relrs)
-        return damaged(S, Relrs.takeError());
-      break;
-    case ELF::SHT_CREL:
-      // ELFObjectFile decodes these with cantFail; no compiler bsc
-      // supports emits them unasked.
-      return damaged(S,
-                     indexOf(S) + " has type SHT_CREL, which bsc does not "
-                                  "read (build without --crel)");
-    default:
-      break;
-    }
+          "program header " + std::to_string(&P - Phdrs->begin()) +
+              " describes bytes beyond the end of the file");
+  return Error::success();
+}
+
+/// One section's header: its fields, its bytes, and its table if it is a
+/// symbol table.
+template <class ELFT>
+Error SectionChecker<ELFT>::checkSection(const Shdr &S) {
+  // A section of type SHT_NULL, like section 0: nothing reads it.
+  if (S.sh_type == ELF::SHT_NULL)
+    return Error::success();
+  if (S.sh_addralign & (S.sh_addralign - 1))
+    return damaged(S, indexOf(S) + " has sh_addralign " +
+                          Twine(uint64_t(S.sh_addralign)) +
+                          ", which is not a power of two");
+  if (S.sh_link >= Secs.size())
+    return damaged(S, indexOf(S) + " has sh_link " + Twine(S.sh_link) +
+                          ", which is not a section");
+  // The descriptors are data in the file (bindings.md).
+  if (S.sh_type != ELF::SHT_PROGBITS && nameOf(S) == "bs_modules")
+    return createStringError(
+        inconvertibleErrorCode(),
+        "section 'bs_modules': " + indexOf(S) + " has type " +
+            getELFSectionTypeName(EF.getHeader().e_machine, S.sh_type) +
+            " (expected SHT_PROGBITS)");
+  // Code without bytes: the JIT would run zeros.
+  if (S.sh_type == ELF::SHT_NOBITS && (S.sh_flags & ELF::SHF_EXECINSTR))
+    return damaged(S, indexOf(S) + " holds code but has type SHT_NOBITS");
+  if (S.sh_type == ELF::SHT_NOBITS && EF.getHeader().e_type == ELF::ET_REL &&
+      S.sh_size > MaxZeroFillSize)
+    return damaged(S, indexOf(S) + " has sh_size 0x" +
+                          Twine::utohexstr(S.sh_size) +
+                          ", more than bsc allows for zero-filled data (0x" +
+                          Twine::utohexstr(MaxZeroFillSize) + ")");
+  if (S.sh_type != ELF::SHT_NOBITS) {
+    Expected<ArrayRef<uint8_t>> Contents = EF.getSectionContents(S);
+    if (!Contents)
+      return damaged(S, Contents.takeError());
+    if (S.sh_size)
+      Extents.push_back({uint64_t(S.sh_offset), uint64_t(S.sh_size), &S});
   }
-  // No two sections share bytes, and none holds the ELF header or the
-  // section header table (compilers and linkers lay them out apart; a
-  // header whose sh_offset moved makes the JIT load other bytes as code).
+  switch (S.sh_type) {
+  case ELF::SHT_SYMTAB:
+  case ELF::SHT_DYNSYM:
+    return checkSymbols(S);
+  case ELF::SHT_RELR:
+    if (Expected<typename ELFT::RelrRange> Relrs = EF.relrs(S); !Relrs)
+      return damaged(S, Relrs.takeError());
+    return Error::success();
+  case ELF::SHT_CREL:
+    // ELFObjectFile decodes these with cantFail; no compiler bsc supports
+    // emits them unasked.
+    return damaged(S, indexOf(S) + " has type SHT_CREL, which bsc does not "
+                                   "read (build without --crel)");
+  default:
+    return Error::success();
+  }
+}
+
+template <class ELFT>
+Error SectionChecker<ELFT>::checkSymbols(const Shdr &S) {
+  Expected<typename ELFT::SymRange> Syms = EF.symbols(&S);
+  if (!Syms)
+    return damaged(S, Syms.takeError());
+  Expected<StringRef> Strings = EF.getStringTableForSymtab(S, Secs);
+  if (!Strings)
+    return damaged(S, Strings.takeError());
+  if (S.sh_info > Syms->size())
+    return damaged(S, indexOf(S) + " has sh_info " + Twine(S.sh_info) +
+                          " beyond its " + Twine(Syms->size()) + " symbols");
+  // The walks skip a symbol whose name cannot be read, which would
+  // silently lose a descriptor or a thunk.
+  for (const auto &Sym : *Syms) {
+    std::string Which = "symbol " + std::to_string(&Sym - Syms->begin());
+    if (Sym.st_name >= Strings->size())
+      return damaged(S, Which + " has its name outside the string table");
+    // A section index must name a section (or be one of the reserved ones
+    // bsc reads: undefined, absolute, common); a section symbol is named
+    // after its section, which ELFObjectFile looks up without checking.
+    uint16_t Shndx = Sym.st_shndx;
+    bool Reserved = Shndx >= ELF::SHN_LORESERVE;
+    if (Shndx == ELF::SHN_XINDEX || (!Reserved && Shndx >= Secs.size()) ||
+        (Sym.getType() == ELF::STT_SECTION && (Shndx == 0 || Reserved)))
+      return damaged(S, Which + " has section index " + Twine(Shndx) +
+                            ", which is not a section");
+  }
+  return Error::success();
+}
+
+/// No two sections share bytes, and none holds the ELF header or the
+/// section header table (compilers and linkers lay them out apart; a
+/// header whose sh_offset moved makes the JIT load other bytes as code).
+template <class ELFT> Error SectionChecker<ELFT>::checkOverlaps() {
   const auto &H = EF.getHeader();
   Extents.push_back({0, uint64_t(H.e_ehsize), nullptr});
   Extents.push_back(
@@ -298,16 +327,6 @@ template <class ELFT> Error SectionChecker<ELFT>::run() {
                        (Other.Sec ? indexOf(*Other.Sec)
                                   : std::string("the ELF header or the "
                                                 "section header table")));
-  }
-
-  // Relocations last: their symbols are counted in tables checked above,
-  // and a damaged symbol table is reported as itself.
-  for (const Shdr &S : Secs.drop_front()) {
-    Error E = S.sh_type == ELF::SHT_REL    ? checkRelocations(S, EF.rels(S))
-              : S.sh_type == ELF::SHT_RELA ? checkRelocations(S, EF.relas(S))
-                                           : Error::success();
-    if (E)
-      return E;
   }
   return Error::success();
 }
