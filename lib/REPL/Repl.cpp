@@ -122,61 +122,8 @@ bool Repl::load(std::unique_ptr<Compilation> NewC) {
   auto NewValues = std::make_unique<debug::ValueIO>(
       [J = NewL->JIT.get()](llvm::StringRef Sym) { return J->lookup(Sym); });
   bool FirstLoad = !S;
-
-  if (S) {
-    // :reload. The world, the frames that still fit, the cycle, input and
-    // output.
-    NewS->takeWorldFrom(*S);
-    OS.flush();
-    auto *OldBytes = static_cast<unsigned char *>(S->getState());
-    auto *NewBytes = static_cast<unsigned char *>(NewS->getState());
-    std::vector<std::string> Reset;
-    for (size_t I = 0; I < NewL->Layout.Tasks.size(); ++I) {
-      const BehaviorLayout::Task &NT = NewL->Layout.Tasks[I];
-      std::string Name = NT.Decl->getQualifiedName();
-      bool Kept = false;
-      for (size_t J = 0; J < L->Layout.Tasks.size(); ++J) {
-        const BehaviorLayout::Task &OT = L->Layout.Tasks[J];
-        if (OT.Decl->getQualifiedName() != Name)
-          continue;
-        uint64_t Size = OT.FrameSize;
-        if (sameFrame(OT, NT)) {
-          std::memcpy(NewBytes + NT.FrameOffset, OldBytes + OT.FrameOffset,
-                      Size);
-          // Narrow resume points and states sit outside the frame.
-          std::memcpy(NewBytes + NT.Resume.Offset,
-                      OldBytes + OT.Resume.Offset, NT.Resume.Bytes);
-          std::memcpy(NewBytes + NT.State.Offset, OldBytes + OT.State.Offset,
-                      NT.State.Bytes);
-          // The values moved: the old state must not destroy them.
-          std::memset(OldBytes + OT.FrameOffset, 0, Size);
-          Kept = true;
-        }
-      }
-      if (!Kept)
-        Reset.push_back(Name);
-    }
-    auto *OldHeader = static_cast<bs_state_header *>(S->getState());
-    static_cast<bs_state_header *>(NewS->getState())->cycle = OldHeader->cycle;
-    if (L->InputClass && NewL->InputClass)
-      llvm::consumeError(NewValues->writeClass(
-          *NewL->InputClass, NewS->getInput(),
-          Values->readClass(*L->InputClass, S->getInput()), "input"));
-    if (L->OutputClass && NewL->OutputClass)
-      llvm::consumeError(NewValues->writeClass(
-          *NewL->OutputClass, NewS->getOutput(),
-          Values->readClass(*L->OutputClass, S->getOutput()), "output"));
-    OS << "reloaded; "
-       << (Reset.empty() ? std::string("every task keeps its state")
-                         : "reset: " + llvm::join(Reset, ", "))
-       << "\n";
-    if (!Variables.empty() || !Breakpoints.empty())
-      OS << "REPL variables and breakpoints were cleared\n";
-    for (Slot &V : Variables)
-      destroySlot(V);
-    Variables.clear();
-    destroyBreakpoints();
-  }
+  if (S)
+    carryOver(*NewL, *NewS, *NewValues);
   // `:frame` stays on a task of the same name.
   std::string FrameTask = Checker && Checker->getFrame()
                               ? Checker->getFrame()->getQualifiedName()
@@ -187,6 +134,65 @@ bool Repl::load(std::unique_ptr<Compilation> NewC) {
   Values = std::move(NewValues);
   L = std::move(NewL);
   C = std::move(NewC);
+  makeChecker(FrameTask);
+  startHistory();
+  EntryIndex.reset();
+  for (unsigned T = 0; T < L->Layout.Tasks.size(); ++T)
+    if (L->Layout.Tasks[T].Decl == L->Entry)
+      EntryIndex = T;
+  return !FirstLoad || attachWorld();
+}
+
+void Repl::carryOver(const LoadedBehavior &NewL, BehaviorSession &NewS,
+                     debug::ValueIO &NewValues) {
+  NewS.takeWorldFrom(*S);
+  OS.flush();
+  auto *OldBytes = static_cast<unsigned char *>(S->getState());
+  auto *NewBytes = static_cast<unsigned char *>(NewS.getState());
+  std::vector<std::string> Reset;
+  for (const BehaviorLayout::Task &NT : NewL.Layout.Tasks) {
+    std::string Name = NT.Decl->getQualifiedName();
+    bool Kept = false;
+    for (const BehaviorLayout::Task &OT : L->Layout.Tasks) {
+      if (OT.Decl->getQualifiedName() != Name || !sameFrame(OT, NT))
+        continue;
+      std::memcpy(NewBytes + NT.FrameOffset, OldBytes + OT.FrameOffset,
+                  OT.FrameSize);
+      // Narrow resume points and states sit outside the frame.
+      std::memcpy(NewBytes + NT.Resume.Offset, OldBytes + OT.Resume.Offset,
+                  NT.Resume.Bytes);
+      std::memcpy(NewBytes + NT.State.Offset, OldBytes + OT.State.Offset,
+                  NT.State.Bytes);
+      // The values moved: the old state must not destroy them.
+      std::memset(OldBytes + OT.FrameOffset, 0, OT.FrameSize);
+      Kept = true;
+    }
+    if (!Kept)
+      Reset.push_back(Name);
+  }
+  auto *OldHeader = static_cast<bs_state_header *>(S->getState());
+  static_cast<bs_state_header *>(NewS.getState())->cycle = OldHeader->cycle;
+  if (L->InputClass && NewL.InputClass)
+    llvm::consumeError(NewValues.writeClass(
+        *NewL.InputClass, NewS.getInput(),
+        Values->readClass(*L->InputClass, S->getInput()), "input"));
+  if (L->OutputClass && NewL.OutputClass)
+    llvm::consumeError(NewValues.writeClass(
+        *NewL.OutputClass, NewS.getOutput(),
+        Values->readClass(*L->OutputClass, S->getOutput()), "output"));
+  OS << "reloaded; "
+     << (Reset.empty() ? std::string("every task keeps its state")
+                       : "reset: " + llvm::join(Reset, ", "))
+     << "\n";
+  if (!Variables.empty() || !Breakpoints.empty())
+    OS << "REPL variables and breakpoints were cleared\n";
+  for (Slot &V : Variables)
+    destroySlot(V);
+  Variables.clear();
+  destroyBreakpoints();
+}
+
+void Repl::makeChecker(llvm::StringRef FrameTask) {
   Checker = std::make_unique<ReplChecker>(C->Ctx, C->Diags, C->Checked,
                                           &C->Natives, L->Entry->Module);
   llvm::DenseSet<const Decl *> Kept;
@@ -197,12 +203,10 @@ bool Repl::load(std::unique_ptr<Compilation> NewC) {
   for (const BehaviorLayout::Task &T : L->Layout.Tasks)
     if (T.Decl->getQualifiedName() == FrameTask)
       Checker->setFrame(llvm::cast<TaskDecl>(T.Decl));
-  startHistory();
-  EntryIndex.reset();
-  for (unsigned T = 0; T < L->Layout.Tasks.size(); ++T)
-    if (L->Layout.Tasks[T].Decl == L->Entry)
-      EntryIndex = T;
-  if (FirstLoad && !Opts.WorldOutput.empty()) {
+}
+
+bool Repl::attachWorld() {
+  if (!Opts.WorldOutput.empty()) {
     WorldOutputFd = openWorldOutput(*C, Opts.WorldOutput);
     if (WorldOutputFd < 0) {
       printDiagnostics(C->SM, C->Diags.getDiagnostics(), llvm::errs());
@@ -210,7 +214,7 @@ bool Repl::load(std::unique_ptr<Compilation> NewC) {
     }
     S->setWorldOutput(WorldOutputFd);
   }
-  if (FirstLoad && !Opts.WorldLibrary.empty() &&
+  if (!Opts.WorldLibrary.empty() &&
       !attachWorldLibrary(*C, *L, *S, Opts.WorldLibrary, Opts.CycleLimitMs)) {
     printDiagnostics(C->SM, C->Diags.getDiagnostics(), llvm::errs());
     return false;

@@ -88,6 +88,14 @@ private:
   // Loading.
   std::unique_ptr<Compilation> compileFiles();
   bool load(std::unique_ptr<Compilation> NewC);
+  /// `:reload`: the world, the frames that still fit, the cycle, input and
+  /// output move from the old session to the new one.
+  void carryOver(const LoadedBehavior &NewL, BehaviorSession &NewS,
+                 debug::ValueIO &NewValues);
+  /// The checker of lines, in the frame of `FrameTask` if it has one.
+  void makeChecker(llvm::StringRef FrameTask);
+  /// First load: `--world-output` and `--world`.
+  bool attachWorld();
 
   // Lines of b-script.
   void evaluate(llvm::StringRef Line);
