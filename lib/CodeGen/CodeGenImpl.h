@@ -4,6 +4,10 @@
 // - ModuleEmitter owns what is shared by the whole behavior: the state and
 //   frame struct types (laid out with the target's DataLayout), the LLVM
 //   function of every func and task, native declarations, string constants.
+//   Its parts are CodeGen.cpp (run), CGTypes.cpp (types), CGNative.cpp
+//   (thunks and strings), CGLayout.cpp (the state and frames),
+//   CGEntries.cpp (declarations, entries, the info table, `main`) and
+//   CGRepl.cpp (REPL lines).
 // - FunctionEmitter lowers one func or task body. Statements are in
 //   CGStmt.cpp, expressions in CGExpr.cpp, and everything that exists only
 //   because a task is a generator (prologue, reset check, resume switch,
@@ -397,7 +401,19 @@ public:
 private:
   /// Every func and task of the behavior, in source order.
   std::vector<const CallableDecl *> getSourceOrder() const;
+  /// Builds `%bs.state` and the frame types and fills in the layout's
+  /// sizes and offsets (CGLayout.cpp).
   void layoutState();
+  /// The frame of `T`: its last call, the resume point and state if they
+  /// take 4 bytes, the parameters and locals it keeps (scalar locals of
+  /// disjoint scopes sharing a field), and `live` if it holds class values.
+  void layoutFrame(const TaskDecl &T, FrameInfo &FI);
+  /// With CodeGenOptions::Instrument: sizes the trace record and appends it
+  /// to the state's fields, after the frames and headers.
+  void addTraceRecord(llvm::SmallVectorImpl<llvm::Type *> &StateFields);
+  /// Records the size and alignment of the finished state, the offsets of
+  /// its records, and each task's frame, words and fields in the layout.
+  void recordStateLayout();
   /// Internal, or external with CodeGenOptions::ExternalFunctions.
   llvm::GlobalValue::LinkageTypes getFunctionLinkage() const {
     return Opts.ExternalFunctions ? llvm::GlobalValue::ExternalLinkage
@@ -413,6 +429,13 @@ private:
   /// Instrument the symbol defineDebugTables defines.
   llvm::Constant *getDebugTables();
   void emitProgramMain();
+  /// `main`'s `input` and `output` objects of the world's classes (null
+  /// where there is none): allocas before `AllocasBefore`, constructed at
+  /// `IRB`.
+  void constructWorldObjects(llvm::IRBuilderBase &IRB,
+                             const NativeClass *const (&Classes)[2],
+                             llvm::Instruction *AllocasBefore,
+                             llvm::Value *(&Objects)[2]);
   /// Chooses the width and place of a task's resume point and state
   /// (bscript.h bs_task_info) and builds its narrow header type.
   void chooseTaskWords(const TaskDecl &T, FrameInfo &FI);
