@@ -6,7 +6,8 @@
 //===----------------------------------------------------------------------===//
 #include "bsc/Debug/Trace.h"
 #include "bsc/Basic/JSON.h"
-#include "bsc/CodeGen/CodeGen.h"
+#include "bsc/CodeGen/Layout.h"
+#include "bsc/Sema/Sema.h"
 #include "llvm/ADT/DenseMap.h"
 #include "llvm/ADT/SetVector.h"
 #include "llvm/ADT/StringExtras.h"
