@@ -433,6 +433,15 @@ DebugInfoEmitter::createTaskHeadersMember(llvm::DICompositeType *State) {
                 HeadersStart, Headers);
 }
 
+llvm::DIDerivedType *DebugInfoEmitter::createMember(llvm::DIScope *Scope,
+                                                    llvm::StringRef Name,
+                                                    uint64_t Bits,
+                                                    uint64_t Offset,
+                                                    llvm::DIType *Ty) {
+  return DIB.createMemberType(Scope, Name, nullptr, 0, Bits, 0, Offset * 8,
+                              llvm::DINode::FlagZero, Ty);
+}
+
 llvm::DIType *DebugInfoEmitter::getStatePointerType() {
   if (StatePtrTy)
     return StatePtrTy;
@@ -442,11 +451,6 @@ llvm::DIType *DebugInfoEmitter::getStatePointerType() {
   llvm::DIType *U32 =
       getBasicType("unsigned int", 32, llvm::dwarf::DW_ATE_unsigned);
   llvm::DIType *VoidPtr = DIB.createPointerType(nullptr, PtrBits);
-  auto Member = [&](llvm::DIScope *Scope, llvm::StringRef Name, uint64_t Bits,
-                    uint64_t Offset, llvm::DIType *Ty) {
-    return DIB.createMemberType(Scope, Name, nullptr, 0, Bits, 0, Offset * 8,
-                                llvm::DINode::FlagZero, Ty);
-  };
   auto *State = DIB.createStructType(CU, "bs_state", nullptr, 0,
                                      Layout.StateSize * 8,
                                      Layout.StateAlign * 8,
@@ -461,75 +465,24 @@ llvm::DIType *DebugInfoEmitter::getStatePointerType() {
   const llvm::StructLayout *SL =
       DL.getStructLayout(CGM.getStateType());
   llvm::SmallVector<llvm::Metadata *, 16> Members = {
-      Member(State, "cycle", 32, SL->getElementOffset(StateCycle), U32),
-      Member(State, "input", PtrBits, SL->getElementOffset(StateInput),
-             WorldPtr(World ? World->Input : nullptr)),
-      Member(State, "output", PtrBits, SL->getElementOffset(StateOutput),
-             WorldPtr(World ? World->Output : nullptr)),
-      Member(State, "user", PtrBits, SL->getElementOffset(StateUser),
-             VoidPtr)};
-
+      createMember(State, "cycle", 32, SL->getElementOffset(StateCycle), U32),
+      createMember(State, "input", PtrBits, SL->getElementOffset(StateInput),
+                   WorldPtr(World ? World->Input : nullptr)),
+      createMember(State, "output", PtrBits,
+                   SL->getElementOffset(StateOutput),
+                   WorldPtr(World ? World->Output : nullptr)),
+      createMember(State, "user", PtrBits, SL->getElementOffset(StateUser),
+                   VoidPtr)};
   // The frames, a structure per module holding its tasks' frames (tasks
-  // are laid out module by module), each with the last call, the resume
-  // point and state if they take 4 bytes, and the fields kept (locals of
-  // disjoint scopes may share one).
-  llvm::DIType *TaskState = getTaskStateType();
+  // are laid out module by module). The state type is made first, so that
+  // the metadata keeps one order whichever frame uses it first.
+  getTaskStateType();
   for (size_t I = 0; I < Layout.Tasks.size();) {
     const ModuleAST *Mod = Layout.Tasks[I].Decl->Module;
     size_t End = I;
     while (End < Layout.Tasks.size() && Layout.Tasks[End].Decl->Module == Mod)
       ++End;
-    uint64_t ModStart = Layout.Tasks[I].FrameOffset;
-    uint64_t ModEnd =
-        Layout.Tasks[End - 1].FrameOffset + Layout.Tasks[End - 1].FrameSize;
-    std::string ModName = Mod ? Mod->Name : "module";
-    auto *ModStruct = DIB.createStructType(
-        State, ModName + "_frames", nullptr, 0, (ModEnd - ModStart) * 8, 0,
-        llvm::DINode::FlagZero, nullptr, llvm::DINodeArray());
-    llvm::SmallVector<llvm::Metadata *, 8> Frames;
-    for (size_t K = I; K < End; ++K) {
-      const BehaviorLayout::Task &Task = Layout.Tasks[K];
-      std::string TaskName = Task.Decl->getName().Name.str();
-      auto *Frame = DIB.createStructType(
-          ModStruct, TaskName + "_frame", nullptr, 0, Task.FrameSize * 8, 0,
-          llvm::DINode::FlagZero, nullptr, llvm::DINodeArray());
-      // The frame's own words. A kept variable of the same name (a task's
-      // `int state`) keeps its name, and the word takes the `__bs_`
-      // prefix: gdb would show one of two same-named members.
-      auto WordName = [&](llvm::StringRef Name) {
-        bool Taken =
-            llvm::any_of(Task.Fields, [&](const BehaviorLayout::FrameField &F) {
-              return F.D->getName().Name == Name;
-            });
-        return Taken ? ("__bs_" + Name).str() : Name.str();
-      };
-      llvm::SmallVector<llvm::Metadata *, 8> Fields = {
-          Member(Frame, WordName("last_call"), 32, 0, U32)};
-      if (inFrame(Task, Task.Resume))
-        Fields.push_back(Member(Frame, WordName("resume"), 32,
-                                Task.Resume.Offset - Task.FrameOffset, U32));
-      if (inFrame(Task, Task.State))
-        Fields.push_back(Member(Frame, WordName("state"), 32,
-                                Task.State.Offset - Task.FrameOffset,
-                                TaskState));
-      for (const BehaviorLayout::FrameField &F : Task.Fields) {
-        llvm::DIType *Ty = getType(F.Ty);
-        if (!Ty)
-          continue;
-        Fields.push_back(Member(Frame, F.D->getName().Name,
-                                Ty->getSizeInBits()
-                                    ? Ty->getSizeInBits()
-                                    : DL.getTypeAllocSizeInBits(
-                                          CGM.getMemoryType(F.Ty)),
-                                F.Offset - Task.FrameOffset, Ty));
-      }
-      DIB.replaceArrays(Frame, DIB.getOrCreateArray(Fields));
-      Frames.push_back(Member(ModStruct, TaskName, Task.FrameSize * 8,
-                              Task.FrameOffset - ModStart, Frame));
-    }
-    DIB.replaceArrays(ModStruct, DIB.getOrCreateArray(Frames));
-    Members.push_back(Member(State, ModName, (ModEnd - ModStart) * 8, ModStart,
-                             ModStruct));
+    Members.push_back(createModuleFramesMember(State, I, End));
     I = End;
   }
   if (llvm::DIDerivedType *Headers = createTaskHeadersMember(State))
@@ -537,6 +490,76 @@ llvm::DIType *DebugInfoEmitter::getStatePointerType() {
   DIB.replaceArrays(State, DIB.getOrCreateArray(Members));
   StatePtrTy = DIB.createPointerType(State, PtrBits);
   return StatePtrTy;
+}
+
+llvm::DIDerivedType *
+DebugInfoEmitter::createModuleFramesMember(llvm::DICompositeType *State,
+                                           size_t Begin, size_t End) {
+  const BehaviorLayout &Layout = CGM.getLayout();
+  const ModuleAST *Mod = Layout.Tasks[Begin].Decl->Module;
+  uint64_t ModStart = Layout.Tasks[Begin].FrameOffset;
+  uint64_t ModEnd =
+      Layout.Tasks[End - 1].FrameOffset + Layout.Tasks[End - 1].FrameSize;
+  std::string ModName = Mod ? Mod->Name : "module";
+  auto *ModStruct = DIB.createStructType(
+      State, ModName + "_frames", nullptr, 0, (ModEnd - ModStart) * 8, 0,
+      llvm::DINode::FlagZero, nullptr, llvm::DINodeArray());
+  llvm::SmallVector<llvm::Metadata *, 8> Frames;
+  for (size_t K = Begin; K < End; ++K) {
+    const BehaviorLayout::Task &Task = Layout.Tasks[K];
+    Frames.push_back(createMember(ModStruct, Task.Decl->getName().Name,
+                                  Task.FrameSize * 8,
+                                  Task.FrameOffset - ModStart,
+                                  createFrameType(ModStruct, Task)));
+  }
+  DIB.replaceArrays(ModStruct, DIB.getOrCreateArray(Frames));
+  return createMember(State, ModName, (ModEnd - ModStart) * 8, ModStart,
+                      ModStruct);
+}
+
+llvm::DICompositeType *
+DebugInfoEmitter::createFrameType(llvm::DIScope *ModStruct,
+                                  const BehaviorLayout::Task &Task) {
+  const llvm::DataLayout &DL = CGM.getModule().getDataLayout();
+  llvm::DIType *U32 =
+      getBasicType("unsigned int", 32, llvm::dwarf::DW_ATE_unsigned);
+  std::string TaskName = Task.Decl->getName().Name.str();
+  auto *Frame = DIB.createStructType(
+      ModStruct, TaskName + "_frame", nullptr, 0, Task.FrameSize * 8, 0,
+      llvm::DINode::FlagZero, nullptr, llvm::DINodeArray());
+  // The frame's own words: the last call, the resume point and state if
+  // they take 4 bytes. A kept variable of the same name (a task's `int
+  // state`) keeps its name, and the word takes the `__bs_` prefix: gdb
+  // would show one of two same-named members.
+  auto WordName = [&](llvm::StringRef Name) {
+    bool Taken =
+        llvm::any_of(Task.Fields, [&](const BehaviorLayout::FrameField &F) {
+          return F.D->getName().Name == Name;
+        });
+    return Taken ? ("__bs_" + Name).str() : Name.str();
+  };
+  llvm::SmallVector<llvm::Metadata *, 8> Fields = {
+      createMember(Frame, WordName("last_call"), 32, 0, U32)};
+  if (inFrame(Task, Task.Resume))
+    Fields.push_back(createMember(Frame, WordName("resume"), 32,
+                                  Task.Resume.Offset - Task.FrameOffset, U32));
+  if (inFrame(Task, Task.State))
+    Fields.push_back(createMember(Frame, WordName("state"), 32,
+                                  Task.State.Offset - Task.FrameOffset,
+                                  getTaskStateType()));
+  // The fields kept (locals of disjoint scopes may share one).
+  for (const BehaviorLayout::FrameField &F : Task.Fields) {
+    llvm::DIType *Ty = getType(F.Ty);
+    if (!Ty)
+      continue;
+    uint64_t Bits = Ty->getSizeInBits()
+                        ? Ty->getSizeInBits()
+                        : DL.getTypeAllocSizeInBits(CGM.getMemoryType(F.Ty));
+    Fields.push_back(createMember(Frame, F.D->getName().Name, Bits,
+                                  F.Offset - Task.FrameOffset, Ty));
+  }
+  DIB.replaceArrays(Frame, DIB.getOrCreateArray(Fields));
+  return Frame;
 }
 
 llvm::DISubroutineType *

@@ -203,6 +203,17 @@ private:
                      llvm::SmallVectorImpl<llvm::Metadata *> &Members);
   llvm::DIType *getStringType();
   llvm::DIType *getStatePointerType();
+  /// A member of `Scope` of `Bits` bits at byte `Offset`.
+  llvm::DIDerivedType *createMember(llvm::DIScope *Scope, llvm::StringRef Name,
+                                    uint64_t Bits, uint64_t Offset,
+                                    llvm::DIType *Ty);
+  /// The state's member for the frames of the tasks [Begin, End) of the
+  /// layout, one module's.
+  llvm::DIDerivedType *createModuleFramesMember(llvm::DICompositeType *State,
+                                                size_t Begin, size_t End);
+  /// A task's frame: its own words and the fields it keeps.
+  llvm::DICompositeType *createFrameType(llvm::DIScope *ModStruct,
+                                         const BehaviorLayout::Task &Task);
   /// The state's member `headers`: per task with a narrow resume point or
   /// state (bscript.h bs_task_info), a structure of them; null if none.
   llvm::DIDerivedType *createTaskHeadersMember(llvm::DICompositeType *State);
