@@ -98,9 +98,10 @@ private:
     return "string";
   }
 
-  void writeSeries(const Series &S) {
+  /// `Path` names it on the page (a task field by its lane's label).
+  void writeSeries(const Series &S, llvm::StringRef Path) {
     J.object([&] {
-      J.attribute("path", S.Path);
+      J.attribute("path", Path);
       J.attribute("kind", kindOf(S));
       J.attributeArray("changes", [&] {
         for (size_t I = 0; I < S.Values.size(); ++I) {
@@ -133,9 +134,7 @@ private:
             J.attribute("name", F.Name);
             J.attribute("param", F.IsParam);
             J.attributeBegin("series");
-            Series Labelled = F.Values;
-            Labelled.Path = ShortName[T.Name] + "." + F.Name;
-            writeSeries(Labelled);
+            writeSeries(F.Values, ShortName[T.Name] + "." + F.Name);
             J.attributeEnd();
           });
       });
@@ -159,7 +158,7 @@ private:
       });
       J.attributeArray("series", [&] {
         for (const Series &S : R.Leaves)
-          writeSeries(S);
+          writeSeries(S, S.Path);
       });
     });
   }
