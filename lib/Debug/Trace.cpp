@@ -231,7 +231,7 @@ parseTask(const llvm::json::Value &V, const DebugTables &T, size_t NumTasks) {
   Task.File = File->str();
   Task.Line = *Line;
   if (llvm::Error E = parseYields(*O, *Yields, T, NumTasks, Task))
-    return std::move(E);
+    return llvm::Expected<DebugTables::Task>(std::move(E));
   for (const llvm::json::Value &C : *Callers) {
     std::optional<int64_t> I = C.getAsInteger();
     if (!I || *I < 0 || size_t(*I) >= NumTasks)
@@ -310,7 +310,7 @@ llvm::Expected<DebugTables> debug::parseDebugTables(llvm::StringRef Text) {
   }
   if (const llvm::json::Object *Budget = Root->getObject("budget"))
     if (llvm::Error E = parseBudget(*Budget, T))
-      return std::move(E);
+      return llvm::Expected<DebugTables>(std::move(E));
   return T;
 }
 
@@ -360,6 +360,14 @@ ActiveTree debug::buildActiveTree(const DebugTables &T,
   return Tree;
 }
 
+/// Whether the task waits at a yield (its resume point names one). A task
+/// that ended (done) waits at none: optimised code does not clear its
+/// resume point (lib/CodeGen/CGTask.cpp).
+static bool waitsAtYield(const DebugTables &T, const Activation &A) {
+  return A.State != BS_TASK_DONE && A.Resume != 0 && A.Task < T.Tasks.size() &&
+         A.Resume <= T.Tasks[A.Task].YieldLines.size();
+}
+
 std::string debug::activationState(const DebugTables &T, const Activation &A) {
   std::string S;
   if (A.State == BS_TASK_RUNNING)
@@ -370,7 +378,7 @@ std::string debug::activationState(const DebugTables &T, const Activation &A) {
     S = "failure";
   else
     S = "state " + std::to_string(A.State);
-  if (activationPlace(T, A).empty())
+  if (!waitsAtYield(T, A))
     return S;
   // Waiting at `yield Done::kicked`: the state has that name.
   const DebugTables::Task &Task = T.Tasks[A.Task];
@@ -381,10 +389,7 @@ std::string debug::activationState(const DebugTables &T, const Activation &A) {
 }
 
 std::string debug::activationPlace(const DebugTables &T, const Activation &A) {
-  // A task that ended (done) waits at no yield: optimised code does not
-  // clear its resume point (lib/CodeGen/CGTask.cpp).
-  if (A.State == BS_TASK_DONE || A.Resume == 0 || A.Task >= T.Tasks.size() ||
-      A.Resume > T.Tasks[A.Task].YieldLines.size())
+  if (!waitsAtYield(T, A))
     return "";
   const DebugTables::Task &Task = T.Tasks[A.Task];
   return Task.File + ":" + std::to_string(Task.YieldLines[A.Resume - 1]);
@@ -397,17 +402,21 @@ std::string debug::describeActivation(const DebugTables &T,
   return Place.empty() ? State : State + ", " + Place;
 }
 
-std::vector<FlatTask> debug::flattenActiveTree(const ActiveTree &Tree) {
-  std::vector<FlatTask> Flat;
+std::vector<RecordedTask>
+debug::listActiveTasks(const DebugTables &T,
+                       llvm::ArrayRef<Activation> Records) {
+  ActiveTree Tree = buildActiveTree(T, Records);
+  std::vector<RecordedTask> List;
   std::function<void(unsigned, int)> Walk = [&](unsigned N, int Parent) {
-    int Self = Flat.size();
-    Flat.push_back({Tree.Nodes[N].Record, Parent});
+    const Activation &A = Tree.Nodes[N].Record;
+    int Self = List.size();
+    List.push_back({A, Parent, activationState(T, A), activationPlace(T, A)});
     for (unsigned C : Tree.Nodes[N].Children)
       Walk(C, Self);
   };
   for (unsigned R : Tree.Roots)
     Walk(R, -1);
-  return Flat;
+  return List;
 }
 
 std::string debug::formatTraceLine(const DebugTables &T,

@@ -310,17 +310,14 @@ static llvm::json::Array recordTasks(debug::ValueIO &Values,
                                      const LoadedBehavior &L,
                                      const BehaviorSession &S) {
   const auto *State = static_cast<const char *>(S.getState());
-  debug::ActiveTree Tree = debug::buildActiveTree(
-      L.Tables, debug::takeSnapshot(State, &S.getInfo()));
   llvm::json::Array Tasks;
-  for (const debug::FlatTask &F : debug::flattenActiveTree(Tree)) {
-    llvm::json::Object Task{
-        {"task", L.Tables.Tasks[F.Record.Task].Name},
-        {"state", debug::activationState(L.Tables, F.Record)},
-        {"parent", F.Parent}};
-    std::string Place = debug::activationPlace(L.Tables, F.Record);
-    if (!Place.empty())
-      Task["at"] = Place;
+  for (const debug::RecordedTask &F : debug::listActiveTasks(
+           L.Tables, debug::takeSnapshot(State, &S.getInfo()))) {
+    llvm::json::Object Task{{"task", L.Tables.Tasks[F.Record.Task].Name},
+                            {"state", F.State},
+                            {"parent", F.Parent}};
+    if (!F.Place.empty())
+      Task["at"] = F.Place;
     llvm::json::Object Params, Locals;
     for (const BehaviorLayout::FrameField &Field :
          L.Layout.Tasks[F.Record.Task].Fields) {

@@ -238,17 +238,12 @@ bool timeline::readRobotLog(Compilation &C, const debug::DebugTables &Tables,
               "file?)");
       return false;
     }
-    debug::ActiveTree Tree = debug::buildActiveTree(Tables, Logged.Records);
-    std::vector<std::string> Texts; // Keeps the states and places alive.
-    std::vector<debug::FlatTask> Flat = debug::flattenActiveTree(Tree);
-    Texts.reserve(2 * Flat.size());
+    std::vector<debug::RecordedTask> Listed =
+        debug::listActiveTasks(Tables, Logged.Records);
     std::vector<CycleTask> Tasks;
-    for (const debug::FlatTask &F : Flat) {
-      Texts.push_back(debug::activationState(Tables, F.Record));
-      Texts.push_back(debug::activationPlace(Tables, F.Record));
-      Tasks.push_back({Tables.Tasks[F.Record.Task].Name,
-                       Texts[Texts.size() - 2], Texts.back(), F.Parent});
-    }
+    for (const debug::RecordedTask &F : Listed)
+      Tasks.push_back(
+          {Tables.Tasks[F.Record.Task].Name, F.State, F.Place, F.Parent});
     Builder.addCycle(Logged.Cycle, nullptr, nullptr, Tasks);
     Previous = Logged.Cycle;
   }

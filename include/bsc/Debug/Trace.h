@@ -127,14 +127,17 @@ std::string activationPlace(const DebugTables &T, const Activation &A);
 /// activationPlace.
 std::string describeActivation(const DebugTables &T, const Activation &A);
 
-/// A cycle's hierarchy in depth-first order, each node with the position
-/// of its parent in that order (-1 for a root): how a recording stores the
-/// cycle's tasks (docs/repl.md, "The JSON-lines format").
-struct FlatTask {
+/// One task of a cycle as a recording stores it (docs/repl.md, "The
+/// JSON-lines format") and the timeline draws it.
+struct RecordedTask {
   Activation Record;
-  int Parent = -1;
+  int Parent = -1;   ///< Its parent's position in the list; -1: a root.
+  std::string State; ///< activationState.
+  std::string Place; ///< activationPlace; "" when it finished.
 };
-std::vector<FlatTask> flattenActiveTree(const ActiveTree &Tree);
+/// The cycle's hierarchy (buildActiveTree) depth first.
+std::vector<RecordedTask> listActiveTasks(const DebugTables &T,
+                                          llvm::ArrayRef<Activation> Records);
 
 /// The hierarchy on one line, each path from a root to a leaf, every task
 /// with its describeActivation: `play [running, Soccer.bs:12] >
