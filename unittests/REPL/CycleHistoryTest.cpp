@@ -75,8 +75,9 @@ TEST(CycleHistoryTest, ReRunningFromCopiesGivesEveryCycleBack) {
     for (bool Before : {false, true}) {
       travel(T, H, C, Before);
       EXPECT_EQ(T.State, States[C]) << "cycle " << C;
-      if (C > 0)
+      if (C > 0) {
         EXPECT_EQ(T.Input, Toy::inputOf(C)) << "cycle " << C;
+      }
     }
   }
 }
