@@ -13,7 +13,7 @@
 #include "bsc/CodeGen/EmitHeader.h"
 #include "bsc/Debug/Values.h"
 #include "bsc/Parse/Lexer.h"
-#include "bsc/REPL/Debugger.h"
+#include "bsc/Run/Run.h"
 #include "bsc/Sema/CallGraph.h"
 #include "llvm/ADT/ScopeExit.h"
 #include "llvm/ADT/StringExtras.h"

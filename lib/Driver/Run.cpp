@@ -1,14 +1,14 @@
 //===- Run.cpp - `bsc run` and `bsc repl`: behaviors in the host JIT ------===//
 //
-// Both check their options, then hand over to lib/REPL: `bsc run` loads
+// Both check their options, then hand over: `bsc run` (lib/Run) loads
 // the behavior, starts a session and runs its cycles (with a --world
-// library feeding it), `bsc repl` lets the REPL load and reload the files
-// itself. Both run on the host whatever -target says (the tool gives them
-// the host's ToolChain).
+// library feeding it); `bsc repl` (lib/REPL) lets the REPL load and
+// reload the files itself. Both run on the host whatever -target says
+// (the tool gives them the host's ToolChain).
 //
 //===----------------------------------------------------------------------===//
 #include "bsc/Driver/Driver.h"
-#include "bsc/REPL/Debugger.h"
+#include "bsc/Run/Run.h"
 #include "bsc/REPL/Repl.h"
 #include "llvm/Support/raw_ostream.h"
 

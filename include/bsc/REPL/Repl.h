@@ -8,7 +8,7 @@
 #ifndef BSC_REPL_REPL_H
 #define BSC_REPL_REPL_H
 
-#include "bsc/REPL/Debugger.h"
+#include "bsc/Run/Run.h"
 
 namespace bsc {
 

@@ -1,4 +1,4 @@
-//===- Debugger.h - running behaviors in the JIT to debug them -*- C++ -*-===//
+//===- Run.h - running behaviors in the JIT to debug them -------*- C++ -*-===//
 //
 // The debugging side of bsc (docs/repl.md): `bsc run` with its trace,
 // record and replay options, and the pieces the REPL (Repl.h) shares with
@@ -12,8 +12,8 @@
 // are internal errors.
 //
 //===----------------------------------------------------------------------===//
-#ifndef BSC_REPL_DEBUGGER_H
-#define BSC_REPL_DEBUGGER_H
+#ifndef BSC_RUN_RUN_H
+#define BSC_RUN_RUN_H
 
 #include "bsc/CodeGen/CodeGen.h"
 #include "bsc/Debug/Trace.h"

@@ -1,0 +1,62 @@
+//===- Record.cpp - one cycle as a line of a recording -------------------===//
+//
+// `--record` and the REPL's `:record` write a line per cycle: the inputs,
+// the outputs and the active tasks with their fields (docs/repl.md). The
+// values go through bsc/Debug, so a recording and a decoded robot log
+// spell them alike.
+//
+//===----------------------------------------------------------------------===//
+#include "bsc/Run/Run.h"
+
+using namespace bsc;
+
+/// The cycle's hierarchy as a recording keeps it: depth first, each task
+/// with its state, the yield it waits at, its parent's position and its
+/// parameters and (unless it finished) locals.
+static llvm::json::Array recordTasks(debug::ValueIO &Values,
+                                     const LoadedBehavior &L,
+                                     const BehaviorSession &S) {
+  const auto *State = static_cast<const char *>(S.getState());
+  llvm::json::Array Tasks;
+  for (const debug::RecordedTask &F : debug::listActiveTasks(
+           L.Tables, debug::takeSnapshot(State, &S.getInfo()))) {
+    llvm::json::Object Task{{"task", L.Tables.Tasks[F.Record.Task].Name},
+                            {"state", F.State},
+                            {"parent", F.Parent}};
+    if (!F.Place.empty())
+      Task["at"] = F.Place;
+    llvm::json::Object Params, Locals;
+    for (const BehaviorLayout::FrameField &Field :
+         L.Layout.Tasks[F.Record.Task].Fields) {
+      bool IsParam = llvm::isa<ParamDecl>(Field.D);
+      // A finished task's locals are gone (the next call starts afresh).
+      if (!IsParam && F.Record.Resume == 0)
+        continue;
+      llvm::json::Object &Into = IsParam ? Params : Locals;
+      // Locals of one name in different blocks: `x`, `x#2`, ... in the
+      // frame's order.
+      std::string Name = Field.D->getName().Name.str();
+      for (unsigned N = 2; Into.find(Name) != Into.end(); ++N)
+        Name = Field.D->getName().Name.str() + "#" + std::to_string(N);
+      Into[Name] = Values.read(Field.Ty, State + Field.Offset);
+    }
+    if (!Params.empty())
+      Task["params"] = std::move(Params);
+    if (!Locals.empty())
+      Task["locals"] = std::move(Locals);
+    Tasks.push_back(std::move(Task));
+  }
+  return Tasks;
+}
+
+llvm::json::Value bsc::recordCycle(debug::ValueIO &Values,
+                                   const LoadedBehavior &L,
+                                   const BehaviorSession &S) {
+  llvm::json::Object Rec{{"cycle", int64_t(S.getCycle())}};
+  if (L.InputClass)
+    Rec["input"] = Values.readClass(*L.InputClass, S.getInput());
+  if (L.OutputClass)
+    Rec["output"] = Values.readClass(*L.OutputClass, S.getOutput());
+  Rec["tasks"] = recordTasks(Values, L, S);
+  return Rec;
+}
