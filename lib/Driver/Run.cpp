@@ -26,8 +26,9 @@ static bool checkWorldOutputOption(Compilation &C, llvm::StringRef WorldLibrary,
 }
 
 /// Loads the checked behavior into the JIT and runs its cycles.
-static int loadAndRun(Compilation &C, const RunCommandOptions &Opts, const LoadOptions &LOpts,
-                      const RunOptions &ROpts, const CallableDecl &Entry) {
+static int loadAndRun(Compilation &C, const RunCommandOptions &Opts,
+                      const LoadOptions &LOpts, const RunOptions &ROpts,
+                      const CallableDecl &Entry) {
   auto Loaded = loadBehavior(C, Entry, LOpts);
   if (!Loaded)
     return finishWithInternalError(C, Loaded.takeError());

@@ -1,0 +1,180 @@
+//===- RunTest.cpp - loading a behavior, running its cycles ---------------===//
+#include "bsc/Run/Run.h"
+#include "llvm/Support/FileSystem.h"
+#include "llvm/Support/MemoryBuffer.h"
+#include "llvm/Support/Path.h"
+#include "llvm/Support/raw_ostream.h"
+#include "gtest/gtest.h"
+
+using namespace bsc;
+
+namespace {
+
+/// A file removed at the end of the test.
+class TempFile {
+public:
+  TempFile(llvm::StringRef Name, llvm::StringRef Text) {
+    llvm::sys::fs::createUniqueDirectory("bsc-run", Dir);
+    Path = (Dir + "/" + Name).str();
+    std::error_code EC;
+    llvm::raw_fd_ostream OS(Path, EC);
+    OS << Text;
+  }
+  ~TempFile() { llvm::sys::fs::remove_directories(Dir); }
+  std::string Path;
+  llvm::SmallString<128> Dir;
+};
+
+/// A checked behavior loaded into a fresh JIT with a session started.
+class RunTest : public ::testing::Test {
+protected:
+  /// Checks and loads `Text` (its entry `Entry`); false after an error.
+  bool load(llvm::StringRef Text, llvm::StringRef Entry) {
+    Script = std::make_unique<TempFile>("Behavior.bs", Text);
+    FrontendOptions FOpts;
+    FOpts.Inputs = {Script->Path};
+    FOpts.StandardModules = {BSC_HOST_RUNTIME};
+    if (!runFrontend(C, FOpts))
+      return false;
+    const CallableDecl *E = findProgramEntry(C, Entry);
+    if (!E)
+      return false;
+    LoadOptions LOpts;
+    LOpts.StandardModules = FOpts.StandardModules;
+    auto L = loadBehavior(C, *E, LOpts);
+    EXPECT_TRUE(bool(L)) << llvm::toString(L.takeError());
+    if (!L || !*L)
+      return false;
+    Loaded = std::move(*L);
+    auto S = startSession(C, *Loaded);
+    EXPECT_TRUE(bool(S)) << llvm::toString(S.takeError());
+    if (!S || !*S)
+      return false;
+    Session = std::move(*S);
+    return true;
+  }
+
+  /// Runs with `Opts`; the text written, or the errors reported.
+  std::string run(const RunOptions &Opts) {
+    std::string Out;
+    llvm::raw_string_ostream OS(Out);
+    if (!runBehavior(C, *Loaded, *Session, Opts, OS))
+      return "failed: " + messages();
+    return Out;
+  }
+
+  std::string messages() const {
+    std::string All;
+    for (const Diagnostic &D : C.Diags.getDiagnostics())
+      All += D.Message + "\n";
+    return All;
+  }
+
+  Compilation C;
+  std::unique_ptr<TempFile> Script;
+  std::unique_ptr<LoadedBehavior> Loaded;
+  std::unique_ptr<BehaviorSession> Session;
+};
+
+constexpr const char *Stepper = "task step()\n"
+                                "    yield\n"
+                                "    yield\n";
+
+TEST_F(RunTest, TracesEachCycleWhereTheTaskWaits) {
+  ASSERT_TRUE(load(Stepper, "step")) << messages();
+  RunOptions Opts;
+  Opts.Cycles = 3;
+  Opts.Trace = debug::TraceMode::EveryCycle;
+  EXPECT_EQ(run(Opts), "cycle 1: step [running, Behavior.bs:2]\n"
+                       "cycle 2: step [running, Behavior.bs:3]\n"
+                       "cycle 3: step [done]\n");
+}
+
+TEST_F(RunTest, ChangesPrintsOnlyCyclesThatDiffer) {
+  ASSERT_TRUE(load("task wait()\n    for(;;)\n        yield\n", "wait"))
+      << messages();
+  RunOptions Opts;
+  Opts.Cycles = 4;
+  Opts.Trace = debug::TraceMode::Changes;
+  EXPECT_EQ(run(Opts), "cycle 1: wait [running, Behavior.bs:3]\n");
+}
+
+TEST_F(RunTest, CyclesAndReplayConflict) {
+  ASSERT_TRUE(load(Stepper, "step")) << messages();
+  TempFile Replay("replay.jsonl", "{\"cycle\":1}\n");
+  RunOptions Opts;
+  Opts.CyclesGiven = true;
+  Opts.ReplayPath = Replay.Path;
+  EXPECT_EQ(run(Opts), "failed: '--cycles' cannot be combined with "
+                       "'--replay'\n");
+}
+
+TEST_F(RunTest, AReplayOfInputsNeedsAWorld) {
+  ASSERT_TRUE(load(Stepper, "step")) << messages();
+  TempFile Replay("replay.jsonl", "{\"cycle\":1,\"input\":{}}\n"
+                                  "{\"cycle\":2,\"speed\":3}\n\n");
+  RunOptions Opts;
+  Opts.ReplayPath = Replay.Path;
+  std::string Got = run(Opts);
+  EXPECT_NE(Got.find("'input'"), std::string::npos) << Got;
+  EXPECT_NE(Got.find("'speed'"), std::string::npos) << Got;
+}
+
+TEST_F(RunTest, AnEmptyReplayIsAnError) {
+  ASSERT_TRUE(load(Stepper, "step")) << messages();
+  TempFile Replay("replay.jsonl", "\n  \n");
+  RunOptions Opts;
+  Opts.ReplayPath = Replay.Path;
+  std::string Got = run(Opts);
+  EXPECT_NE(Got.find("has no cycles to replay"), std::string::npos) << Got;
+}
+
+TEST_F(RunTest, ARecordingHasALinePerCycleWithItsTasks) {
+  ASSERT_TRUE(load(Stepper, "step")) << messages();
+  TempFile Out("out.jsonl", "");
+  RunOptions Opts;
+  Opts.Cycles = 2;
+  Opts.RecordPath = Out.Path;
+  EXPECT_EQ(run(Opts), "");
+  auto Buf = llvm::MemoryBuffer::getFile(Out.Path);
+  ASSERT_TRUE(bool(Buf));
+  EXPECT_EQ((*Buf)->getBuffer().str(),
+            "{\"cycle\":1,\"tasks\":[{\"at\":\"Behavior.bs:2\",\"parent\":-1,"
+            "\"state\":\"running\",\"task\":\"Behavior::step\"}]}\n"
+            "{\"cycle\":2,\"tasks\":[{\"at\":\"Behavior.bs:3\",\"parent\":-1,"
+            "\"state\":\"running\",\"task\":\"Behavior::step\"}]}\n");
+}
+
+TEST_F(RunTest, ARunawayLoopIsReportedAtTheLoop) {
+  ASSERT_TRUE(load("task spin()\n    int n = 0\n    for(;;)\n"
+                   "        n += 1\n",
+                   "spin"))
+      << messages();
+  RunOptions Opts;
+  Opts.CycleLimitMs = 50;
+  std::string Got = run(Opts);
+  EXPECT_EQ(Got.rfind("failed: ", 0), 0u) << Got;
+  EXPECT_NE(Got.find("cycle 1"), std::string::npos) << Got;
+  ASSERT_FALSE(C.Diags.getDiagnostics().empty());
+  auto [Line, Col] =
+      C.SM.getLineAndColumn(C.Diags.getDiagnostics().back().Loc);
+  EXPECT_EQ(Line, 3u);
+}
+
+TEST_F(RunTest, StopAfterCycleEndsTheRun) {
+  ASSERT_TRUE(load(Stepper, "step")) << messages();
+  RunOptions Opts;
+  Opts.Cycles = 3;
+  Opts.Trace = debug::TraceMode::EveryCycle;
+  Opts.StopAfterCycle = [] { return true; };
+  EXPECT_EQ(run(Opts), "cycle 1: step [running, Behavior.bs:2]\n");
+}
+
+TEST_F(RunTest, AMissingReplayFileIsReported) {
+  ASSERT_TRUE(load(Stepper, "step")) << messages();
+  RunOptions Opts;
+  Opts.ReplayPath = "/nonexistent/replay.jsonl";
+  EXPECT_NE(run(Opts).find("cannot open"), std::string::npos);
+}
+
+} // namespace
