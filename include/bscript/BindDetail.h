@@ -1,4 +1,4 @@
-//===- bscript/BindDetail.h - how Bind.h writes a descriptor -*- C++ -*-===//
+//===- bscript/BindDetail.h - how Bind.h writes a descriptor ----*- C++ -*-===//
 //
 // The machinery behind bscript/Bind.h, which includes it: the descriptor's
 // records (bs::detail::rec, pinned to bscript/descriptor.h), how each C++
