@@ -19,6 +19,9 @@
 # it stops rather than report green with less in it. Feature: i586-native (this kernel runs
 # 32-bit programs itself, so gdb can debug them; elsewhere they run in
 # qemu-i386 and the one gdb-on-i586 test is reported unsupported).
+# Feature vscode-tools: the build made the VS Code extension (node, npm and
+# the npm registry; cmake/Editors.cmake); without it test/Editors is
+# reported unsupported, with a note that says why.
 import os
 import shutil
 import subprocess
@@ -90,3 +93,25 @@ def runs_i586_natively():
 
 if runs_i586_natively():
     config.available_features.add("i586-native")
+
+
+def vscode_tools_missing():
+    """Why test/Editors cannot run, or None: they need node, and the
+    extension's node_modules and .vsix that the build made."""
+    # getattr: a build folder configured before cmake/Editors.cmake existed.
+    if not getattr(config, "vscode_node", ""):
+        return "cmake found no node and npm (dev.sh installs them)"
+    modules = os.path.join(config.vscode_build_dir, "node_modules")
+    if not os.path.isdir(os.path.join(modules, "vscode-tmgrammar-test")) or \
+            not os.path.isfile(config.vscode_vsix):
+        return ("the build did not make %s (its message says why: "
+                "npm ci needs the npm registry)" % config.vscode_vsix)
+    return None
+
+
+vscode_missing = vscode_tools_missing()
+if vscode_missing:
+    lit_config.note("the VS Code extension's tests (test/Editors) are "
+                    "UNSUPPORTED: " + vscode_missing)
+else:
+    config.available_features.add("vscode-tools")

@@ -1,0 +1,190 @@
+// node run_extension.js SCENARIO EXTENSION_DIR SERVER_PATH [ARG...]
+//
+// Runs the extension's extension.js, with the real vscode-languageclient
+// beside it, against a stand-in for the `vscode` module: a few parts of the
+// API are real enough to watch (settings, commands, messages, the output
+// channel, printed to stderr), the rest answers anything. It activates the
+// extension with bscript.server.path = SERVER_PATH and bscript.server.args
+// = ARGS, and prints what happens in SCENARIO:
+//   start  wait for the server to be initialized; run the command
+//          bscript.restartServer; change bscript.server.args to
+//          ["--changed"]; change unrelated settings; deactivate
+//   fail   wait a little; deactivate (a server that cannot start)
+//   crash  wait until the server was started 5 times (it crashes); deactivate
+// SERVER_PATH is typically Inputs/fake-bsc; $FAKE_BSC_LOG is its side.
+'use strict';
+const Module = require('module');
+const fs = require('fs');
+const path = require('path');
+
+const [scenario, extensionDir, serverPath, ...serverArgs] = process.argv.slice(2);
+const say = (line) => console.log(line);
+
+// Anything: a function, a constructor, a class to extend, an object with
+// any member, an event to subscribe to. Never a promise.
+function anything(name) {
+  const target = function () {};
+  return new Proxy(target, {
+    get(t, prop) {
+      if (prop === 'then') return undefined;
+      if (prop === Symbol.toPrimitive || prop === 'toString') return () => `<${name}>`;
+      if (prop === Symbol.iterator) return function* () {};
+      if (prop === 'prototype') return t.prototype;
+      if (prop === 'dispose') return () => {};
+      return anything(`${name}.${String(prop)}`);
+    },
+    apply() { return anything(`${name}()`); },
+    construct() { return anything(`new ${name}`); },
+  });
+}
+
+// An object whose own members are real and the rest is anything().
+function partly(name, real) {
+  return new Proxy(real, {
+    get(t, prop) {
+      if (prop in t) return t[prop];
+      if (prop === 'then') return undefined;
+      return anything(`${name}.${String(prop)}`);
+    },
+  });
+}
+
+const settings = {
+  'bscript.server.path': serverPath,
+  'bscript.server.args': serverArgs,
+  'bscript.trace.server': 'off',
+};
+const configurationListeners = [];
+const commands = {};
+const disposable = { dispose() {} };
+
+class EventEmitter {
+  constructor() {
+    this.listeners = [];
+    this.event = (listener) => {
+      this.listeners.push(listener);
+      return { dispose: () => { this.listeners = this.listeners.filter((l) => l !== listener); } };
+    };
+  }
+  fire(value) { this.listeners.slice().forEach((l) => l(value)); }
+  dispose() { this.listeners = []; }
+}
+
+const vscode = partly('vscode', {
+  EventEmitter,
+  Disposable: class Disposable {
+    constructor(f) { this.f = f; }
+    static from(...ds) { return new Disposable(() => ds.forEach((d) => d && d.dispose && d.dispose())); }
+    dispose() { if (this.f) this.f(); }
+  },
+  workspace: partly('vscode.workspace', {
+    workspaceFolders: undefined,
+    textDocuments: [],
+    notebookDocuments: [],
+    getConfiguration(section) {
+      return partly('configuration', {
+        get(key, fallback) {
+          const full = section ? `${section}.${key}` : key;
+          return full in settings ? settings[full] : fallback;
+        },
+      });
+    },
+    onDidChangeConfiguration(listener) {
+      configurationListeners.push(listener);
+      return disposable;
+    },
+    createFileSystemWatcher(glob) {
+      say(`watcher: ${glob}`);
+      return partly('watcher', { dispose() {} });
+    },
+  }),
+  window: partly('vscode.window', {
+    showErrorMessage(message) { say(`error message: ${message}`); return Promise.resolve(undefined); },
+    showWarningMessage(message) { say(`warning message: ${message}`); return Promise.resolve(undefined); },
+    showInformationMessage(message) { say(`information message: ${message}`); return Promise.resolve(undefined); },
+    createOutputChannel(name) {
+      say(`output channel: ${name}`);
+      const log = (text) => process.stderr.write(`[${name}] ${text}`);
+      return partly('channel', {
+        name, append: log, appendLine: (t) => log(t + '\n'), show() {}, hide() {}, clear() {}, dispose() {},
+        replace() {},
+      });
+    },
+  }),
+  commands: partly('vscode.commands', {
+    registerCommand(id, callback) {
+      say(`command: ${id}`);
+      commands[id] = callback;
+      return disposable;
+    },
+    executeCommand() { return Promise.resolve(undefined); },
+  }),
+  version: '1.90.0',
+  env: partly('vscode.env', { language: 'en', appName: 'test', machineId: 'test', sessionId: 'test' }),
+});
+
+// As in VS Code's extension host, a promise rejected without a handler
+// (vscode-languageclient leaves the write to a server that died
+// unawaited) is logged, not fatal.
+process.on('unhandledRejection', (reason) => process.stderr.write(`unhandled rejection: ${reason}\n`));
+
+// require('vscode') anywhere gives the stand-in.
+const resolve = Module._resolveFilename;
+Module._resolveFilename = function (request, ...rest) {
+  return request === 'vscode' ? 'vscode' : resolve.call(this, request, ...rest);
+};
+require.cache.vscode = { id: 'vscode', filename: 'vscode', loaded: true, exports: vscode };
+
+const serverLog = process.env.FAKE_BSC_LOG;
+const serverSaid = () => (serverLog && fs.existsSync(serverLog) ? fs.readFileSync(serverLog, 'utf8') : '');
+async function until(what, condition) {
+  for (let i = 0; i < 200; i++) {
+    if (condition()) return;
+    await new Promise((r) => setTimeout(r, 25));
+  }
+  say(`timed out waiting for ${what}`);
+  process.exit(1);
+}
+const count = (text, line) => text.split('\n').filter((l) => l === line).length;
+const changeSettings = (keys) => configurationListeners.forEach((l) => l({
+  affectsConfiguration: (section) => keys.some((k) => k === section || k.startsWith(section + '.')),
+}));
+
+async function main() {
+  const extension = require(path.resolve(extensionDir, 'extension.js'));
+  say(`exports: ${Object.keys(extension).sort().join(' ')}`);
+  const context = { subscriptions: [], extensionPath: extensionDir, asAbsolutePath: (p) => path.join(extensionDir, p) };
+  await extension.activate(context);
+  if (scenario === 'fail') {
+    await new Promise((r) => setTimeout(r, 500));
+    say('deactivate');
+    await extension.deactivate();
+    process.exit(0);
+  }
+  if (scenario === 'crash') {
+    await until('5 starts', () => count(serverSaid(), 'got: initialized') === 5);
+    await new Promise((r) => setTimeout(r, 500));
+    say(`server started ${serverSaid().split('\n').filter((l) => l.startsWith('started')).length} times`);
+    say('deactivate');
+    await extension.deactivate();
+    process.exit(0);
+  }
+  await until('the server', () => count(serverSaid(), 'got: initialized') === 1);
+  say('server initialized');
+  await commands['bscript.restartServer']();
+  await until('the restarted server', () => count(serverSaid(), 'got: initialized') === 2);
+  say('server restarted');
+  settings['bscript.server.args'] = ['--changed'];
+  changeSettings(['bscript.server.args']);
+  await until('the server with new arguments', () => count(serverSaid(), 'got: initialized') === 3);
+  say('server restarted after a change of bscript.server.args');
+  changeSettings(['editor.tabSize', 'bscript.trace.server']);
+  await new Promise((r) => setTimeout(r, 300));
+  say('deactivate');
+  await extension.deactivate();
+  await until('the server to exit', () => count(serverSaid(), 'exited') === 3);
+  say(`server's log:\n${serverSaid()}`);
+  process.exit(0);
+}
+
+main().catch((error) => { say(`failed: ${error && error.stack || error}`); process.exit(1); });
