@@ -89,8 +89,7 @@ bool Lexer::measureIndentation(unsigned &Column) {
     if (Cur == BufEnd)
       return false;
     if (*Cur == '#')
-      while (Cur != BufEnd && *Cur != '\n')
-        ++Cur;
+      skipComment();
     if (Cur == BufEnd)
       return false;
     if (*Cur == '\n') {
@@ -157,8 +156,7 @@ Token Lexer::lex() {
     while (Cur != BufEnd && (*Cur == ' ' || *Cur == '\t' || *Cur == '\r'))
       ++Cur;
     if (Cur != BufEnd && *Cur == '#')
-      while (Cur != BufEnd && *Cur != '\n')
-        ++Cur;
+      skipComment();
 
     if (Cur == BufEnd) {
       ReachedEnd = true;
@@ -264,6 +262,15 @@ void Lexer::reportUnclosed() {
   if (Diags.getNumErrors() == ErrorsAtOpenParen)
     report(OpenParens.front(), diag::err_unclosed_bracket) << "(";
   OpenParens.clear();
+}
+
+/// Moves Cur from a `#` to the end of its line, keeping the comment.
+void Lexer::skipComment() {
+  const char *Start = Cur;
+  while (Cur != BufEnd && *Cur != '\n')
+    ++Cur;
+  if (Comments)
+    Comments->push_back(llvm::StringRef(Start, Cur - Start).rtrim("\r"));
 }
 
 bool Lexer::nextLineStartsStatement() {

@@ -26,6 +26,9 @@ cl::SubCommand tool::TraceDecodeCmd(
 cl::SubCommand tool::TimelineCmd(
     "timeline",
     "Draw a recorded run, or two to compare, as one self-contained HTML page");
+cl::SubCommand tool::FormatCmd(
+    "format", "Print b-script files in the one canonical layout, or rewrite "
+              "them (-i), or name those that would change (--check)");
 
 
 namespace {
@@ -37,6 +40,7 @@ namespace {
 #define BSC_JIT BSC_RUN, cl::sub(ReplCmd)
 #define BSC_DECODE BSC_TOP, cl::sub(TraceDecodeCmd)
 #define BSC_TIMELINE BSC_TOP, cl::sub(TimelineCmd)
+#define BSC_FORMAT BSC_TOP, cl::sub(FormatCmd)
 /// Options shared by the compiler and `bsc run` are in both subcommands...
 #define BSC_BOTH                                                               \
   BSC_TOP, cl::sub(cl::SubCommand::getTopLevel()), cl::sub(RunCmd)
@@ -157,6 +161,17 @@ cl::opt<std::string> TimelineOutput(
     cl::desc("The page to write (default: the first record's name with "
              "'.html')"),
     cl::value_desc("file.html"), BSC_TIMELINE);
+cl::list<std::string> FormatFiles(cl::Positional, cl::desc("<file.bs>..."),
+                                  BSC_FORMAT);
+cl::opt<bool> FormatInPlace("i",
+                            cl::desc("Rewrite each file that is not in the "
+                                     "layout, instead of printing it"),
+                            BSC_FORMAT);
+cl::opt<bool> FormatCheck(
+    "check",
+    cl::desc("Print the name of each file that is not in the layout and exit "
+             "with status 1 if there is one (for CI)"),
+    BSC_FORMAT);
 cl::opt<bool> TraceChangesFlag(
     "changes",
     cl::desc("Print only the cycles whose line differs from the cycle "
@@ -319,5 +334,8 @@ tool::CommandLine tool::readCommandLine() {
   CL.Timeline = {{TimelineRecords.begin(), TimelineRecords.end()},
                  TimelineObject,
                  TimelineOutput};
+  CL.Format = {{FormatFiles.begin(), FormatFiles.end()},
+               FormatInPlace,
+               FormatCheck};
   return CL;
 }

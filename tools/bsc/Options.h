@@ -19,7 +19,8 @@ namespace bsc::tool {
 
 /// bsc's own options (those of LLVM's libraries are hidden).
 extern llvm::cl::OptionCategory BscCategory;
-extern llvm::cl::SubCommand RunCmd, ReplCmd, TraceDecodeCmd, TimelineCmd;
+extern llvm::cl::SubCommand RunCmd, ReplCmd, TraceDecodeCmd, TimelineCmd,
+    FormatCmd;
 
 /// The command line after parsing.
 struct CommandLine {
@@ -33,6 +34,7 @@ struct CommandLine {
   ReplCommandOptions Repl;
   debug::TraceDecodeOptions TraceDecode;
   timeline::TimelineOptions Timeline;
+  FormatCommandOptions Format;
 };
 
 CommandLine readCommandLine();

@@ -11,6 +11,7 @@
 //   bsc repl [options] FILE.bs...     the debugger
 //   bsc trace-decode --object B.o LOG a robot's trace log
 //   bsc timeline REC [REC2] -o P.html a run drawn (lib/Timeline)
+//   bsc format [-i|--check] FILE.bs... the canonical layout (lib/Format)
 //
 // Everything the user can get wrong on the command line (a bad option value,
 // a missing entry, an unknown target, an unwritable output, a missing
@@ -66,6 +67,10 @@ int dispatch(Compilation &C, CommandLine &CL, const char *Argv0) {
       timeline::writeTimeline(C, CL.Timeline, llvm::outs());
     return finish(C);
   }
+  if (FormatCmd)
+    return checkSubcommandOptions(C.Diags, FormatCmd)
+               ? formatCommand(C, CL.Format, llvm::outs())
+               : finish(C);
   if (TraceDecodeCmd) {
     debug::decodeTraceLog(CL.TraceDecode, C.Diags, llvm::outs());
     return finish(C);
@@ -78,7 +83,7 @@ int main(int argc, char **argv) {
   llvm::InitLLVM X(argc, argv);
   for (cl::SubCommand *Sub :
        {&cl::SubCommand::getTopLevel(), &RunCmd, &TraceDecodeCmd, &ReplCmd,
-        &TimelineCmd})
+        &TimelineCmd, &FormatCmd})
     cl::HideUnrelatedOptions(BscCategory, *Sub);
   Argv0ForVersion = argv[0];
   cl::SetVersionPrinter(printBscVersion);

@@ -240,6 +240,20 @@ struct ReplCommandOptions {
 int replCommand(Compilation &C, const FrontendOptions &FOpts,
                 const ReplCommandOptions &Opts);
 
+/// `bsc format` as written on the command line.
+struct FormatCommandOptions {
+  std::vector<std::string> Files;
+  bool InPlace = false; ///< -i: rewrite each file that changes.
+  bool Check = false;   ///< --check: name each file that would change.
+};
+
+/// `bsc format`: prints each file in the canonical layout (Format.h),
+/// rewrites it (-i), or names the files that would change (--check, exit
+/// status 1 if any). A file with syntax errors is reported and left alone;
+/// the others are still formatted. Returns the exit status.
+int formatCommand(Compilation &C, const FormatCommandOptions &Opts,
+                  llvm::raw_ostream &OS);
+
 } // namespace bsc
 
 #endif

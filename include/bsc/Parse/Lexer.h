@@ -58,6 +58,11 @@ public:
   /// Returns the next token; after the end of the buffer, `eof` forever.
   Token lex();
 
+  /// Appends each comment (from `#` to the end of its line, without a
+  /// '\r') to `Sink` as the lexer passes it: the formatter and the language
+  /// server keep what the parser never sees.
+  void keepComments(std::vector<llvm::StringRef> *Sink) { Comments = Sink; }
+
 private:
   void lexIndentation(Token &Result);
   bool measureIndentation(unsigned &Column);
@@ -66,6 +71,7 @@ private:
   void lexInvalidRun(Token &Result);
   bool lexPunctuator(Token &Result);
   bool nextLineStartsStatement();
+  void skipComment();
   void reportUnclosed();
   void makeToken(Token &Result, tok::Kind K, const char *Start);
   void makeMarker(Token &Result, tok::Kind K, const char *At);
@@ -102,6 +108,7 @@ private:
   bool ReachedEnd = false;
   /// An inconsistent dedent was reported; an `error` token follows it.
   bool PendingBadDedent = false;
+  std::vector<llvm::StringRef> *Comments = nullptr;
 };
 
 /// Lexes the whole buffer and prints one token per line for
