@@ -106,7 +106,9 @@ private:
       }
       return It->second;
     }
-    unsigned BufferID = addSourceFile(C, Path);
+    unsigned BufferID = addUnsavedFile(Path);
+    if (!BufferID)
+      BufferID = addSourceFile(C, Path);
     if (!BufferID)
       return nullptr;
     ModuleAST *M = parseModule(C.SM, BufferID, Name, C.Ctx, C.Diags);
@@ -114,6 +116,20 @@ private:
     ByName[Name] = M;
     C.Modules.push_back(M);
     return M;
+  }
+
+  /// The editor's text of `Path`, if it has one (FrontendOptions::Unsaved).
+  unsigned addUnsavedFile(llvm::StringRef Path) {
+    if (!Opts.Unsaved)
+      return 0;
+    llvm::SmallString<256> Abs(Path);
+    llvm::sys::fs::make_absolute(Abs);
+    llvm::sys::path::remove_dots(Abs, /*remove_dot_dot=*/true);
+    auto It = Opts.Unsaved->find(std::string(Abs));
+    if (It == Opts.Unsaved->end())
+      return 0;
+    return C.SM.AddNewSourceBuffer(
+        llvm::MemoryBuffer::getMemBufferCopy(It->second, Path), llvm::SMLoc());
   }
 
   void resolveRequires(ModuleAST &M) {

@@ -26,6 +26,9 @@ cl::SubCommand tool::TraceDecodeCmd(
 cl::SubCommand tool::TimelineCmd(
     "timeline",
     "Draw a recorded run, or two to compare, as one self-contained HTML page");
+cl::SubCommand tool::LspCmd(
+    "lsp", "Serve editors: a Language Server Protocol server on standard "
+           "input and output (docs/editors.md)");
 cl::SubCommand tool::FormatCmd(
     "format", "Print b-script files in the one canonical layout, or rewrite "
               "them (-i), or name those that would change (--check)");

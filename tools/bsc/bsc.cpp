@@ -12,6 +12,7 @@
 //   bsc trace-decode --object B.o LOG a robot's trace log
 //   bsc timeline REC [REC2] -o P.html a run drawn (lib/Timeline)
 //   bsc format [-i|--check] FILE.bs... the canonical layout (lib/Format)
+//   bsc lsp                           the language server (lib/LSP)
 //
 // Everything the user can get wrong on the command line (a bad option value,
 // a missing entry, an unknown target, an unwritable output, a missing
@@ -67,6 +68,10 @@ int dispatch(Compilation &C, CommandLine &CL, const char *Argv0) {
       timeline::writeTimeline(C, CL.Timeline, llvm::outs());
     return finish(C);
   }
+  if (LspCmd)
+    return checkSubcommandOptions(C.Diags, LspCmd)
+               ? lspCommand(CL.RuntimeDir, Argv0)
+               : finish(C);
   if (FormatCmd)
     return checkSubcommandOptions(C.Diags, FormatCmd)
                ? formatCommand(C, CL.Format, llvm::outs())
@@ -83,7 +88,7 @@ int main(int argc, char **argv) {
   llvm::InitLLVM X(argc, argv);
   for (cl::SubCommand *Sub :
        {&cl::SubCommand::getTopLevel(), &RunCmd, &TraceDecodeCmd, &ReplCmd,
-        &TimelineCmd, &FormatCmd})
+        &TimelineCmd, &FormatCmd, &LspCmd})
     cl::HideUnrelatedOptions(BscCategory, *Sub);
   Argv0ForVersion = argv[0];
   cl::SetVersionPrinter(printBscVersion);

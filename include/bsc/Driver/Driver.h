@@ -254,6 +254,10 @@ struct FormatCommandOptions {
 int formatCommand(Compilation &C, const FormatCommandOptions &Opts,
                   llvm::raw_ostream &OS);
 
+/// `bsc lsp`: the language server on standard input and output until the
+/// client says `exit` (lib/LSP). Returns the exit status.
+int lspCommand(llvm::StringRef RuntimeDir, const char *Argv0);
+
 } // namespace bsc
 
 #endif

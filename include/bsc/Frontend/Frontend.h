@@ -55,6 +55,9 @@ struct FrontendOptions {
   /// The compilation's target: sizes, offsets and the descriptor's pointer
   /// size depend on it. An empty triple means the host.
   llvm::Triple Target;
+  /// Texts to read instead of the files of these paths (absolute, without
+  /// `.` or `..`): the editor's unsaved documents, for the language server.
+  const std::map<std::string, std::string> *Unsaved = nullptr;
 };
 
 /// Everything one compilation owns, alive until code generation is done.

@@ -1,0 +1,274 @@
+//===- Navigation.cpp - definitions, references, renames, outlines --------===//
+//
+// A script symbol is the same across analyses when its definition is at
+// the same place (definitionKey): so references and renames gather the
+// occurrences of every analysis the server hands over, each checking the
+// behavior from another file, and find the uses in modules that the
+// renamed one does not require.
+//
+//===----------------------------------------------------------------------===//
+#include "Describe.h"
+#include "Features.h"
+#include "bsc/Parse/Lexer.h"
+#include "llvm/ADT/StringExtras.h"
+#include "llvm/ADT/StringSet.h"
+
+using namespace bsc;
+using namespace bsc::lsp;
+
+/// Where a script symbol is declared; empty for the others.
+static llvm::SMRange definitionRange(const Symbol &S) {
+  switch (S.K) {
+  case Symbol::Decl:
+    return static_cast<const Decl *>(S.Ptr)->getName().getRange();
+  case Symbol::Enumerator:
+    return static_cast<const EnumDecl *>(S.Ptr)
+        ->Enumerators[S.Index]
+        .Name.getRange();
+  default:
+    return {};
+  }
+}
+
+std::string lsp::definitionKey(const Analysis &A, const Symbol &S) {
+  if (S.K == Symbol::ScriptModule)
+    return "module " + static_cast<const ModuleAST *>(S.Ptr)->Name;
+  llvm::SMRange R = definitionRange(S);
+  unsigned ID = R.isValid() ? A.C->SM.FindBufferContainingLoc(R.Start) : 0;
+  if (!ID)
+    return "";
+  const char *Start = A.C->SM.getMemoryBuffer(ID)->getBufferStart();
+  return A.getPath(ID) + ":" + std::to_string(R.Start.getPointer() - Start);
+}
+
+llvm::json::Value lsp::definition(const Analysis &A, llvm::SMLoc Loc) {
+  const Occurrence *O = A.Idx.findAt(Loc);
+  if (!O)
+    return nullptr;
+  if (O->Sym.K == Symbol::ScriptModule) {
+    const auto *M = static_cast<const ModuleAST *>(O->Sym.Ptr);
+    llvm::SMLoc Start = llvm::SMLoc::getFromPointer(
+        A.C->SM.getMemoryBuffer(M->BufferID)->getBufferStart());
+    return A.getLocation({Start, Start});
+  }
+  llvm::SMRange R = definitionRange(O->Sym);
+  if (!R.isValid())
+    return nullptr;
+  return A.getLocation(R);
+}
+
+std::vector<Location>
+lsp::findOccurrences(llvm::ArrayRef<const Analysis *> All, const Analysis &A,
+                     llvm::SMLoc Loc, bool IncludeDeclaration) {
+  std::vector<Location> Out;
+  const Occurrence *O = A.Idx.findAt(Loc);
+  if (!O)
+    return Out;
+  std::string Key = definitionKey(A, O->Sym);
+  llvm::StringSet<> Seen;
+  auto AddFrom = [&](const Analysis &From, const Occurrence &Occ) {
+    if (Occ.IsDefinition && !IncludeDeclaration)
+      return;
+    unsigned ID = From.C->SM.FindBufferContainingLoc(Occ.Range.Start);
+    if (!ID)
+      return;
+    const char *Start = From.C->SM.getMemoryBuffer(ID)->getBufferStart();
+    Location L{From.getPath(ID),
+               unsigned(Occ.Range.Start.getPointer() - Start),
+               unsigned(Occ.Range.End.getPointer() - Start),
+               From.getRange(Occ.Range)};
+    if (Seen.insert(L.Path + ":" + std::to_string(L.Begin)).second)
+      Out.push_back(std::move(L));
+  };
+  if (Key.empty()) { // Registered C++: this analysis's uses.
+    for (const Occurrence &Occ : A.Idx.Occurrences)
+      if (Occ.Sym == O->Sym)
+        AddFrom(A, Occ);
+    return Out;
+  }
+  for (const Analysis *From : All)
+    for (const Occurrence &Occ : From->Idx.Occurrences)
+      if (Occ.Sym.isScript() && definitionKey(*From, Occ.Sym) == Key)
+        AddFrom(*From, Occ);
+  return Out;
+}
+
+llvm::json::Value lsp::references(llvm::ArrayRef<const Analysis *> All,
+                                  const Analysis &A, llvm::SMLoc Loc,
+                                  bool IncludeDeclaration) {
+  llvm::json::Array Result;
+  for (Location &L : findOccurrences(All, A, Loc, IncludeDeclaration))
+    Result.push_back(llvm::json::Object{{"uri", pathToURI(L.Path)},
+                                        {"range", std::move(L.Range)}});
+  return Result;
+}
+
+/// A renamable symbol under the cursor, or an error saying why not.
+static llvm::Expected<const Occurrence *> renamable(const Analysis &A,
+                                                    llvm::SMLoc Loc) {
+  const Occurrence *O = A.Idx.findAt(Loc);
+  if (!O)
+    return llvm::createStringError("no name of the behavior here");
+  if (O->Sym.K == Symbol::ScriptModule)
+    return llvm::createStringError(
+        "a module is named by its file: rename the file");
+  if (!O->Sym.isScript())
+    return llvm::createStringError(
+        "'%s' is registered in C++: rename it where it is registered",
+        std::string(O->Range.Start.getPointer(),
+                     O->Range.End.getPointer())
+            .c_str());
+  return O;
+}
+
+llvm::json::Value lsp::prepareRename(const Analysis &A, llvm::SMLoc Loc) {
+  llvm::Expected<const Occurrence *> O = renamable(A, Loc);
+  if (!O) {
+    llvm::consumeError(O.takeError());
+    return nullptr;
+  }
+  return A.getRange((*O)->Range);
+}
+
+/// Whether `Name` can name a declaration: an identifier, not a keyword.
+static bool isNewName(llvm::StringRef Name) {
+  if (Name.empty() || !(llvm::isAlpha(Name[0]) || Name[0] == '_'))
+    return false;
+  if (!llvm::all_of(Name, [](char C) { return llvm::isAlnum(C) || C == '_'; }))
+    return false;
+#define KEYWORD(Spelling)                                                      \
+  if (Name == #Spelling)                                                       \
+    return false;
+#include "bsc/Parse/TokenKinds.def"
+  return Name != "input" && Name != "output";
+}
+
+llvm::Expected<llvm::json::Value>
+lsp::rename(llvm::ArrayRef<const Analysis *> All, const Analysis &A,
+            llvm::SMLoc Loc, llvm::StringRef NewName) {
+  llvm::Expected<const Occurrence *> O = renamable(A, Loc);
+  if (!O)
+    return O.takeError();
+  if (!isNewName(NewName))
+    return llvm::createStringError(
+        "'%s' is not a name b-script can declare (an identifier, not a "
+        "keyword)",
+        NewName.str().c_str());
+  std::map<std::string, llvm::json::Array> Edits;
+  for (Location &L : findOccurrences(All, A, Loc, true))
+    Edits[pathToURI(L.Path)].push_back(llvm::json::Object{
+        {"range", std::move(L.Range)}, {"newText", NewName.str()}});
+  llvm::json::Object Changes;
+  for (auto &[URI, List] : Edits)
+    Changes[URI] = std::move(List);
+  return llvm::json::Object{{"changes", std::move(Changes)}};
+}
+
+//===----------------------------------------------------------------------===//
+// Outlines
+//===----------------------------------------------------------------------===//
+
+namespace {
+/// LSP's SymbolKind numbers.
+enum SymbolKind {
+  Module = 2,
+  Enum = 10,
+  Function = 12,
+  Variable = 13,
+  Constant = 14,
+  EnumMember = 22,
+  Event = 24,
+};
+} // namespace
+
+static llvm::json::Object symbolOf(const Analysis &A, llvm::StringRef Name,
+                                   llvm::StringRef Detail, int Kind,
+                                   llvm::SMRange Whole, llvm::SMRange Sel) {
+  if (!Whole.isValid() || Whole.End.getPointer() < Sel.End.getPointer())
+    Whole = Sel;
+  return llvm::json::Object{{"name", Name.str()},
+                            {"detail", Detail.str()},
+                            {"kind", Kind},
+                            {"range", A.getRange(Whole)},
+                            {"selectionRange", A.getRange(Sel)}};
+}
+
+static llvm::json::Object callableSymbol(const Analysis &A,
+                                         const CallableDecl &C) {
+  bool IsTask = llvm::isa<TaskDecl>(C);
+  llvm::SMRange Whole = C.getRange();
+  if (C.Body && C.Body->getRange().End.isValid())
+    Whole.End = C.Body->getRange().End;
+  llvm::json::Object S =
+      symbolOf(A, C.getName().Name, headerOf(A.C->SM, C),
+               IsTask ? Event : Function, Whole, C.getName().getRange());
+  llvm::json::Array Children;
+  if (const auto *T = llvm::dyn_cast<TaskDecl>(&C))
+    for (const FuncDecl *F : T->NestedFuncs)
+      Children.push_back(callableSymbol(A, *F));
+  if (!Children.empty())
+    S["children"] = std::move(Children);
+  return S;
+}
+
+static llvm::json::Object enumSymbol(const Analysis &A, const EnumDecl &E) {
+  llvm::json::Object S =
+      symbolOf(A, E.getName().Name, E.IsTaskState ? "enum : TaskState" : "enum",
+               Enum, E.getRange(), E.getName().getRange());
+  llvm::json::Array Children;
+  for (size_t I = 0; I < E.Enumerators.size(); ++I) {
+    const Ident &N = E.Enumerators[I].Name;
+    std::string Value = I < E.Values.Values.size()
+                            ? std::to_string(E.Values.Values[I].Number)
+                            : "";
+    Children.push_back(symbolOf(A, N.Name, Value, EnumMember, N.getRange(),
+                                N.getRange()));
+  }
+  S["children"] = std::move(Children);
+  return S;
+}
+
+llvm::json::Value lsp::documentSymbols(const Analysis &A, unsigned BufferID) {
+  llvm::json::Array Result;
+  for (const ModuleAST *M : A.C->Modules) {
+    if (M->BufferID != BufferID)
+      continue;
+    for (const EnumDecl *E : M->Enums)
+      Result.push_back(enumSymbol(A, *E));
+    for (const ConstDecl *K : M->Consts)
+      Result.push_back(symbolOf(A, K->getName().Name,
+                                K->Ty ? K->Ty->getName() : "", Constant,
+                                K->getRange(), K->getName().getRange()));
+    for (const CallableDecl *C : M->Decls)
+      Result.push_back(callableSymbol(A, *C));
+  }
+  return Result;
+}
+
+llvm::json::Value lsp::workspaceSymbols(llvm::ArrayRef<const Analysis *> All,
+                                        llvm::StringRef Query) {
+  llvm::json::Array Result;
+  llvm::StringSet<> Seen;
+  auto Add = [&](const Analysis &A, const ModuleAST &M, const Decl &D,
+                 int Kind) {
+    std::string Name = M.Name + "::" + D.getName().Name.str();
+    if (!llvm::StringRef(Name).contains_insensitive(Query) ||
+        !Seen.insert(Name).second)
+      return;
+    Result.push_back(llvm::json::Object{
+        {"name", D.getName().Name.str()},
+        {"containerName", M.Name},
+        {"kind", Kind},
+        {"location", A.getLocation(D.getName().getRange())}});
+  };
+  for (const Analysis *A : All)
+    for (const ModuleAST *M : A->C->Modules) {
+      for (const EnumDecl *E : M->Enums)
+        Add(*A, *M, *E, Enum);
+      for (const ConstDecl *K : M->Consts)
+        Add(*A, *M, *K, Constant);
+      for (const CallableDecl *C : M->Decls)
+        Add(*A, *M, *C, llvm::isa<TaskDecl>(C) ? Event : Function);
+    }
+  return Result;
+}
