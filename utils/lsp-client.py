@@ -22,6 +22,9 @@ script):
     close PATH                   didClose
     request METHOD JSON          a request; prints `METHOD: RESULT`
     notify METHOD JSON           a notification
+    tokens PATH                  semanticTokens/full, decoded with the
+                                 legend: one `token LINE:COL LEN TYPE.MODS`
+                                 line each (0-based)
     raw TEXT                     bytes as they are (\\r\\n escapes), to
                                  damage the stream
     diagnostics PATH             waits for the next publishDiagnostics of
@@ -163,6 +166,8 @@ class Client:
             params.update(self.expand(rest))
             msg = self.request('initialize', params)
             print('initialize: ' + self.show(msg.get('result', msg)))
+            caps = msg.get('result', {}).get('capabilities', {})
+            self.legend = caps.get('semanticTokensProvider', {}).get('legend')
             self.notify('initialized', {})
         elif word == 'open':
             self.versions[rest] = 1
@@ -190,6 +195,20 @@ class Client:
             method, _, params = rest.partition(' ')
             msg = self.request(method, self.expand(params))
             print(method + ': ' + self.show(msg.get('result', msg)))
+        elif word == 'tokens':
+            msg = self.request('textDocument/semanticTokens/full',
+                               {'textDocument': {'uri': self.uri(rest)}})
+            data = msg.get('result', {}).get('data', [])
+            line = col = 0
+            for i in range(0, len(data), 5):
+                dl, dc, length, kind, mods = data[i:i + 5]
+                col = col + dc if dl == 0 else dc
+                line += dl
+                names = [m for b, m in enumerate(self.legend['tokenModifiers'])
+                         if mods & (1 << b)]
+                print('token %d:%d %d %s%s' % (
+                    line, col, length, self.legend['tokenTypes'][kind],
+                    ''.join('.' + m for m in names)))
         elif word == 'notify':
             method, _, params = rest.partition(' ')
             self.notify(method, self.expand(params))

@@ -42,10 +42,14 @@ std::map<std::string, llvm::json::Array> lsp::diagnostics(const Analysis &A) {
         {"start", llvm::json::Object{{"line", 0}, {"character", 0}}},
         {"end", llvm::json::Object{{"line", 0}, {"character", 0}}}};
   };
+  std::vector<std::string> Setup = A.SetupErrors;
   if (!A.Config.Error.empty())
-    ByURI[Checked].push_back(llvm::json::Object{
-        {"range", Top()}, {"severity", 1}, {"source", "bsc"},
-        {"message", A.Config.Error}});
+    Setup.insert(Setup.begin(), A.Config.Error);
+  for (const std::string &Message : Setup)
+    ByURI[Checked].push_back(llvm::json::Object{{"range", Top()},
+                                                {"severity", 1},
+                                                {"source", "bsc"},
+                                                {"message", Message}});
   llvm::json::Object *Last = nullptr;
   for (const Diagnostic &D : A.C->Diags.getDiagnostics()) {
     bool Placed = D.Loc.isValid() && A.C->SM.FindBufferContainingLoc(D.Loc);

@@ -73,7 +73,10 @@ static std::string describeDecl(const Analysis &A, const Decl &D) {
   std::string S = fence(Code);
   if (!What.empty())
     S += "\n\n" + What;
-  std::string Doc = docCommentOf(SM, D);
+  // Module-level declarations have doc comments; a parameter's line is
+  // its task's, whose comment is not about it.
+  bool Documented = llvm::isa<CallableDecl, ConstDecl, EnumDecl>(D);
+  std::string Doc = Documented ? docCommentOf(SM, D) : "";
   if (!Doc.empty())
     S += "\n\n" + Doc;
   return S;

@@ -39,6 +39,8 @@ private:
   void stmt(const Stmt *S);
   void expr(const Expr *E);
   void name(const NameExpr &N);
+  /// The enum of a named task state `Enum::value` or `M::Enum::value`.
+  const NativeEnum *namedStateEnum(const QualifiedName &Q) const;
 
   Index &Out;
   const ModuleAST *Current = nullptr;
@@ -196,9 +198,13 @@ void IndexBuilder::name(const NameExpr &N) {
     qualified(N.Name, decl(N.Const));
     return;
   case NameKind::EnumValue: {
-    if (N.BuiltinState || !N.Ty || !N.Ty->isEnum())
+    if (N.BuiltinState || N.Name.Parts.size() < 2)
       return;
-    const NativeEnum *E = N.Ty->getEnum();
+    // A named task state has type TaskState: its enum is found by name.
+    const NativeEnum *E = N.Ty && N.Ty->isEnum() ? N.Ty->getEnum()
+                                                 : namedStateEnum(N.Name);
+    if (!E)
+      return;
     llvm::StringRef Value = N.Name.Parts.back().Name;
     Symbol S;
     if (const EnumDecl *D = Out.getScriptEnum(E)) {
@@ -221,6 +227,17 @@ void IndexBuilder::name(const NameExpr &N) {
   case NameKind::Unresolved:
     return;
   }
+}
+
+const NativeEnum *IndexBuilder::namedStateEnum(const QualifiedName &Q) const {
+  size_t N = Q.Parts.size();
+  llvm::StringRef Enum = Q.Parts[N - 2].Name;
+  Symbol In = N >= 3 ? moduleNamed(Q.Parts[N - 3].Name)
+                     : Symbol{Symbol::ScriptModule, Current, 0};
+  for (const EnumDecl *D : Out.ScriptEnums)
+    if (D->getName().Name == Enum && D->Module == In.Ptr)
+      return &D->Values;
+  return nullptr;
 }
 
 void IndexBuilder::expr(const Expr *E) {
@@ -292,7 +309,9 @@ const TypedRange *Index::findExpressionAt(llvm::SMLoc Loc) const {
   const TypedRange *Best = nullptr;
   for (const TypedRange &T : Expressions)
     if (T.Range.Start.getPointer() <= P && P <= T.Range.End.getPointer() &&
-        (!Best || T.Range.End.getPointer() - T.Range.Start.getPointer() <
+        // Equal ranges: the later is inside (an implicit conversion's
+        // operand), and shows the type as written.
+        (!Best || T.Range.End.getPointer() - T.Range.Start.getPointer() <=
                       Best->Range.End.getPointer() -
                           Best->Range.Start.getPointer()))
       Best = &T;

@@ -193,12 +193,33 @@ static llvm::json::Object symbolOf(const Analysis &A, llvm::StringRef Name,
                             {"selectionRange", A.getRange(Sel)}};
 }
 
+/// Where the last statement of a block ends (a block's own range runs to
+/// the next line's first token).
+static llvm::SMLoc endOfBlock(const Stmt *S) {
+  while (S) {
+    if (const auto *B = llvm::dyn_cast<BlockStmt>(S)) {
+      if (B->Stmts.empty())
+        return B->getRange().End;
+      S = B->Stmts.back();
+    } else if (const auto *If = llvm::dyn_cast<IfStmt>(S)) {
+      S = If->Else ? If->Else : If->Then;
+    } else if (const auto *F = llvm::dyn_cast<ForStmt>(S)) {
+      S = F->Body;
+    } else if (const auto *D = llvm::dyn_cast<FuncDeclStmt>(S)) {
+      S = D->Func->Body;
+    } else {
+      return S->getRange().End;
+    }
+  }
+  return {};
+}
+
 static llvm::json::Object callableSymbol(const Analysis &A,
                                          const CallableDecl &C) {
   bool IsTask = llvm::isa<TaskDecl>(C);
   llvm::SMRange Whole = C.getRange();
-  if (C.Body && C.Body->getRange().End.isValid())
-    Whole.End = C.Body->getRange().End;
+  if (llvm::SMLoc End = endOfBlock(C.Body); End.isValid())
+    Whole.End = End;
   llvm::json::Object S =
       symbolOf(A, C.getName().Name, headerOf(A.C->SM, C),
                IsTask ? Event : Function, Whole, C.getName().getRange());
@@ -212,9 +233,14 @@ static llvm::json::Object callableSymbol(const Analysis &A,
 }
 
 static llvm::json::Object enumSymbol(const Analysis &A, const EnumDecl &E) {
+  llvm::SMRange Whole = E.getRange();
+  if (!E.Enumerators.empty())
+    Whole.End = E.Enumerators.back().ValueRange.isValid()
+                    ? E.Enumerators.back().ValueRange.End
+                    : E.Enumerators.back().Name.getRange().End;
   llvm::json::Object S =
       symbolOf(A, E.getName().Name, E.IsTaskState ? "enum : TaskState" : "enum",
-               Enum, E.getRange(), E.getName().getRange());
+               Enum, Whole, E.getName().getRange());
   llvm::json::Array Children;
   for (size_t I = 0; I < E.Enumerators.size(); ++I) {
     const Ident &N = E.Enumerators[I].Name;
@@ -252,7 +278,7 @@ llvm::json::Value lsp::workspaceSymbols(llvm::ArrayRef<const Analysis *> All,
   auto Add = [&](const Analysis &A, const ModuleAST &M, const Decl &D,
                  int Kind) {
     std::string Name = M.Name + "::" + D.getName().Name.str();
-    if (!llvm::StringRef(Name).contains_insensitive(Query) ||
+    if (!D.getName().Name.contains_insensitive(Query) ||
         !Seen.insert(Name).second)
       return;
     Result.push_back(llvm::json::Object{

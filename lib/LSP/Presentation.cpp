@@ -108,6 +108,16 @@ static int classify(const Token &T) {
     return llvm::StringSwitch<int>(T.Text)
         .Cases("int", "float", "bool", "string", "TaskState", TypeName)
         .Default(-1);
+  case tok::l_paren:
+  case tok::r_paren:
+  case tok::l_square:
+  case tok::r_square:
+  case tok::comma:
+  case tok::period:
+  case tok::colon:
+  case tok::coloncolon:
+  case tok::semi:
+    return -1; // Punctuation: the editor's grammar colours it.
   default:
     if (!tok::getSpelling(T.Kind).empty())
       return llvm::isAlpha(tok::getSpelling(T.Kind)[0]) ? Keyword : Operator;

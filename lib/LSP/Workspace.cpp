@@ -148,6 +148,16 @@ std::unique_ptr<Analysis> Workspace::analyze(llvm::StringRef Path) {
   FOpts.BindObjects = A->Config.Bind;
   FOpts.Unsaved = &Unsaved;
   runFrontend(*A->C, FOpts);
+  if (A->C->Modules.empty() && !FOpts.BindObjects.empty()) {
+    // Binding objects that cannot be read stop the front end before the
+    // scripts: check them without, and say why at the top of the file.
+    for (const Diagnostic &D : A->C->Diags.getDiagnostics())
+      if (D.Sev == Severity::Error)
+        A->SetupErrors.push_back(D.Message);
+    A->C = std::make_unique<Compilation>();
+    FOpts.BindObjects.clear();
+    runFrontend(*A->C, FOpts);
+  }
   A->C->Diags.sortBySource(A->C->SM);
   A->Idx = buildIndex(A->C->Modules);
   return A;

@@ -32,6 +32,9 @@ struct Analysis {
   Index Idx;
   std::string Path;
   BehaviorConfig Config;
+  /// Errors of the binding objects when they could not be read (the
+  /// behavior was then checked without them).
+  std::vector<std::string> SetupErrors;
 
   /// The buffer of the module read from `Path`, or 0.
   unsigned getBuffer(llvm::StringRef Path) const;
