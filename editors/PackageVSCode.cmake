@@ -58,13 +58,14 @@ if(NOT _installed STREQUAL _lock_hash)
   # --ignore-scripts: no install script is needed to package or test the
   # extension (vsce's optional keytar would try to download or compile).
   execute_process(
-    COMMAND ${NPM} ci --no-audit --no-fund --ignore-scripts --fetch-retries=2
+    COMMAND ${NPM} ci --no-audit --no-fund --ignore-scripts
+            --fetch-retries=2 --fetch-retry-mintimeout=2000 --fetch-retry-maxtimeout=10000
     WORKING_DIRECTORY ${BUILD_DIR}
     RESULT_VARIABLE _rc OUTPUT_VARIABLE _out ERROR_VARIABLE _out
     TIMEOUT 900)
   file(WRITE ${_log} "npm ci in ${BUILD_DIR}: ${_rc}\n${_out}")
   if(NOT _rc EQUAL 0)
-    give_up("`npm ci` failed (${_rc}); is the npm registry reachable")
+    give_up("`npm ci` failed (${_rc}: is the npm registry reachable?)")
   endif()
   file(WRITE ${STAMP} ${_lock_hash})
 endif()
