@@ -22,6 +22,8 @@ script):
     close PATH                   didClose
     request METHOD JSON          a request; prints `METHOD: RESULT`
     notify METHOD JSON           a notification
+    every-request PATH           every request at three places of each
+                                 line; prints how many were answered
     tokens PATH                  semanticTokens/full, decoded with the
                                  legend: one `token LINE:COL LEN TYPE.MODS`
                                  line each (0-based)
@@ -30,8 +32,11 @@ script):
     diagnostics PATH             waits for the next publishDiagnostics of
                                  PATH; prints `diagnostics NAME: JSON`
     no-diagnostics PATH S        fails if PATH gets diagnostics within S s
+    answers                      prints the answers not waited for (to
+                                 damaged messages), in order
     shutdown                     shutdown, then exit; prints the server's
                                  exit status
+    exit                         exit alone; prints the exit status
 In JSON, `URI(PATH)` becomes the file's URI and `TEXT(PATH)` its text as
 a JSON string. PATH is relative to --root. Messages the server sends on
 its own (logs, other diagnostics) are kept until a step waits for them.
@@ -209,6 +214,29 @@ class Client:
                 print('token %d:%d %d %s%s' % (
                     line, col, length, self.legend['tokenTypes'][kind],
                     ''.join('.' + m for m in names)))
+        elif word == 'every-request':
+            # Each position-taking request at the start, middle and end of
+            # every line, and the whole-document ones: all must be answered.
+            text = self.read(rest)
+            doc = {'uri': self.uri(rest)}
+            answered = 0
+            for method in ('textDocument/documentSymbol',
+                           'textDocument/foldingRange',
+                           'textDocument/semanticTokens/full',
+                           'textDocument/formatting'):
+                self.request(method, {'textDocument': doc,
+                                      'options': {'tabSize': 4,
+                                                  'insertSpaces': True}})
+                answered += 1
+            for n, line in enumerate(text.split('\n')):
+                for c in sorted({0, len(line) // 2, len(line)}):
+                    pos = {'line': n, 'character': c}
+                    for method in ('hover', 'definition', 'completion',
+                                   'signatureHelp', 'prepareRename'):
+                        self.request('textDocument/' + method,
+                                     {'textDocument': doc, 'position': pos})
+                        answered += 1
+            print('every-request %s: %d answered' % (rest, answered))
         elif word == 'notify':
             method, _, params = rest.partition(' ')
             self.notify(method, self.expand(params))
@@ -232,6 +260,20 @@ class Client:
             else:
                 print('diagnostics %s: %s'
                       % (path, self.show(msg['params']['diagnostics'])))
+        elif word == 'answers':
+            # Answers the server sent without being waited for (to damaged
+            # messages), in order, after letting it read what was sent.
+            while self.wait_for(lambda m: False, 0.3) is not None:
+                pass
+            for msg in [m for m in self.pending if 'method' not in m]:
+                print('answer: ' + self.show(msg))
+            self.pending = [m for m in self.pending if 'method' in m]
+        elif word == 'exit':
+            self.notify('exit', None)
+            try:
+                print('exit status %d' % self.proc.wait(self.timeout))
+            except subprocess.TimeoutExpired:
+                raise ServerGone('the server did not exit')
         elif word == 'shutdown':
             msg = self.request('shutdown', None)
             print('shutdown: ' + self.show(msg.get('result', msg)))

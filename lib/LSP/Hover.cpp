@@ -88,10 +88,15 @@ static std::string describe(const Analysis &A, const Symbol &S) {
   case Symbol::Decl:
     return describeDecl(A, *static_cast<const Decl *>(S.Ptr));
   case Symbol::Enumerator: {
+    // An enum with errors (a name given twice) has fewer values than
+    // enumerators: the value is looked up by name.
     const auto *E = static_cast<const EnumDecl *>(S.Ptr);
-    const NativeEnum::Value &V = E->Values.Values[S.Index];
-    return fence(E->getName().Name.str() + "::" + V.Name + " = " +
-                 std::to_string(V.Number));
+    llvm::StringRef Name = E->Enumerators[S.Index].Name.Name;
+    std::string Text = E->getName().Name.str() + "::" + Name.str();
+    for (const NativeEnum::Value &V : E->Values.Values)
+      if (V.Name == Name)
+        return fence(Text + " = " + std::to_string(V.Number));
+    return fence(Text);
   }
   case Symbol::NativeFunction: {
     const auto *F = static_cast<const NativeFunction *>(S.Ptr);

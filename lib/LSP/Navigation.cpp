@@ -244,9 +244,10 @@ static llvm::json::Object enumSymbol(const Analysis &A, const EnumDecl &E) {
   llvm::json::Array Children;
   for (size_t I = 0; I < E.Enumerators.size(); ++I) {
     const Ident &N = E.Enumerators[I].Name;
-    std::string Value = I < E.Values.Values.size()
-                            ? std::to_string(E.Values.Values[I].Number)
-                            : "";
+    std::string Value; // By name: an enum with errors has fewer values.
+    for (const NativeEnum::Value &V : E.Values.Values)
+      if (V.Name == N.Name)
+        Value = std::to_string(V.Number);
     Children.push_back(symbolOf(A, N.Name, Value, EnumMember, N.getRange(),
                                 N.getRange()));
   }
