@@ -147,9 +147,62 @@ function(bscript_add_behavior)
   set_source_files_properties(${object} PROPERTIES
     EXTERNAL_OBJECT TRUE GENERATED TRUE)
 
+  _bscript_record_for_editors("${sources}" "${BS_INCLUDE_DIRS}" "${BS_BIND}"
+    "${BS_TARGET_TRIPLE}")
+
   add_library(${BS_TARGET} STATIC ${object} ${header})
   set_target_properties(${BS_TARGET} PROPERTIES
     LINKER_LANGUAGE ${archive_language})
   target_include_directories(${BS_TARGET} INTERFACE ${out}/include)
   target_link_libraries(${BS_TARGET} INTERFACE ${runtime} ${bind_targets})
+endfunction()
+
+# The language server (`bsc lsp`, docs/editors.md) finds a behavior's
+# --bind objects, -I folders and target in ${CMAKE_BINARY_DIR}/bscript.json:
+# each bscript_add_behavior adds its entry, and the file is written once
+# the whole project is configured (binding objects are generator
+# expressions, known at generation).
+function(_bscript_record_for_editors sources include_dirs binds triple)
+  set(quoted)
+  foreach(src IN LISTS sources)
+    list(APPEND quoted "\"${src}\"")
+  endforeach()
+  list(JOIN quoted ", " sources_json)
+  set(quoted)
+  foreach(dir IN LISTS include_dirs)
+    get_filename_component(dir "${dir}" ABSOLUTE)
+    list(APPEND quoted "\"${dir}\"")
+  endforeach()
+  list(JOIN quoted ", " include_json)
+  set(quoted)
+  foreach(bind IN LISTS binds)
+    if(TARGET ${bind})
+      get_target_property(type ${bind} TYPE)
+      if(type STREQUAL "OBJECT_LIBRARY")
+        list(APPEND quoted
+          "\"$<JOIN:$<TARGET_OBJECTS:${bind}>,\"$<COMMA> \">\"")
+      else()
+        list(APPEND quoted "\"$<TARGET_FILE:${bind}>\"")
+      endif()
+    else()
+      get_filename_component(file "${bind}" ABSOLUTE)
+      list(APPEND quoted "\"${file}\"")
+    endif()
+  endforeach()
+  list(JOIN quoted ", " bind_json)
+  set(entry "{\"sources\": [${sources_json}], \"include\": [${include_json}], \"bind\": [${bind_json}], \"target\": \"${triple}\"}")
+  set_property(GLOBAL APPEND PROPERTY BSCRIPT_EDITOR_BEHAVIORS "${entry}")
+  get_property(deferred GLOBAL PROPERTY BSCRIPT_EDITOR_FILE_DEFERRED)
+  if(NOT deferred)
+    set_property(GLOBAL PROPERTY BSCRIPT_EDITOR_FILE_DEFERRED TRUE)
+    cmake_language(DEFER DIRECTORY ${CMAKE_SOURCE_DIR}
+      CALL _bscript_write_editor_file)
+  endif()
+endfunction()
+
+function(_bscript_write_editor_file)
+  get_property(entries GLOBAL PROPERTY BSCRIPT_EDITOR_BEHAVIORS)
+  list(JOIN entries ",\n  " body)
+  file(GENERATE OUTPUT ${CMAKE_BINARY_DIR}/bscript.json
+    CONTENT "{\"behaviors\": [\n  ${body}\n]}\n")
 endfunction()

@@ -51,6 +51,39 @@ std::string lsp::pathToURI(llvm::StringRef Path) {
 // bscript.json
 //===----------------------------------------------------------------------===//
 
+/// The entry of a build folder's "behaviors" (what bscript_add_behavior
+/// writes) that `Script` belongs to: one that lists it among its
+/// "sources", else one with a source in its folder or an "include" folder
+/// holding it (a module the sources require).
+static const llvm::json::Object *
+findBehavior(const llvm::json::Array &Behaviors, llvm::StringRef Script) {
+  llvm::StringRef Dir = llvm::sys::path::parent_path(Script);
+  const llvm::json::Object *Near = nullptr;
+  for (const llvm::json::Value &B : Behaviors) {
+    const llvm::json::Object *O = B.getAsObject();
+    if (!O)
+      continue;
+    auto Strings = [&](llvm::StringRef Key) {
+      std::vector<llvm::StringRef> Out;
+      if (const llvm::json::Array *A = O->getArray(Key))
+        for (const llvm::json::Value &S : *A)
+          if (std::optional<llvm::StringRef> Str = S.getAsString())
+            Out.push_back(*Str);
+      return Out;
+    };
+    for (llvm::StringRef Source : Strings("sources")) {
+      if (Source == Script)
+        return O;
+      if (!Near && llvm::sys::path::parent_path(Source) == Dir)
+        Near = O;
+    }
+    for (llvm::StringRef Include : Strings("include"))
+      if (!Near && Dir == Include)
+        Near = O;
+  }
+  return Near;
+}
+
 /// Reads `File`'s settings for the script at `Script`: the top level's, or
 /// those of the entry of "behaviors" whose "sources" hold it.
 static BehaviorConfig readConfig(llvm::StringRef File, llvm::StringRef Script) {
@@ -71,13 +104,7 @@ static BehaviorConfig readConfig(llvm::StringRef File, llvm::StringRef Script) {
   const llvm::json::Object *Settings = V->getAsObject();
   if (Settings)
     if (const llvm::json::Array *Behaviors = Settings->getArray("behaviors")) {
-      Settings = nullptr;
-      for (const llvm::json::Value &B : *Behaviors)
-        if (const llvm::json::Object *O = B.getAsObject())
-          if (const llvm::json::Array *Sources = O->getArray("sources"))
-            for (const llvm::json::Value &S : *Sources)
-              if (S.getAsString() && *S.getAsString() == Script)
-                Settings = O;
+      Settings = findBehavior(*Behaviors, Script);
       if (!Settings)
         return Config; // Not one of its behaviors': the defaults.
     }
