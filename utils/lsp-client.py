@@ -194,6 +194,7 @@ class Client:
                 'end': {'line': int(l2), 'character': int(c2)}},
                 'text': text}])
         elif word == 'close':
+            self.versions.pop(rest, None)
             self.notify('textDocument/didClose',
                         {'textDocument': {'uri': self.uri(rest)}})
         elif word == 'request':
@@ -245,9 +246,13 @@ class Client:
         elif word in ('diagnostics', 'no-diagnostics'):
             path, _, wait = rest.partition(' ')
             uri = self.uri(path)
+            # Of the text last sent: an open document's diagnostics name
+            # its version, and older ones are skipped.
+            version = self.versions.get(path)
             msg = self.wait_for(
                 lambda m: m.get('method') == 'textDocument/publishDiagnostics'
-                and m['params']['uri'] == uri,
+                and m['params']['uri'] == uri
+                and m['params'].get('version', version) == version,
                 float(wait) if wait else None)
             if word == 'no-diagnostics':
                 if msg is not None:

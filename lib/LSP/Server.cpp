@@ -167,11 +167,15 @@ void Server::handle(const llvm::json::Object &Message) {
   std::string Path = pathOf(Params);
   if (*Method == "textDocument/didOpen" && !Path.empty()) {
     const llvm::json::Object *Doc = Params->getObject("textDocument");
-    W.open(Path, Doc->getString("text").value_or("").str());
+    W.open(Path, Doc->getString("text").value_or("").str(),
+           Doc->getInteger("version").value_or(0));
     Dirty.insert(Path);
   } else if (*Method == "textDocument/didChange" && !Path.empty()) {
     if (const llvm::json::Array *Changes = Params->getArray("contentChanges"))
       didChange(Path, *Changes);
+    if (std::optional<int64_t> V =
+            Params->getObject("textDocument")->getInteger("version"))
+      W.setVersion(Path, *V);
   } else if (*Method == "textDocument/didClose" && !Path.empty()) {
     W.close(Path);
     Dirty.erase(Path);
@@ -210,9 +214,13 @@ void Server::didChange(const std::string &Path,
 }
 
 void Server::publish(const Analysis &A) {
-  for (auto &[URI, List] : diagnostics(A))
-    notify("textDocument/publishDiagnostics",
-           llvm::json::Object{{"uri", URI}, {"diagnostics", std::move(List)}});
+  for (auto &[URI, List] : diagnostics(A)) {
+    llvm::json::Object Params{{"uri", URI}, {"diagnostics", std::move(List)}};
+    // The version of the text they are about, for an open document.
+    if (std::optional<int64_t> V = W.getVersion(uriToPath(URI)))
+      Params["version"] = *V;
+    notify("textDocument/publishDiagnostics", std::move(Params));
+  }
 }
 
 void Server::analyzeDirty() {

@@ -53,10 +53,22 @@ class Workspace {
 public:
   explicit Workspace(const ServerOptions &Opts) : Opts(Opts) {}
 
-  void open(llvm::StringRef Path, std::string Text) {
+  void open(llvm::StringRef Path, std::string Text, int64_t Version) {
     Unsaved[Path.str()] = std::move(Text);
+    Versions[Path.str()] = Version;
   }
-  void close(llvm::StringRef Path) { Unsaved.erase(Path.str()); }
+  void close(llvm::StringRef Path) {
+    Unsaved.erase(Path.str());
+    Versions.erase(Path.str());
+  }
+  void setVersion(llvm::StringRef Path, int64_t Version) {
+    Versions[Path.str()] = Version;
+  }
+  /// The editor's version of an open document (diagnostics name it).
+  std::optional<int64_t> getVersion(llvm::StringRef Path) const {
+    auto It = Versions.find(Path.str());
+    return It == Versions.end() ? std::nullopt : std::optional(It->second);
+  }
   /// The editor's text of an open document.
   std::string *getText(llvm::StringRef Path) {
     auto It = Unsaved.find(Path.str());
@@ -71,6 +83,7 @@ public:
 private:
   const ServerOptions &Opts;
   std::map<std::string, std::string> Unsaved;
+  std::map<std::string, int64_t> Versions;
 };
 
 /// `file:///a/b.bs` -> `/a/b.bs` (percent escapes decoded); empty if the
