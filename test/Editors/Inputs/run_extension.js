@@ -11,6 +11,9 @@
 //          ["--changed"]; change unrelated settings; deactivate
 //   fail   wait a little; deactivate (a server that cannot start)
 //   crash  wait until the server was started 5 times (it crashes); deactivate
+//   open   with the document $OPEN_DOCUMENT open: print the diagnostics the
+//          server publishes for it and the edits of formatting it through
+//          the server; deactivate (for a real `bsc lsp`)
 // SERVER_PATH is typically Inputs/fake-bsc; $FAKE_BSC_LOG is its side.
 'use strict';
 const Module = require('module');
@@ -52,7 +55,7 @@ function partly(name, real) {
 const settings = {
   'bscript.server.path': serverPath,
   'bscript.server.args': serverArgs,
-  'bscript.trace.server': 'off',
+  'bscript.trace.server': process.env.TRACE_SERVER || 'off',
 };
 const configurationListeners = [];
 const commands = {};
@@ -70,8 +73,80 @@ class EventEmitter {
   dispose() { this.listeners = []; }
 }
 
+// The few value classes the client builds diagnostics and edits from.
+class Position {
+  constructor(line, character) { this.line = line; this.character = character; }
+}
+class Range {
+  constructor(a, b, c, d) {
+    [this.start, this.end] = typeof a === 'number' ? [new Position(a, b), new Position(c, d)] : [a, b];
+  }
+}
+class Diagnostic {
+  constructor(range, message, severity) { this.range = range; this.message = message; this.severity = severity; }
+}
+class TextEdit {
+  constructor(range, newText) { this.range = range; this.newText = newText; }
+}
+class CancellationTokenSource {
+  constructor() {
+    this.token = { isCancellationRequested: false, onCancellationRequested: () => ({ dispose() {} }) };
+  }
+  cancel() { this.token.isCancellationRequested = true; }
+  dispose() {}
+}
+class Uri {
+  constructor(text) {
+    this.text = text;
+    this.scheme = text.slice(0, text.indexOf(':'));
+    this.fsPath = this.scheme === 'file' ? decodeURIComponent(text.slice('file://'.length)) : text;
+    this.path = this.fsPath;
+  }
+  static parse(text) { return new Uri(text); }
+  static file(fsPath) { return new Uri('file://' + fsPath.split('/').map(encodeURIComponent).join('/')); }
+  with() { return this; }
+  toString() { return this.text; }
+  toJSON() { return this.text; }
+}
+const SEVERITY = ['error', 'warning', 'information', 'hint'];
+
+// $OPEN_DOCUMENT, open in the editor.
+const documents = [];
+if (process.env.OPEN_DOCUMENT) {
+  const file = path.resolve(process.env.OPEN_DOCUMENT);
+  const text = fs.readFileSync(file, 'utf8');
+  documents.push({
+    uri: Uri.file(file), fileName: file, languageId: 'bscript', version: 1,
+    isClosed: false, isDirty: false, isUntitled: false, lineCount: text.split('\n').length,
+    getText: () => text,
+  });
+}
+const providers = {};
+const diagnosticsSeen = [];
+
 const vscode = partly('vscode', {
-  EventEmitter,
+  EventEmitter, Position, Range, Diagnostic, TextEdit, Uri, CancellationTokenSource,
+  DiagnosticSeverity: { Error: 0, Warning: 1, Information: 2, Hint: 3 },
+  languages: partly('vscode.languages', {
+    match(selector, document) {
+      const list = Array.isArray(selector) ? selector : [selector];
+      return list.some((f) => (typeof f === 'string' ? f === document.languageId
+        : (!f.language || f.language === document.languageId) && (!f.scheme || f.scheme === document.uri.scheme))) ? 10 : 0;
+    },
+    createDiagnosticCollection(name) {
+      return partly('diagnostics', {
+        name,
+        set(uri, diagnostics) {
+          if (diagnostics && diagnostics.length) diagnosticsSeen.push(...diagnostics);
+        },
+        delete() {}, clear() {}, dispose() {},
+      });
+    },
+    registerDocumentFormattingEditProvider(selector, provider) {
+      providers.formatting = provider;
+      return disposable;
+    },
+  }),
   Disposable: class Disposable {
     constructor(f) { this.f = f; }
     static from(...ds) { return new Disposable(() => ds.forEach((d) => d && d.dispose && d.dispose())); }
@@ -79,7 +154,7 @@ const vscode = partly('vscode', {
   },
   workspace: partly('vscode.workspace', {
     workspaceFolders: undefined,
-    textDocuments: [],
+    textDocuments: documents,
     notebookDocuments: [],
     getConfiguration(section) {
       return partly('configuration', {
@@ -157,6 +232,23 @@ async function main() {
   await extension.activate(context);
   if (scenario === 'fail') {
     await new Promise((r) => setTimeout(r, 500));
+    say('deactivate');
+    await extension.deactivate();
+    process.exit(0);
+  }
+  if (scenario === 'open') {
+    const document = documents[0];
+    await until('diagnostics', () => diagnosticsSeen.length > 0);
+    for (const d of diagnosticsSeen) {
+      say(`diagnostic: ${d.range.start.line + 1}:${d.range.start.character + 1}: ${SEVERITY[d.severity]}: ${d.message}`);
+    }
+    await until('formatting', () => providers.formatting);
+    const token = new CancellationTokenSource().token;
+    const edits = await providers.formatting.provideDocumentFormattingEdits(
+      document, { tabSize: 4, insertSpaces: true }, token);
+    for (const e of edits || []) {
+      say(`edit: ${e.range.start.line + 1}:${e.range.start.character + 1}-${e.range.end.line + 1}:${e.range.end.character + 1}: ${JSON.stringify(e.newText)}`);
+    }
     say('deactivate');
     await extension.deactivate();
     process.exit(0);
