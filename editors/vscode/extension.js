@@ -17,7 +17,7 @@ const CLIENT_NAME = 'b-script Language Server';
 
 let client;             // the running LanguageClient, if any
 let outputChannel;      // kept across restarts so that the log stays in one place
-let watcher;            // *.bs files changed on disk, for the server
+let watcher;            // .bs files and bscript.json changed on disk, for the server
 let pending = Promise.resolve();  // starts and stops, one after the other
 
 // The folder a relative server path is relative to: the first workspace
@@ -149,7 +149,8 @@ async function startClient() {
       { scheme: 'untitled', language: 'bscript' },
     ],
     synchronize: {
-      // A required module changed on disk (`requires "Motion"`).
+      // workspace/didChangeWatchedFiles: a module or a behavior's
+      // configuration changed on disk (an edit elsewhere, a build).
       fileEvents: watcher,
     },
     outputChannel,
@@ -189,7 +190,7 @@ function restart() {
 
 function activate(context) {
   outputChannel = vscode.window.createOutputChannel(CLIENT_NAME);
-  watcher = vscode.workspace.createFileSystemWatcher('**/*.bs');
+  watcher = vscode.workspace.createFileSystemWatcher('**/{*.bs,bscript.json}');
   context.subscriptions.push(
     outputChannel,
     watcher,
