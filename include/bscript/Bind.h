@@ -674,6 +674,8 @@ inline std::uint64_t moduleHash(const void *Descriptor) {
 #define BS_MODULE(Name, ...)                                                   \
   struct bs_module_body_##Name {                                               \
     static constexpr const char name[] = #Name;                                \
+    static constexpr const char file[] = __FILE__;                             \
+    static constexpr unsigned line = __LINE__;                                 \
     static constexpr void run(::bs::Module &module) {                          \
       using namespace ::bs::registration;                                      \
       __VA_ARGS__;                                                             \
@@ -762,6 +764,29 @@ template <class... D> constexpr void Module::setDefaults(const D &...Ds) {
 
 namespace detail {
 
+/// `file:line` into Place (BS_PLACE_SIZE bytes, NUL-terminated), keeping
+/// the end of a path too long for it.
+constexpr void writePlace(char *Place, const char *File, unsigned Line) {
+  char Digits[12] = {};
+  int N = 0;
+  do {
+    Digits[N++] = char('0' + Line % 10);
+    Line /= 10;
+  } while (Line);
+  std::size_t FileLen = 0;
+  while (File[FileLen])
+    ++FileLen;
+  std::size_t Room = BS_PLACE_SIZE - 2 - N; // ':' and the NUL.
+  const char *Tail = FileLen > Room ? File + (FileLen - Room) : File;
+  std::size_t At = 0;
+  for (; *Tail; ++Tail)
+    Place[At++] = *Tail;
+  Place[At++] = ':';
+  while (N)
+    Place[At++] = Digits[--N];
+  Place[At] = 0;
+}
+
 template <class Body> constexpr Counts countModule() {
   Module M(Body::name, Tables{});
   Body::run(M);
@@ -820,6 +845,8 @@ template <class Body> constexpr auto buildModule() {
   H.valueSize = sizeof(rec::Value);
   H.stringOffset = offsetof(Data, strings);
   H.stringSize = C.strings;
+  H.place = offsetof(Data, place);
+  writePlace(D.place, Body::file, Body::line);
   return D;
 }
 

@@ -107,7 +107,7 @@ struct Header {
   u32 numEnums, enumOffset, enumSize;
   u32 numValues, valueOffset, valueSize;
   u32 stringOffset, stringSize;
-  u32 reserved;
+  u32 place;
 };
 
 struct Class {
@@ -182,7 +182,8 @@ static_assert(offsetof(Header, version) == BS_HDR_VERSION &&
               offsetof(Header, numEnums) == BS_HDR_TABLE(BS_TABLE_ENUMS) &&
               offsetof(Header, numValues) == BS_HDR_TABLE(BS_TABLE_VALUES) &&
               offsetof(Header, stringOffset) == BS_HDR_STRING_OFFSET &&
-              offsetof(Header, stringSize) == BS_HDR_STRING_SIZE,
+              offsetof(Header, stringSize) == BS_HDR_STRING_SIZE &&
+              offsetof(Header, place) == BS_HDR_PLACE,
               "the header is not as descriptor.h lays it out");
 BS_AT_POINTER(Class, key, BS_CLASS_KEY);
 BS_AT_POINTER(Class, life, BS_CLASS_LIFE);
@@ -244,6 +245,9 @@ template <u32 NC, u32 NM, u32 NP, u32 NE, u32 NV, u32 NS> struct ModuleData {
   rec::Enum enums[NE ? NE : 1];
   rec::Value values[NV ? NV : 1];
   char strings[NS];
+  /// Where BS_MODULE is (BS_HDR_PLACE): after the strings, outside the
+  /// module hash.
+  char place[BS_PLACE_SIZE];
 };
 
 struct Counts {

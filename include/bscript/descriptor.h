@@ -45,8 +45,16 @@ enum bs_header_field {
   BS_HDR_TABLES = 40,
   BS_HDR_STRING_OFFSET = 100,
   BS_HDR_STRING_SIZE = 104,
-  BS_HDR_RESERVED = 108
+  /* Where the module is registered: the offset of BS_PLACE_SIZE bytes after
+   * the string table holding `file:line` of BS_MODULE, NUL-terminated (a
+   * long path keeps its end); 0 in objects of Bind.h before it was added.
+   * The module hash ends with the string table: moving a registration
+   * changes nothing bsc checks. */
+  BS_HDR_PLACE = 108
 };
+
+/* The bytes of the place of registration (BS_HDR_PLACE). */
+#define BS_PLACE_SIZE 256u
 
 enum bs_table {
   BS_TABLE_CLASSES,

@@ -72,7 +72,7 @@ public:
         D(StringRef()) {}
 
   void decode(std::vector<BoundModule> &Out) {
-    if (!readHeader() || !readTables() || !readName())
+    if (!readHeader() || !readTables() || !readName() || !readPlace())
       return;
     readClasses();
     for (uint32_t I = 0; I < Count[T_Member]; ++I)
@@ -164,6 +164,28 @@ private:
       return false;
     }
     Strings = D.Bytes.substr(StrOff, StrSize);
+    return true;
+  }
+
+  /// Where BS_MODULE is (BS_HDR_PLACE): `file:line` after the strings,
+  /// or nothing in objects of an older Bind.h.
+  bool readPlace() {
+    uint32_t At = D.u32(BS_HDR_PLACE);
+    if (!At)
+      return true;
+    uint64_t StringsEnd = D.u32(BS_HDR_STRING_OFFSET) + uint64_t(Strings.size());
+    if (At < StringsEnd || uint64_t(At) + BS_PLACE_SIZE > Total) {
+      damaged("the place of registration lies outside the descriptor");
+      return false;
+    }
+    StringRef Place = D.Bytes.substr(At, BS_PLACE_SIZE);
+    Place = Place.take_until([](char C) { return C == 0; });
+    auto [File, Line] = Place.rsplit(':');
+    unsigned N;
+    if (!File.empty() && !Line.getAsInteger(10, N)) {
+      M.PlaceFile = File.str();
+      M.PlaceLine = N;
+    }
     return true;
   }
 

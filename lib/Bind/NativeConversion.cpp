@@ -43,6 +43,8 @@ private:
     auto NM = std::make_unique<NativeModule>();
     NM->Name = M.Name;
     NM->File = M.File;
+    NM->PlaceFile = M.PlaceFile;
+    NM->PlaceLine = M.PlaceLine;
     NM->Hash = M.Hash;
     for (const BoundEnum &E : M.Enums) {
       NativeEnum NE;

@@ -12,6 +12,9 @@
 #include "bsc/Parse/Lexer.h"
 #include "llvm/ADT/StringExtras.h"
 #include "llvm/ADT/StringSet.h"
+#include "llvm/Support/FileSystem.h"
+#include "llvm/Support/MemoryBuffer.h"
+#include "llvm/Support/Path.h"
 
 using namespace bsc;
 using namespace bsc::lsp;
@@ -41,10 +44,123 @@ std::string lsp::definitionKey(const Analysis &A, const Symbol &S) {
   return A.getPath(ID) + ":" + std::to_string(R.Start.getPointer() - Start);
 }
 
+/// The source file a binding module's descriptor names (its __FILE__): as
+/// given if absolute, else beside the binding object or from here.
+static std::string placeFile(const NativeModule &M) {
+  if (M.PlaceFile.empty() || llvm::sys::path::is_absolute(M.PlaceFile))
+    return M.PlaceFile;
+  llvm::StringRef Object = llvm::StringRef(M.File).split('(').first;
+  llvm::SmallString<256> Beside = llvm::sys::path::parent_path(Object);
+  llvm::sys::path::append(Beside, M.PlaceFile);
+  if (llvm::sys::fs::exists(Beside))
+    return std::string(Beside);
+  llvm::SmallString<256> Here(M.PlaceFile);
+  llvm::sys::fs::make_absolute(Here);
+  return std::string(Here);
+}
+
+/// The place of a registration in C++: the string literal `"Name"` after
+/// the module's BS_MODULE (and after `"Owner"`, the class or enum it is a
+/// member of), else BS_MODULE's line. A descriptor records where BS_MODULE
+/// is; compilers give every line of a macro's arguments one line number,
+/// so the registration itself is found by its name.
+static llvm::json::Value registrationPlace(const NativeModule &M,
+                                           llvm::StringRef Owner,
+                                           llvm::StringRef Name) {
+  std::string File = placeFile(M);
+  if (File.empty())
+    return nullptr;
+  auto Buf = llvm::MemoryBuffer::getFile(File);
+  if (!Buf)
+    return nullptr;
+  llvm::StringRef Text = (*Buf)->getBuffer();
+  // BS_MODULE(Name, with any spaces.
+  size_t At = llvm::StringRef::npos;
+  for (size_t P = Text.find("BS_MODULE("); P != llvm::StringRef::npos;
+       P = Text.find("BS_MODULE(", P + 1))
+    if (Text.substr(P + 10).ltrim().starts_with(M.Name + ",") ||
+        Text.substr(P + 10).ltrim().starts_with(M.Name + " ")) {
+      At = P;
+      break;
+    }
+  size_t Found = At;
+  if (At != llvm::StringRef::npos) {
+    size_t From = At;
+    if (!Owner.empty())
+      From = Text.find(("\"" + Owner + "\"").str(), From);
+    if (From != llvm::StringRef::npos && !Name.empty())
+      From = Text.find(("\"" + Name + "\"").str(), From);
+    if (From != llvm::StringRef::npos)
+      Found = From + (Name.empty() ? 0 : 1);
+  }
+  int64_t Line, Char;
+  if (Found == llvm::StringRef::npos) {
+    Line = M.PlaceLine ? int64_t(M.PlaceLine) - 1 : 0;
+    Char = 0;
+  } else {
+    Line = Text.take_front(Found).count('\n');
+    Char = Found - (Text.rfind('\n', Found) + 1);
+    if (Text.rfind('\n', Found) == llvm::StringRef::npos)
+      Char = Found;
+  }
+  int64_t Length = Found == llvm::StringRef::npos || Name.empty()
+                       ? 0
+                       : int64_t(Name.size());
+  return llvm::json::Object{
+      {"uri", pathToURI(File)},
+      {"range",
+       llvm::json::Object{
+           {"start", llvm::json::Object{{"line", Line}, {"character", Char}}},
+           {"end", llvm::json::Object{{"line", Line},
+                                      {"character", Char + Length}}}}}};
+}
+
+/// Where registered C++ is registered, if the descriptor says.
+static llvm::json::Value nativeDefinition(const Analysis &A, const Symbol &S) {
+  const Compilation &C = *A.C;
+  auto ModuleNamed = [&](llvm::StringRef Name) {
+    return C.Natives.find(Name);
+  };
+  switch (S.K) {
+  case Symbol::NativeFunction: {
+    const auto *F = static_cast<const NativeFunction *>(S.Ptr);
+    const NativeModule *M = ModuleNamed(moduleOf(C, *F));
+    return M ? registrationPlace(*M, F->Owner ? F->Owner->Name : "", F->Name)
+             : nullptr;
+  }
+  case Symbol::NativeClass: {
+    const auto *K = static_cast<const NativeClass *>(S.Ptr);
+    return K->Module ? registrationPlace(*K->Module, "", K->Name) : nullptr;
+  }
+  case Symbol::NativeEnum: {
+    const auto *E = static_cast<const NativeEnum *>(S.Ptr);
+    return E->Module ? registrationPlace(*E->Module, "", E->Name) : nullptr;
+  }
+  case Symbol::NativeEnumValue: {
+    const auto *E = static_cast<const NativeEnum *>(S.Ptr);
+    return E->Module ? registrationPlace(*E->Module, E->Name,
+                                         E->Values[S.Index].Name)
+                     : nullptr;
+  }
+  case Symbol::NativeModule:
+    return registrationPlace(*static_cast<const NativeModule *>(S.Ptr), "", "");
+  case Symbol::Global: {
+    const NativeModule *World = C.Checked.World;
+    const NativeClass *K =
+        World ? (S.Index ? World->Output : World->Input) : nullptr;
+    return K ? registrationPlace(*World, "", K->Name) : nullptr;
+  }
+  default:
+    return nullptr;
+  }
+}
+
 llvm::json::Value lsp::definition(const Analysis &A, llvm::SMLoc Loc) {
   const Occurrence *O = A.Idx.findAt(Loc);
   if (!O)
     return nullptr;
+  if (!O->Sym.isScript())
+    return nativeDefinition(A, O->Sym);
   if (O->Sym.K == Symbol::ScriptModule) {
     const auto *M = static_cast<const ModuleAST *>(O->Sym.Ptr);
     llvm::SMLoc Start = llvm::SMLoc::getFromPointer(

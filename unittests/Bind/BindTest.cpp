@@ -365,6 +365,14 @@ TEST(BindTest, SoccerBindings) {
       ASSERT_EQ(Op.Params.size(), 1u);
       EXPECT_EQ(Model.getClass(Op.Params[0].Type), V);
     }
+    // Where each module is registered: BS_MODULE's file (and line: GCC
+    // gives its first line, clang its last).
+    EXPECT_TRUE(llvm::StringRef(Math->PlaceFile).ends_with("SoccerBindings.cpp"))
+        << Math->PlaceFile;
+    EXPECT_GE(Math->PlaceLine, 34u);
+    EXPECT_LE(Math->PlaceLine, 57u);
+    EXPECT_EQ(World->PlaceFile, Math->PlaceFile);
+    EXPECT_GT(World->PlaceLine, Math->PlaceLine);
     const BoundMember *Fabs = Math->findFunction("fabs");
     ASSERT_TRUE(Fabs);
     EXPECT_EQ(Fabs->Params[0].Type.Code, TypeCode::Float);

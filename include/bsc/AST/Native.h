@@ -193,6 +193,9 @@ struct NativeModule {
   const NativeClass *Input = nullptr;
   const NativeClass *Output = nullptr;
   std::string File; ///< The binding object it came from.
+  /// Where it is registered (BS_MODULE's file and line), if known.
+  std::string PlaceFile;
+  unsigned PlaceLine = 0;
   uint64_t Hash = 0; ///< bs::moduleHash of the descriptor (bindings.md).
   /// Shipped in the runtime archive (`io`): it goes with the runtime bsc
   /// links, so the behavior neither records its hash nor looks for its

@@ -196,6 +196,10 @@ struct BoundEnum {
 struct BoundModule {
   std::string Name;
   std::string File;   ///< "x.o" or "lib.a(x.o)".
+  /// Where BS_MODULE is in the C++ source (its __FILE__, as the compiler
+  /// was given it, and line); empty from an older Bind.h.
+  std::string PlaceFile;
+  unsigned PlaceLine = 0;
   std::string Symbol; ///< bs_module_<Name>.
   uint32_t Version = 0;
   std::vector<BoundClass> Classes;

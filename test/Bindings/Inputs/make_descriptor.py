@@ -37,7 +37,7 @@ params = [([0], [2, 0, 4, offsets["x"], 0, 0, 0, 0])]
 enums = [([ekey], [offsets["E"], 0, 4, 0, 0, 1])]
 values = [([], [offsets["a"], 0])]
 header = {"version": 1, "ptr_size": P, "input": NO_INDEX,
-          "output": NO_INDEX}
+          "output": NO_INDEX, "place": None}
 section = "bs_modules"
 tables_far = False
 
@@ -66,6 +66,10 @@ elif variant == "tables":
     tables_far = True
 elif variant == "input":
     header["input"] = 0
+elif variant == "placed":
+    header["place"] = "after"  # BS_PLACE_SIZE bytes after the strings
+elif variant == "place":
+    header["place"] = "strings"  # points into the string table
 elif variant != "good":
     sys.exit(f"unknown variant {variant}")
 
@@ -80,6 +84,14 @@ for t, recs in enumerate(tables):
     offset += len(recs) * sizes[t]
 string_offset = offset
 total = string_offset + string_bytes
+PLACE_SIZE = 256
+place_text = "Bad.cpp:7"
+place = 0
+if header["place"] == "after":
+    place = total
+    total += PLACE_SIZE
+elif header["place"] == "strings":
+    place = string_offset
 
 def escape(s):
     return s.replace("\\", "\\\\").replace('"', '\\"')
@@ -102,11 +114,14 @@ out.append("\t.long\t%d, 112, %d, %d, %d, 0, %d, %d" % (
     total, header["input"], header["output"]))
 for count, off, size in table_fields:
     out.append(f"\t.long\t{count}, {off}, {size}")
-out.append(f"\t.long\t{string_offset}, {string_bytes}, 0")
+out.append(f"\t.long\t{string_offset}, {string_bytes}, {place}")
 for recs in tables:
     for ptrs, ws in recs:
         for p in ptrs:
             out.append(f"\t.long\t{p}")
         out.append("\t.long\t" + ", ".join(str(w) for w in ws))
 out.append('\t.ascii\t"' + "".join(escape(s) + "\\0" for s in strings) + '"')
+if header["place"] == "after":
+    out.append('\t.ascii\t"' + place_text + '"')
+    out.append("\t.zero\t%d" % (PLACE_SIZE - len(place_text)))
 print("\n".join(out))
