@@ -20,6 +20,7 @@ script):
     change-file PATH FILE        didChange: the whole text of FILE
     edit PATH L C L C TEXT       didChange: an incremental edit of a range
     close PATH                   didClose
+    write PATH TEXT              writes the file on disk (\\n escapes)
     request METHOD JSON          a request; prints `METHOD: RESULT`
     notify METHOD JSON           a notification
     every-request PATH           every request at three places of each
@@ -193,6 +194,10 @@ class Client:
                 'start': {'line': int(l1), 'character': int(c1)},
                 'end': {'line': int(l2), 'character': int(c2)}},
                 'text': text}])
+        elif word == 'write':
+            path, _, text = rest.partition(' ')
+            with open(os.path.join(self.root, path), 'w') as f:
+                f.write(text.encode().decode('unicode_escape'))
         elif word == 'close':
             self.versions.pop(rest, None)
             self.notify('textDocument/didClose',

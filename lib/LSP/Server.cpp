@@ -184,6 +184,11 @@ void Server::handle(const llvm::json::Object &Message) {
     notify("textDocument/publishDiagnostics",
            llvm::json::Object{{"uri", pathToURI(Path)},
                               {"diagnostics", llvm::json::Array()}});
+  } else if (*Method == "workspace/didChangeWatchedFiles") {
+    // A module, a binding object or bscript.json changed on disk: every
+    // open document may read it.
+    for (const auto &[Open, Text] : W.getOpen())
+      Dirty.insert(Open);
   }
   // Others ($/cancelRequest, initialized, didSave, ...) need nothing:
   // requests are answered before the next message is read.
