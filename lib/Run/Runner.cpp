@@ -23,55 +23,85 @@ struct ReplayLine {
   }
 };
 
-/// Reads a JSONL replay file into the SourceMgr (so that its errors have
-/// carets) and checks the shape of each line. Returns false after reporting.
-bool readReplay(Compilation &C, const LoadedBehavior &L, llvm::StringRef Path,
-                std::vector<ReplayLine> &Lines) {
-  unsigned ID = addSourceFile(C, Path, MaxRecordingMiB);
-  if (!ID)
-    return false;
-  llvm::StringRef Text = C.SM.getMemoryBuffer(ID)->getBuffer();
-  bool OK = true;
-  llvm::SmallVector<llvm::StringRef, 0> Raw;
-  Text.split(Raw, '\n');
-  for (llvm::StringRef R : Raw) {
-    llvm::SMLoc Loc = llvm::SMLoc::getFromPointer(R.data());
-    if (R.trim().empty())
+/// Reads a JSONL replay file a line at a time, as its cycles come: the
+/// file is in the SourceMgr (mapped, so that its errors have carets), and
+/// only the current line is parsed, so a replay takes the same memory
+/// whatever its length. A damaged line stops the replay at its cycle.
+class ReplayReader {
+public:
+  ReplayReader(Compilation &C, const LoadedBehavior &L) : C(C), L(L) {}
+
+  /// Reads the file; false after reporting (also a file with no line).
+  bool open(llvm::StringRef Path) {
+    unsigned ID = addSourceFile(C, Path, MaxRecordingMiB);
+    if (!ID)
+      return false;
+    Rest = C.SM.getMemoryBuffer(ID)->getBuffer();
+    if (Rest.trim().empty()) {
+      C.Diags.report(llvm::SMLoc(), diag::err_replay_empty) << Path;
+      return false;
+    }
+    return true;
+  }
+  /// The next line, checked; false at the end or after reporting it
+  /// (failed()).
+  bool next(ReplayLine &Line);
+  bool failed() const { return Failed; }
+
+private:
+  bool check(const ReplayLine &Line);
+
+  Compilation &C;
+  const LoadedBehavior &L;
+  llvm::StringRef Rest;
+  bool Failed = false;
+};
+} // namespace
+
+bool ReplayReader::next(ReplayLine &Line) {
+  while (!Rest.empty()) {
+    auto [Raw, After] = Rest.split('\n');
+    Rest = After;
+    if (Raw.trim().empty())
       continue;
-    std::optional<llvm::json::Value> V = parseJSONLine(C.Diags, R);
+    std::optional<llvm::json::Value> V = parseJSONLine(C.Diags, Raw);
     if (!V) {
-      OK = false;
-      continue;
+      Failed = true;
+      return false;
     }
-    ReplayLine Line{Loc, std::move(*V)};
-    const llvm::json::Object *O = Line.Parsed.getAsObject();
-    if (!O) {
-      C.Diags.report(Loc, diag::err_replay_not_object);
-      OK = false;
-      continue;
+    Line = ReplayLine{llvm::SMLoc::getFromPointer(Raw.data()), std::move(*V)};
+    if (!check(Line)) {
+      Failed = true;
+      return false;
     }
-    for (const auto &KV : *O) {
-      llvm::StringRef K = KV.first;
-      if (K == "input" || K == "output") {
-        const NativeClass *Class = K == "input" ? L.InputClass : L.OutputClass;
-        if (!Class) {
-          C.Diags.report(Loc, diag::err_replay_no_world) << K;
-          OK = false;
-        }
-      } else if (K != "cycle" && K != "tasks") {
-        C.Diags.report(Loc, diag::err_replay_unknown_key) << K;
+    return true;
+  }
+  return false;
+}
+
+/// A line is an object of `cycle`, `input`, `output` and `tasks`, the
+/// last two ignored; `input` and `output` need the world's classes.
+bool ReplayReader::check(const ReplayLine &Line) {
+  const llvm::json::Object *O = Line.Parsed.getAsObject();
+  if (!O) {
+    C.Diags.report(Line.Loc, diag::err_replay_not_object);
+    return false;
+  }
+  bool OK = true;
+  for (const auto &KV : *O) {
+    llvm::StringRef K = KV.first;
+    if (K == "input" || K == "output") {
+      if (!(K == "input" ? L.InputClass : L.OutputClass)) {
+        C.Diags.report(Line.Loc, diag::err_replay_no_world) << K;
         OK = false;
       }
+    } else if (K != "cycle" && K != "tasks") {
+      C.Diags.report(Line.Loc, diag::err_replay_unknown_key) << K;
+      OK = false;
     }
-    Lines.push_back(std::move(Line));
-  }
-  if (OK && Lines.empty()) {
-    C.Diags.report(llvm::SMLoc(), diag::err_replay_empty) << Path;
-    OK = false;
   }
   return OK;
 }
-} // namespace
 
 /// `--cycle-budget`: a warning at the loop that ran out first (the
 /// behavior went on: its task failed), with how many cycles ran out.
@@ -117,7 +147,7 @@ public:
       : C(C), L(L), S(S), Opts(Opts), OS(OS), Traces(Opts.Trace),
         Values([&L](llvm::StringRef Sym) { return L.JIT->lookup(Sym); }) {}
 
-  /// Reads the replay file and opens the recording. False after reporting.
+  /// Opens the replay file and the recording. False after reporting.
   bool open();
   /// Runs the cycles the options ask for. False after reporting.
   bool run();
@@ -143,7 +173,7 @@ private:
   llvm::raw_ostream &OS;
   debug::TraceFilter Traces;
   debug::ValueIO Values;
-  std::vector<ReplayLine> Replay;
+  std::optional<ReplayReader> Replay;
   std::unique_ptr<llvm::ToolOutputFile> Record;
   /// The entry task's place in the task table, whose state tells a failure.
   std::optional<unsigned> EntryIndex;
@@ -161,7 +191,8 @@ bool CycleRunner::open() {
           << "--cycles" << "--replay";
       return false;
     }
-    if (!readReplay(C, L, Opts.ReplayPath, Replay))
+    Replay.emplace(C, L);
+    if (!Replay->open(Opts.ReplayPath))
       return false;
   }
   if (!Opts.RecordPath.empty()) {
@@ -182,12 +213,16 @@ bool CycleRunner::open() {
 }
 
 bool CycleRunner::run() {
-  unsigned Cycles = Replay.empty() ? Opts.Cycles : Replay.size();
-  for (unsigned I = 0; I < Cycles; ++I) {
-    if (!runCycle(Replay.empty() ? nullptr : &Replay[I]))
+  ReplayLine Line;
+  for (unsigned I = 0; Replay ? Replay->next(Line) : I < Opts.Cycles; ++I) {
+    if (!runCycle(Replay ? &Line : nullptr))
       return false;
     if (Opts.StopAfterCycle && Opts.StopAfterCycle())
       break;
+  }
+  if (Replay && Replay->failed()) {
+    keepRecording();
+    return false;
   }
   if (FirstRanOut)
     reportBudgetRanOut(C, L, S, FirstRanOut->first, *FirstRanOut->second,
