@@ -9,9 +9,10 @@
 // The replay itself needs a JIT and a binding object, so this target takes
 // the path it shares with them: parsing, and ValueIO writing and reading.
 //
-// What must hold, beyond not crashing: an error points into its line, and
-// an object read back and written again reads back the same (a recording
-// replays bit for bit). A violation aborts, which both drivers report.
+// What must hold, beyond not crashing: an error points into its line, an
+// object read back and written again reads back the same (a recording
+// replays bit for bit), and bsc::isJSON agrees with the parser. A
+// violation aborts, which both drivers report.
 //
 //===----------------------------------------------------------------------===//
 #include "bsc/AST/Native.h"
@@ -125,6 +126,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *Data, size_t Size) {
   Text.split(Lines, '\n');
   for (llvm::StringRef Line : Lines) {
     llvm::Expected<llvm::json::Value> V = parseJSON(Line);
+    // The replay's check of the parts of a line it skips must accept
+    // exactly what the parser accepts.
+    if (isJSON(Line) != bool(V))
+      std::abort();
     if (!V) {
       llvm::handleAllErrors(V.takeError(), [&](const JSONReadError &E) {
         checkError(Line, E);

@@ -7,6 +7,9 @@
 //
 //===----------------------------------------------------------------------===//
 #include "bsc/Basic/JSON.h"
+#include "llvm/ADT/StringExtras.h"
+#include <cerrno>
+#include <cstdlib>
 #include "bsc/Basic/Diagnostic.h"
 #include "llvm/Support/raw_ostream.h"
 
@@ -53,6 +56,116 @@ static size_t findTooDeep(llvm::StringRef Text, unsigned Limit) {
     }
   }
   return llvm::StringRef::npos;
+}
+
+namespace {
+/// Checks JSON (RFC 8259, as llvm::json::parse reads it) without building
+/// values: one pass, no allocation.
+class JSONChecker {
+public:
+  explicit JSONChecker(llvm::StringRef Text) : Text(Text) {}
+  bool document() {
+    if (!value())
+      return false;
+    space();
+    return At == Text.size();
+  }
+
+private:
+  void space() {
+    while (At < Text.size() && llvm::StringRef(" \t\r\n").contains(Text[At]))
+      ++At;
+  }
+  bool eat(char C) {
+    space();
+    if (At < Text.size() && Text[At] == C)
+      return ++At, true;
+    return false;
+  }
+  /// A number as llvm::json reads one: a run of `0-9 + - . e E` that
+  /// strtoll, strtoull or strtod reads whole (so `01`, `1.` and `+1` are
+  /// numbers, `1e` is not).
+  bool number() {
+    size_t Start = At;
+    while (At < Text.size() && llvm::StringRef("0123456789+-.eE").contains(Text[At]))
+      ++At;
+    std::string Token = Text.slice(Start, At).str();
+    const char *End = Token.c_str() + Token.size();
+    char *Stop;
+    errno = 0;
+    (void)std::strtoll(Token.c_str(), &Stop, 10);
+    if (Stop == End && errno != ERANGE)
+      return true;
+    if (Token[0] != '-') {
+      errno = 0;
+      (void)std::strtoull(Token.c_str(), &Stop, 10);
+      if (Stop == End && errno != ERANGE)
+        return true;
+    }
+    (void)std::strtod(Token.c_str(), &Stop);
+    return Stop == End;
+  }
+  bool string() {
+    size_t Start = ++At;
+    for (; At < Text.size(); ++At) {
+      unsigned char C = Text[At];
+      if (C < 0x20)
+        return false;
+      if (C == '"')
+        return llvm::json::isUTF8(Text.slice(Start, At++));
+      if (C != '\\')
+        continue;
+      if (++At >= Text.size())
+        return false;
+      char E = Text[At];
+      if (E == 'u') {
+        for (int I = 0; I < 4; ++I)
+          if (++At >= Text.size() || !llvm::isHexDigit(Text[At]))
+            return false;
+      } else if (!llvm::StringRef("\"\\/bfnrt").contains(E)) {
+        return false;
+      }
+    }
+    return false;
+  }
+  bool value() {
+    space();
+    if (At >= Text.size())
+      return false;
+    char C = Text[At];
+    if (C == '"')
+      return string();
+    if (llvm::StringRef("+-.").contains(C) || llvm::isDigit(C))
+      return number();
+    for (llvm::StringRef Word : {"true", "false", "null"})
+      if (Text.substr(At).starts_with(Word))
+        return At += Word.size(), true;
+    if (C != '{' && C != '[')
+      return false;
+    ++At;
+    char Close = C == '{' ? '}' : ']';
+    if (eat(Close))
+      return true;
+    do {
+      if (C == '{') {
+        space();
+        if (At >= Text.size() || Text[At] != '"' || !string() || !eat(':'))
+          return false;
+      }
+      if (!value())
+        return false;
+    } while (eat(','));
+    return eat(Close);
+  }
+
+  llvm::StringRef Text;
+  size_t At = 0;
+};
+} // namespace
+
+bool bsc::isJSON(llvm::StringRef Text) {
+  return findTooDeep(Text, MaxJSONDepth) == llvm::StringRef::npos &&
+         JSONChecker(Text).document();
 }
 
 /// A JSONReadError at byte `Offset` of `Text`.

@@ -2,106 +2,16 @@
 //
 // Runs cycles of a session under its guard. Everything printed about the
 // behavior (traces, outputs, recordings) goes through bsc/Debug; a replay
-// writes each line's inputs before the cycle and compares its outputs
-// after it.
+// (ReplayReader.h) writes each line's inputs before the cycle and
+// compares its outputs after it.
 //
 //===----------------------------------------------------------------------===//
-#include "bsc/Run/Run.h"
+#include "ReplayReader.h"
 #include "bsc/Basic/JSON.h"
 #include "llvm/Support/FileSystem.h"
 #include "llvm/Support/ToolOutputFile.h"
 
 using namespace bsc;
-
-namespace {
-/// One line of a replay file, checked.
-struct ReplayLine {
-  llvm::SMLoc Loc; ///< Its first character.
-  llvm::json::Value Parsed = nullptr;
-  const llvm::json::Value *get(llvm::StringRef Key) const {
-    return Parsed.getAsObject()->get(Key);
-  }
-};
-
-/// Reads a JSONL replay file a line at a time, as its cycles come: the
-/// file is in the SourceMgr (mapped, so that its errors have carets), and
-/// only the current line is parsed, so a replay takes the same memory
-/// whatever its length. A damaged line stops the replay at its cycle.
-class ReplayReader {
-public:
-  ReplayReader(Compilation &C, const LoadedBehavior &L) : C(C), L(L) {}
-
-  /// Reads the file; false after reporting (also a file with no line).
-  bool open(llvm::StringRef Path) {
-    unsigned ID = addSourceFile(C, Path, MaxRecordingMiB);
-    if (!ID)
-      return false;
-    Rest = C.SM.getMemoryBuffer(ID)->getBuffer();
-    if (Rest.trim().empty()) {
-      C.Diags.report(llvm::SMLoc(), diag::err_replay_empty) << Path;
-      return false;
-    }
-    return true;
-  }
-  /// The next line, checked; false at the end or after reporting it
-  /// (failed()).
-  bool next(ReplayLine &Line);
-  bool failed() const { return Failed; }
-
-private:
-  bool check(const ReplayLine &Line);
-
-  Compilation &C;
-  const LoadedBehavior &L;
-  llvm::StringRef Rest;
-  bool Failed = false;
-};
-} // namespace
-
-bool ReplayReader::next(ReplayLine &Line) {
-  while (!Rest.empty()) {
-    auto [Raw, After] = Rest.split('\n');
-    Rest = After;
-    if (Raw.trim().empty())
-      continue;
-    std::optional<llvm::json::Value> V = parseJSONLine(C.Diags, Raw);
-    if (!V) {
-      Failed = true;
-      return false;
-    }
-    Line = ReplayLine{llvm::SMLoc::getFromPointer(Raw.data()), std::move(*V)};
-    if (!check(Line)) {
-      Failed = true;
-      return false;
-    }
-    return true;
-  }
-  return false;
-}
-
-/// A line is an object of `cycle`, `input`, `output` and `tasks`, the
-/// last two ignored; `input` and `output` need the world's classes.
-bool ReplayReader::check(const ReplayLine &Line) {
-  const llvm::json::Object *O = Line.Parsed.getAsObject();
-  if (!O) {
-    C.Diags.report(Line.Loc, diag::err_replay_not_object);
-    return false;
-  }
-  bool OK = true;
-  for (const auto &KV : *O) {
-    llvm::StringRef K = KV.first;
-    if (K == "input" || K == "output") {
-      if (!(K == "input" ? L.InputClass : L.OutputClass)) {
-        C.Diags.report(Line.Loc, diag::err_replay_no_world) << K;
-        OK = false;
-      }
-    } else if (K != "cycle" && K != "tasks") {
-      C.Diags.report(Line.Loc, diag::err_replay_unknown_key) << K;
-      OK = false;
-    }
-  }
-  return OK;
-}
 
 /// `--cycle-budget`: a warning at the loop that ran out first (the
 /// behavior went on: its task failed), with how many cycles ran out.

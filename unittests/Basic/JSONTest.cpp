@@ -86,4 +86,29 @@ TEST(JSONTest, ErrorsPrintWithTheirPlace) {
   EXPECT_EQ(llvm::toString(V.takeError()), "1:3: Unexpected EOF");
 }
 
+TEST(JSONTest, IsJSONAgreesWithTheParser) {
+  // isJSON checks without building values; it must accept exactly what
+  // parseJSON accepts.
+  const char *Texts[] = {
+      "{}", "[]", "0", "-0", "1.5e-3", "-12E+4", "true", "false", "null",
+      "\"a\\u00e9\\n\"", "{\"a\":[1,{\"b\":null}],\"c\":\"x\"}",
+      " { \"a\" : 1 } ", "\"\xc3\xa9\"",
+      // llvm::json's numbers: what strtoll/strtod read whole.
+      "01", "1.", ".5", "+1", "+.5e-1", "-.5", "1E+2", "99999999999999999999",
+      "1e", "e5", "-", "--1", "1-", "1.5.5", "0x10",
+      // Not JSON:
+      "", "{", "}", "[1,]", "{\"a\"}", "{\"a\":}", "{a:1}",
+      "tru", "nul", "\"\\x\"", "\"\\u12\"",
+      "\"a\tb\"", "\"\xff\"", "[1] 2", "{\"a\":1,}", "[1 2]",
+      "{\"a\":1 \"b\":2}", "\"open", "[\"a\"]]"};
+  for (const char *T : Texts) {
+    llvm::Expected<llvm::json::Value> V = parseJSON(T);
+    bool Parsed = bool(V);
+    if (!V)
+      llvm::consumeError(V.takeError());
+    EXPECT_EQ(isJSON(T), Parsed) << T;
+  }
+  EXPECT_FALSE(isJSON(std::string(300, '[') + std::string(300, ']')));
+}
+
 } // namespace

@@ -58,6 +58,10 @@ public:
 /// no other kind of error).
 llvm::Expected<llvm::json::Value> parseJSON(llvm::StringRef Text);
 
+/// Whether parseJSON would accept `Text`, found without building values
+/// (a replay checks the parts of a line it skips with it).
+bool isJSON(llvm::StringRef Text);
+
 class DiagnosticEngine;
 /// parseJSON of one line of a recording held in the engine's SourceMgr;
 /// an error is reported there (`invalid JSON: ...`, the caret under the

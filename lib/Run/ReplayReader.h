@@ -1,0 +1,50 @@
+//===- ReplayReader.h - a recording read as its cycles come ----*- C++ -*-===//
+#ifndef BSC_LIB_RUN_REPLAYREADER_H
+#define BSC_LIB_RUN_REPLAYREADER_H
+
+#include "bsc/Run/Run.h"
+#include <optional>
+
+namespace bsc {
+
+/// One line of a replay file: the objects a replay uses.
+struct ReplayLine {
+  llvm::SMLoc Loc; ///< Its first character.
+  std::optional<llvm::json::Value> Input, Output;
+  const llvm::json::Value *get(llvm::StringRef Key) const {
+    const std::optional<llvm::json::Value> &V = Key == "input" ? Input : Output;
+    return V ? &*V : nullptr;
+  }
+};
+
+/// Reads a JSONL replay file a line at a time, as its cycles come: the
+/// file is in the SourceMgr (mapped, so that its errors have carets), and
+/// of the current line only `input` and `output` are parsed, so a replay
+/// takes the same memory whatever its length and skips the `tasks` a
+/// recording carries. A damaged line stops the replay at its cycle.
+class ReplayReader {
+public:
+  ReplayReader(Compilation &C, const LoadedBehavior &L) : C(C), L(L) {}
+
+  /// Reads the file; false after reporting (also a file with no line).
+  bool open(llvm::StringRef Path);
+  /// The next line, checked; false at the end or after reporting it
+  /// (failed()).
+  bool next(ReplayLine &Line);
+  bool failed() const { return Failed; }
+
+private:
+  bool read(llvm::StringRef Raw, ReplayLine &Line);
+  /// Reports what is wrong with a line the scan could not take apart, by
+  /// parsing it whole (`invalid JSON: ...` at the byte, or not an object).
+  bool reportDamaged(llvm::StringRef Raw);
+
+  Compilation &C;
+  const LoadedBehavior &L;
+  llvm::StringRef Rest;
+  bool Failed = false;
+};
+
+} // namespace bsc
+
+#endif
