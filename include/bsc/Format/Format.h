@@ -13,8 +13,9 @@
 //   the comments directly above it, which belong to it).
 // - Every comment is kept with its text: a comment line is indented as the
 //   code it stands in, a comment after code follows it two spaces apart.
-// - A line over 80 columns that calls something is broken after the
-//   outermost call's `(`, one argument per line.
+// - A line over 80 columns whose statement ends in a call holding most of
+//   it is broken after that call's `(`, one argument per line; a comment
+//   inside `( )` ends its line where it stands.
 //
 // The formatter reads tokens, never the tree, so it cannot lose what the
 // parser drops; it refuses a file with syntax errors (reported to Diags),
