@@ -63,7 +63,8 @@ namespace {
 /// values: one pass, no allocation.
 class JSONChecker {
 public:
-  explicit JSONChecker(llvm::StringRef Text) : Text(Text) {}
+  JSONChecker(llvm::StringRef Text, JSONMemberFn OnMember)
+      : Text(Text), OnMember(OnMember) {}
   bool document() {
     if (!value())
       return false;
@@ -144,28 +145,42 @@ private:
       return false;
     ++At;
     char Close = C == '{' ? '}' : ']';
+    bool TopObject = C == '{' && Level == 0;
+    ++Level;
     if (eat(Close))
-      return true;
+      return --Level, true;
     do {
+      size_t KeyStart = 0;
       if (C == '{') {
         space();
+        KeyStart = At;
         if (At >= Text.size() || Text[At] != '"' || !string() || !eat(':'))
           return false;
       }
+      size_t KeyEnd = At;
+      space();
+      size_t ValueStart = At;
       if (!value())
         return false;
+      if (TopObject && OnMember) {
+        llvm::StringRef Key = Text.slice(KeyStart, KeyEnd).rtrim(" \t\r\n:");
+        OnMember(Key.drop_front().drop_back(), Text.slice(ValueStart, At));
+      }
     } while (eat(','));
+    --Level;
     return eat(Close);
   }
 
   llvm::StringRef Text;
+  JSONMemberFn OnMember;
   size_t At = 0;
+  unsigned Level = 0;
 };
 } // namespace
 
-bool bsc::isJSON(llvm::StringRef Text) {
+bool bsc::isJSON(llvm::StringRef Text, JSONMemberFn OnMember) {
   return findTooDeep(Text, MaxJSONDepth) == llvm::StringRef::npos &&
-         JSONChecker(Text).document();
+         JSONChecker(Text, OnMember).document();
 }
 
 /// A JSONReadError at byte `Offset` of `Text`.

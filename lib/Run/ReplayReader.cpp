@@ -1,10 +1,10 @@
 //===- ReplayReader.cpp - a recording read as its cycles come -------------===//
 //
-// A line is checked to be JSON without building values (bsc::isJSON), then
-// its top-level object is scanned for where each member's value starts and
-// ends; `input` and `output` are parsed with bsc::parseJSON, `cycle` and
-// `tasks` skipped. A line that is not JSON is parsed whole, so that its
-// error is the JSON parser's, at its byte.
+// A line is checked to be JSON without building values (bsc::isJSON),
+// which also hands over its top-level members as text: `input` and
+// `output` are parsed with bsc::parseJSON, `cycle` and `tasks` skipped. A
+// line that is not JSON is parsed whole, so that its error is the JSON
+// parser's, at its byte.
 //
 //===----------------------------------------------------------------------===//
 #include "ReplayReader.h"
@@ -12,56 +12,6 @@
 
 using namespace bsc;
 
-namespace {
-/// A scan over a line already known to be JSON: where each member of the
-/// top-level object starts and ends.
-struct Scanner {
-  llvm::StringRef Text;
-  size_t At = 0;
-
-  void skipSpace() {
-    while (At < Text.size() && llvm::StringRef(" \t\r").contains(Text[At]))
-      ++At;
-  }
-  bool eat(char C) {
-    skipSpace();
-    if (At < Text.size() && Text[At] == C)
-      return ++At, true;
-    return false;
-  }
-  void string() {
-    for (++At; At < Text.size(); ++At) {
-      if (Text[At] == '\\')
-        ++At;
-      else if (Text[At] == '"')
-        return void(++At);
-    }
-  }
-  /// The value at At: a string, a bracketed value, or a scalar.
-  llvm::StringRef value() {
-    skipSpace();
-    size_t Start = At;
-    if (Text[At] == '"') {
-      string();
-    } else if (Text[At] == '{' || Text[At] == '[') {
-      size_t Depth = 0;
-      do {
-        if (Text[At] == '"') {
-          string();
-          continue;
-        }
-        Depth += Text[At] == '{' || Text[At] == '[';
-        Depth -= Text[At] == '}' || Text[At] == ']';
-        ++At;
-      } while (Depth);
-    } else {
-      while (At < Text.size() && !llvm::StringRef(",}] \t\r").contains(Text[At]))
-        ++At;
-    }
-    return Text.slice(Start, At);
-  }
-};
-} // namespace
 
 bool ReplayReader::open(llvm::StringRef Path) {
   unsigned ID = addSourceFile(C, Path, MaxRecordingMiB);
@@ -101,20 +51,14 @@ bool ReplayReader::reportDamaged(llvm::StringRef Raw) {
 bool ReplayReader::read(llvm::StringRef Raw, ReplayLine &Line) {
   Line = ReplayLine();
   Line.Loc = llvm::SMLoc::getFromPointer(Raw.data());
-  if (!isJSON(Raw) || !Raw.ltrim().starts_with("{"))
+  llvm::SmallVector<std::pair<llvm::StringRef, llvm::StringRef>, 4> Members;
+  if (!isJSON(Raw, [&](llvm::StringRef Key, llvm::StringRef Value) {
+        Members.push_back({Key, Value});
+      }) ||
+      !Raw.ltrim().starts_with("{"))
     return reportDamaged(Raw);
-  Scanner S{Raw};
-  S.eat('{');
   bool OK = true;
-  for (bool First = true; !S.eat('}'); First = false) {
-    if (!First)
-      S.eat(',');
-    S.skipSpace();
-    size_t KeyStart = S.At;
-    S.string();
-    llvm::StringRef Key = Raw.slice(KeyStart + 1, S.At - 1);
-    S.eat(':');
-    llvm::StringRef Value = S.value();
+  for (auto [Key, Value] : Members) {
     if (Key == "input" || Key == "output") {
       if (!(Key == "input" ? L.InputClass : L.OutputClass)) {
         C.Diags.report(Line.Loc, diag::err_replay_no_world) << Key;

@@ -111,4 +111,17 @@ TEST(JSONTest, IsJSONAgreesWithTheParser) {
   EXPECT_FALSE(isJSON(std::string(300, '[') + std::string(300, ']')));
 }
 
+TEST(JSONTest, IsJSONHandsOverTheTopLevelMembers) {
+  std::vector<std::string> Seen;
+  auto Collect = [&](llvm::StringRef K, llvm::StringRef V) {
+    Seen.push_back((K + "=" + V).str());
+  };
+  EXPECT_TRUE(isJSON(R"( {"a" : [1, {"b":2}], "c:" :"x" ,"d":{}} )", Collect));
+  EXPECT_EQ(Seen, (std::vector<std::string>{"a=[1, {\"b\":2}]", "c:=\"x\"",
+                                            "d={}"}));
+  Seen.clear();
+  EXPECT_TRUE(isJSON("[{\"a\":1}]", Collect)); // Not an object: none.
+  EXPECT_TRUE(Seen.empty());
+}
+
 } // namespace

@@ -14,6 +14,7 @@
 #ifndef BSC_BASIC_JSON_H
 #define BSC_BASIC_JSON_H
 
+#include "llvm/ADT/STLFunctionalExtras.h"
 #include "llvm/ADT/StringRef.h"
 #include "llvm/Support/Error.h"
 #include "llvm/Support/JSON.h"
@@ -58,9 +59,16 @@ public:
 /// no other kind of error).
 llvm::Expected<llvm::json::Value> parseJSON(llvm::StringRef Text);
 
-/// Whether parseJSON would accept `Text`, found without building values
-/// (a replay checks the parts of a line it skips with it).
-bool isJSON(llvm::StringRef Text);
+/// Called with each member of a top-level object: its key as written
+/// (without the quotes) and the text of its value.
+using JSONMemberFn =
+    llvm::function_ref<void(llvm::StringRef Key, llvm::StringRef Value)>;
+
+/// Whether parseJSON would accept `Text`, found without building values.
+/// If `Text` is an object, `OnMember` (if given) sees its members as they
+/// are checked (before the verdict: keep them only if the result is
+/// true). A replay parses only the members it needs this way.
+bool isJSON(llvm::StringRef Text, JSONMemberFn OnMember = nullptr);
 
 class DiagnosticEngine;
 /// parseJSON of one line of a recording held in the engine's SourceMgr;
