@@ -115,9 +115,25 @@ TEST_F(RunTest, AReplayOfInputsNeedsAWorld) {
                                   "{\"cycle\":2,\"speed\":3}\n\n");
   RunOptions Opts;
   Opts.ReplayPath = Replay.Path;
+  Opts.Trace = debug::TraceMode::EveryCycle;
   std::string Got = run(Opts);
   EXPECT_NE(Got.find("'input'"), std::string::npos) << Got;
-  EXPECT_NE(Got.find("'speed'"), std::string::npos) << Got;
+  // The replay stops at its first bad line: no cycle ran, line 2 is unread.
+  EXPECT_EQ(Got.find("cycle 1"), std::string::npos) << Got;
+  EXPECT_EQ(Got.find("'speed'"), std::string::npos) << Got;
+}
+
+TEST_F(RunTest, AReplayStopsAtItsFirstBadLine) {
+  ASSERT_TRUE(load(Stepper, "step")) << messages();
+  TempFile Replay("replay.jsonl", "{\"cycle\":1}\n"
+                                  "{\"cycle\":2,\"speed\":3}\n"
+                                  "{\"cycle\":3}\n");
+  RunOptions Opts;
+  Opts.ReplayPath = Replay.Path;
+  Opts.Trace = debug::TraceMode::EveryCycle;
+  EXPECT_EQ(run(Opts), "failed: unknown key 'speed' in a replay line; "
+                       "expected 'cycle', 'input', 'output' or 'tasks'\n");
+  EXPECT_EQ(Session->getCycle(), 1u);
 }
 
 TEST_F(RunTest, AnEmptyReplayIsAnError) {
