@@ -221,11 +221,11 @@ static unsigned utf16Length(llvm::StringRef Text) {
 
 llvm::SMLoc Analysis::getLoc(unsigned BufferID,
                              const llvm::json::Value *Position) const {
+  // No position (a request that needs none, or a client's mistake): the
+  // start of the document, so that every feature has a place to start from.
   const llvm::json::Object *P = Position ? Position->getAsObject() : nullptr;
-  if (!P)
-    return {};
-  int64_t Line = P->getInteger("line").value_or(0);
-  int64_t Char = P->getInteger("character").value_or(0);
+  int64_t Line = P ? P->getInteger("line").value_or(0) : 0;
+  int64_t Char = P ? P->getInteger("character").value_or(0) : 0;
   llvm::StringRef Text = C->SM.getMemoryBuffer(BufferID)->getBuffer();
   // The line's start; past the last line, the end of the text.
   size_t Start = 0;

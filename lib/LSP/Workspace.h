@@ -40,7 +40,9 @@ struct Analysis {
   unsigned getBuffer(llvm::StringRef Path) const;
   /// The absolute path of a buffer's file.
   std::string getPath(unsigned BufferID) const;
-  /// LSP positions (0-based line, UTF-16 character) and locations.
+  /// LSP positions (0-based line, UTF-16 character) and locations; a
+  /// missing or damaged position is the document's start, and one past a
+  /// line or the text is clamped to it.
   llvm::SMLoc getLoc(unsigned BufferID, const llvm::json::Value *Position) const;
   llvm::json::Object getPosition(llvm::SMLoc Loc) const;
   llvm::json::Object getRange(llvm::SMRange R) const;
