@@ -86,6 +86,59 @@ int bsc::runCommand(Compilation &C, const FrontendOptions &FOpts,
   return loadAndRun(C, Opts, LOpts, ROpts, *Entry);
 }
 
+/// `--shard K/N` into K and N; false after reporting.
+static bool parseShard(DiagnosticEngine &Diags, llvm::StringRef Arg,
+                       unsigned &K, unsigned &N) {
+  if (Arg.empty())
+    return true;
+  auto [KText, NText] = Arg.split('/');
+  if (KText.getAsInteger(10, K) || NText.getAsInteger(10, N) || K < 1 ||
+      K > N) {
+    Diags.report(llvm::SMLoc(), diag::err_bad_shard) << Arg;
+    return false;
+  }
+  return true;
+}
+
+int bsc::replayCommand(Compilation &C, const FrontendOptions &FOpts,
+                       const ReplayCommandOptions &Opts) {
+  BackendOptions BOpts;
+  bool OK = parseBackendOptions(C.Diags, Opts.Backend, BOpts);
+  ReplayLogsOptions ROpts;
+  ROpts.LogsDir = Opts.LogsDir;
+  ROpts.JUnitPath = Opts.JUnitPath;
+  OK &= parseShard(C.Diags, Opts.Shard, ROpts.Shard, ROpts.Shards);
+  OK &= parseCycleLimit(C.Diags, Opts.CycleLimit, ROpts.CycleLimitMs);
+  if (Opts.LogsDir.empty()) {
+    C.Diags.report(llvm::SMLoc(), diag::err_option_needs_option)
+        << "replay" << "--logs";
+    OK = false;
+  }
+  if (!runFrontend(C, FOpts) || !OK)
+    return finishCompilation(C);
+  const CallableDecl *Entry = findProgramEntry(C, Opts.EntryName);
+  if (!Entry)
+    return finishCompilation(C);
+  LoadOptions LOpts;
+  LOpts.OptLevel = BOpts.Target.OptLevel;
+  LOpts.StandardModules = FOpts.StandardModules;
+  LOpts.BindObjects = FOpts.BindObjects;
+  LOpts.DebugInfo = Opts.DebugInfo;
+  auto Loaded = loadBehavior(C, *Entry, LOpts);
+  if (!Loaded)
+    return finishWithInternalError(C, Loaded.takeError());
+  if (!*Loaded)
+    return finishCompilation(C);
+  // The compile's warnings once, before the logs' own diagnostics.
+  printDiagnostics(C.SM, C.Diags.getDiagnostics(), llvm::errs());
+  C.Diags.clear();
+  llvm::Expected<int> Status = replayLogs(C, **Loaded, ROpts, llvm::outs());
+  if (!Status)
+    return finishWithInternalError(C, Status.takeError());
+  int Finished = finishCompilation(C);
+  return Finished ? Finished : *Status;
+}
+
 int bsc::replCommand(Compilation &C, const FrontendOptions &FOpts,
                      const ReplCommandOptions &Opts) {
   BackendOptions BOpts;

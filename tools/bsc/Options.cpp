@@ -26,6 +26,9 @@ cl::SubCommand tool::TraceDecodeCmd(
 cl::SubCommand tool::TimelineCmd(
     "timeline",
     "Draw a recorded run, or two to compare, as one self-contained HTML page");
+cl::SubCommand tool::ReplayCmd(
+    "replay", "Replay every recording under a folder against a behavior, "
+              "compiled once; a log passes when every recorded output matches");
 cl::SubCommand tool::LspCmd(
     "lsp", "Serve editors: a Language Server Protocol server on standard "
            "input and output (docs/editors.md)");
@@ -48,7 +51,8 @@ namespace {
 #define BSC_BOTH                                                               \
   BSC_TOP, cl::sub(cl::SubCommand::getTopLevel()), cl::sub(RunCmd)
 /// ...and those the REPL takes too.
-#define BSC_ALL BSC_BOTH, cl::sub(ReplCmd)
+#define BSC_ALL BSC_BOTH, cl::sub(ReplCmd), cl::sub(ReplayCmd)
+#define BSC_REPLAY BSC_TOP, cl::sub(ReplayCmd)
 
 cl::list<std::string> InputFiles(cl::Positional, cl::desc("<file.bs>..."),
                                  BSC_ALL);
@@ -99,7 +103,7 @@ cl::opt<std::string> CycleLimitArg(
     "cycle-limit",
     cl::desc("Stop a cycle that runs longer than this (milliseconds; "
              "default 3000, 0: no limit)"),
-    cl::value_desc("ms"), cl::init("3000"), BSC_JIT);
+    cl::value_desc("ms"), cl::init("3000"), BSC_JIT, cl::sub(ReplayCmd));
 cl::opt<std::string> WorldLibrary(
     "world",
     cl::desc("A shared library that feeds input and reads output around "
@@ -164,6 +168,18 @@ cl::opt<std::string> TimelineOutput(
     cl::desc("The page to write (default: the first record's name with "
              "'.html')"),
     cl::value_desc("file.html"), BSC_TIMELINE);
+cl::opt<std::string> ReplayLogs(
+    "logs", cl::desc("The folder whose recordings (*.jsonl, also in its "
+                     "subfolders) to replay"),
+    cl::value_desc("dir"), BSC_REPLAY);
+cl::opt<std::string> ReplayShard(
+    "shard",
+    cl::desc("Replay the K-th of N slices of the sorted logs (every N-th "
+             "from the K-th), for a CI matrix or a cluster's array job"),
+    cl::value_desc("K/N"), BSC_REPLAY);
+cl::opt<std::string> ReplayJUnit(
+    "junit", cl::desc("Write JUnit XML, one test case per log"),
+    cl::value_desc("file.xml"), BSC_REPLAY);
 cl::list<std::string> FormatFiles(cl::Positional, cl::desc("<file.bs>..."),
                                   BSC_FORMAT);
 cl::opt<bool> FormatInPlace("i",
@@ -337,6 +353,8 @@ tool::CommandLine tool::readCommandLine() {
   CL.Timeline = {{TimelineRecords.begin(), TimelineRecords.end()},
                  TimelineObject,
                  TimelineOutput};
+  CL.Replay = {getBackendArgs(), EntryName, ReplayLogs, ReplayShard,
+               ReplayJUnit, CycleLimitArg, DebugInfo};
   CL.Format = {{FormatFiles.begin(), FormatFiles.end()},
                FormatInPlace,
                FormatCheck};

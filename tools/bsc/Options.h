@@ -20,7 +20,7 @@ namespace bsc::tool {
 /// bsc's own options (those of LLVM's libraries are hidden).
 extern llvm::cl::OptionCategory BscCategory;
 extern llvm::cl::SubCommand RunCmd, ReplCmd, TraceDecodeCmd, TimelineCmd,
-    FormatCmd, LspCmd;
+    FormatCmd, LspCmd, ReplayCmd;
 
 /// The command line after parsing.
 struct CommandLine {
@@ -35,6 +35,7 @@ struct CommandLine {
   debug::TraceDecodeOptions TraceDecode;
   timeline::TimelineOptions Timeline;
   FormatCommandOptions Format;
+  ReplayCommandOptions Replay;
 };
 
 CommandLine readCommandLine();

@@ -9,6 +9,7 @@
 //                                     stage with --emit=tokens|ast|llvm|...
 //   bsc run [options] FILE.bs...      JIT on the host, N cycles of the entry
 //   bsc repl [options] FILE.bs...     the debugger
+//   bsc replay --logs DIR FILE.bs...  every recording under DIR replayed
 //   bsc trace-decode --object B.o LOG a robot's trace log
 //   bsc timeline REC [REC2] -o P.html a run drawn (lib/Timeline)
 //   bsc format [-i|--check] FILE.bs... the canonical layout (lib/Format)
@@ -44,7 +45,7 @@ void printBscVersion(llvm::raw_ostream &OS) {
 /// The command after the command line is parsed and -W applied.
 int dispatch(Compilation &C, CommandLine &CL, const char *Argv0) {
   // `run` and `repl` are for the host's JIT, whatever -target says.
-  ToolChain TC = getToolChain(RunCmd || ReplCmd ? "" : CL.TargetName,
+  ToolChain TC = getToolChain(RunCmd || ReplCmd || ReplayCmd ? "" : CL.TargetName,
                               CL.RuntimeDir, Argv0);
   FrontendOptions &Opts = CL.Frontend;
   Opts.Target = TC.getTriple();
@@ -68,6 +69,10 @@ int dispatch(Compilation &C, CommandLine &CL, const char *Argv0) {
       timeline::writeTimeline(C, CL.Timeline, llvm::outs());
     return finish(C);
   }
+  if (ReplayCmd)
+    return checkSubcommandOptions(C.Diags, ReplayCmd)
+               ? replayCommand(C, Opts, CL.Replay)
+               : finish(C);
   if (LspCmd)
     return checkSubcommandOptions(C.Diags, LspCmd)
                ? lspCommand(CL.RuntimeDir, Argv0)
@@ -88,7 +93,7 @@ int main(int argc, char **argv) {
   llvm::InitLLVM X(argc, argv);
   for (cl::SubCommand *Sub :
        {&cl::SubCommand::getTopLevel(), &RunCmd, &TraceDecodeCmd, &ReplCmd,
-        &TimelineCmd, &FormatCmd, &LspCmd})
+        &TimelineCmd, &FormatCmd, &LspCmd, &ReplayCmd})
     cl::HideUnrelatedOptions(BscCategory, *Sub);
   Argv0ForVersion = argv[0];
   cl::SetVersionPrinter(printBscVersion);

@@ -228,6 +228,18 @@ struct RunCommandOptions {
 int runCommand(Compilation &C, const FrontendOptions &FOpts,
                const RunCommandOptions &Opts);
 
+/// `bsc replay` as written on the command line.
+struct ReplayCommandOptions {
+  BackendArgs Backend;
+  std::string EntryName, LogsDir, Shard, JUnitPath, CycleLimit;
+  bool DebugInfo = false;
+};
+
+/// `bsc replay`: the behavior compiled once into the host JIT, every
+/// recording under --logs replayed against it. Returns the exit status.
+int replayCommand(Compilation &C, const FrontendOptions &FOpts,
+                  const ReplayCommandOptions &Opts);
+
 /// `bsc repl` as written on the command line.
 struct ReplCommandOptions {
   BackendArgs Backend;

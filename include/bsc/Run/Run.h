@@ -111,6 +111,23 @@ constexpr unsigned DefaultCycleLimitMs = 3000;
 bool runBehavior(Compilation &C, LoadedBehavior &L, BehaviorSession &S,
                  const RunOptions &Opts, llvm::raw_ostream &OS);
 
+/// `bsc replay`'s options beyond loading.
+struct ReplayLogsOptions {
+  std::string LogsDir;       ///< --logs: the recordings (`*.jsonl`) below it.
+  unsigned Shard = 1, Shards = 1; ///< --shard K/N: every N-th log from the K-th.
+  std::string JUnitPath;     ///< --junit: JUnit XML, one test case per log.
+  unsigned CycleLimitMs = DefaultCycleLimitMs;
+};
+
+/// `bsc replay`: replays every recording under Opts.LogsDir against the
+/// loaded behavior, each in a fresh session; prints `PASS`/`FAIL` per log
+/// (a failure with its diagnostics) and `N passed, M failed`. Returns the
+/// exit status: 1 if a log failed or the folder could not be read; an
+/// llvm::Error is an internal error.
+llvm::Expected<int> replayLogs(Compilation &C, LoadedBehavior &L,
+                               const ReplayLogsOptions &Opts,
+                               llvm::raw_ostream &OS);
+
 /// One line of a recording: `{"cycle":N,"input":{...},"output":{...}}` for
 /// the cycle the session just ran.
 llvm::json::Value recordCycle(debug::ValueIO &Values, const LoadedBehavior &L,
