@@ -58,6 +58,24 @@ static int loadAndRun(Compilation &C, const RunCommandOptions &Opts,
   return finishCompilation(C);
 }
 
+/// The front end for `run` and `replay` (also after bad options, whose
+/// errors are then reported with the files'), then their entry and how to
+/// load it into the JIT; null after reporting.
+static const CallableDecl *checkForJIT(Compilation &C,
+                                       const FrontendOptions &FOpts,
+                                       bool OptionsOK, llvm::StringRef EntryName,
+                                       const BackendOptions &BOpts,
+                                       bool DebugInfo, LoadOptions &LOpts) {
+  if (!runFrontend(C, FOpts) || !OptionsOK)
+    return nullptr;
+  const CallableDecl *Entry = findProgramEntry(C, EntryName);
+  LOpts.OptLevel = BOpts.Target.OptLevel;
+  LOpts.StandardModules = FOpts.StandardModules;
+  LOpts.BindObjects = FOpts.BindObjects;
+  LOpts.DebugInfo = DebugInfo;
+  return Entry;
+}
+
 int bsc::runCommand(Compilation &C, const FrontendOptions &FOpts,
                     const RunCommandOptions &Opts) {
   BackendOptions BOpts;
@@ -72,16 +90,11 @@ int bsc::runCommand(Compilation &C, const FrontendOptions &FOpts,
   OptionsOK &= parseCycleLimit(C.Diags, Opts.CycleLimit, ROpts.CycleLimitMs);
   uint32_t CycleBudget = 0;
   OptionsOK &= parseCycleBudget(C.Diags, Opts.CycleBudget, CycleBudget);
-  if (!runFrontend(C, FOpts) || !OptionsOK)
-    return finishCompilation(C);
-  const CallableDecl *Entry = findProgramEntry(C, Opts.EntryName);
+  LoadOptions LOpts;
+  const CallableDecl *Entry = checkForJIT(C, FOpts, OptionsOK, Opts.EntryName,
+                                          BOpts, Opts.DebugInfo, LOpts);
   if (!Entry)
     return finishCompilation(C);
-  LoadOptions LOpts;
-  LOpts.OptLevel = BOpts.Target.OptLevel;
-  LOpts.StandardModules = FOpts.StandardModules;
-  LOpts.BindObjects = FOpts.BindObjects;
-  LOpts.DebugInfo = Opts.DebugInfo;
   LOpts.CycleBudget = CycleBudget;
   return loadAndRun(C, Opts, LOpts, ROpts, *Entry);
 }
@@ -114,16 +127,11 @@ int bsc::replayCommand(Compilation &C, const FrontendOptions &FOpts,
         << "replay" << "--logs";
     OK = false;
   }
-  if (!runFrontend(C, FOpts) || !OK)
-    return finishCompilation(C);
-  const CallableDecl *Entry = findProgramEntry(C, Opts.EntryName);
+  LoadOptions LOpts;
+  const CallableDecl *Entry = checkForJIT(C, FOpts, OK, Opts.EntryName, BOpts,
+                                          Opts.DebugInfo, LOpts);
   if (!Entry)
     return finishCompilation(C);
-  LoadOptions LOpts;
-  LOpts.OptLevel = BOpts.Target.OptLevel;
-  LOpts.StandardModules = FOpts.StandardModules;
-  LOpts.BindObjects = FOpts.BindObjects;
-  LOpts.DebugInfo = Opts.DebugInfo;
   auto Loaded = loadBehavior(C, *Entry, LOpts);
   if (!Loaded)
     return finishWithInternalError(C, Loaded.takeError());
