@@ -36,7 +36,7 @@ extern "C" {
 #endif
 
 /** Bumped whenever the layout below changes; bs_behavior_info carries it. */
-#define BS_ABI_VERSION 9
+#define BS_ABI_VERSION 10
 
 /** Task states (language.md): > 0 running, 0 done, < 0 failure. */
 #define BS_TASK_DONE 0
@@ -155,6 +155,32 @@ typedef struct bs_budget_record {
   uint32_t loop_cycle; /**< That cycle. */
 } bs_budget_record;
 
+/** Assertions (`assert(cond[, "message"])`, `bsc --assertions=MODE`). An
+ *  object leaves them out by default (BS_ASSERTIONS_NONE: the conditions
+ *  are not evaluated). With BS_ASSERTIONS_COUNT every failure adds one to
+ *  the assertion's counter, a uint32_t in the state at `offset` + 4 * its
+ *  index (bs_assertion_failures), and the behavior goes on; with
+ *  BS_ASSERTIONS_TRAP a failure executes a trap instruction (SIGILL). */
+#define BS_ASSERTIONS_NONE 0
+#define BS_ASSERTIONS_COUNT 1
+#define BS_ASSERTIONS_TRAP 2
+
+typedef struct bs_assertion_info {
+  const char *owner;     /**< "Module::task" or "Module::func" */
+  const char *file;      /**< The owner's file, without folders. */
+  uint32_t line;         /**< Of the `assert`. */
+  uint32_t column;
+  const char *condition; /**< As written, e.g. "ballDistance < 500". */
+  const char *message;   /**< The message, or NULL. */
+} bs_assertion_info;
+
+typedef struct bs_assertion_layout {
+  uint32_t mode;           /**< BS_ASSERTIONS_*. */
+  uint32_t offset;         /**< COUNT: of the counters in the state. */
+  uint32_t num_assertions; /**< In module and source order; 0 with NONE. */
+  const bs_assertion_info *assertions;
+} bs_assertion_layout;
+
 typedef struct bs_behavior_info {
   uint32_t abi_version; /**< BS_ABI_VERSION of the compiler that made it. */
   uint32_t state_size;  /**< Bytes of state the embedding must provide... */
@@ -178,6 +204,9 @@ typedef struct bs_behavior_info {
   /** `bsc --cycle-budget=N`: the budget, its record and the loop table
    *  ("Cycle budgets" above); all zero otherwise. */
   bs_budget_layout budget;
+  /** `bsc --assertions=count|trap`: the assertions ("Assertions" above);
+   *  all zero with the default, none. */
+  bs_assertion_layout assertions;
 } bs_behavior_info;
 
 /** Zeroes a state: every task reports done and starts from the top at its
@@ -321,6 +350,24 @@ bs_budget_ran_out(const void *state, const bs_behavior_info *info) {
  *  Programs that bsc links with `--cycle-budget` call it after each cycle;
  *  it uses stdio, like the io module. */
 int bs_report_budget(const void *state, const bs_behavior_info *info);
+
+/** How often assertion `index` (bs_assertion_layout.assertions) failed
+ *  since bs_state_init; 0 unless compiled with `--assertions=count`. */
+static inline uint32_t bs_assertion_failures(const void *state,
+                                             const bs_behavior_info *info,
+                                             uint32_t index) {
+  if (info->assertions.mode != BS_ASSERTIONS_COUNT ||
+      index >= info->assertions.num_assertions)
+    return 0;
+  return ((const uint32_t *)((const unsigned char *)state +
+                             info->assertions.offset))[index];
+}
+
+/** Prints on stderr every assertion that failed (bs_assertion_failures),
+ *  with its place and count, and returns 1 if one did, else 0. Programs
+ *  that bsc links with `--assertions=count` call it after the last cycle
+ *  and exit with its result; it uses stdio, like the io module. */
+int bs_report_assertions(const void *state, const bs_behavior_info *info);
 
 /** The state that task `name` ("Module::task") left at its most recent call
  *  (BS_TASK_DONE if never called); `found` (may be NULL) tells whether the

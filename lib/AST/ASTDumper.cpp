@@ -236,6 +236,14 @@ void Dumper::dumpStmt(const Stmt *S) {
     if (auto *V = llvm::cast<ReturnStmt>(S)->Value)
       child(V);
     return;
+  case NodeKind::AssertStmt: {
+    auto *A = llvm::cast<AssertStmt>(S);
+    loc(S->getLoc());
+    child(A->Cond);
+    if (A->Message)
+      child(A->Message);
+    return;
+  }
   case NodeKind::YieldStmt: {
     auto *Y = llvm::cast<YieldStmt>(S);
     if (Y->ResumePoint)

@@ -245,8 +245,14 @@ void ModuleEmitter::emitInfo() {
       llvm::StructType::create(Ctx, {Ptr, I32, I32, I32}, "bs_loop_info");
   auto *BudgetTy = llvm::StructType::create(Ctx, {I32, I32, I32, Ptr},
                                             "bs_budget_layout");
+  auto *AssertionTy = llvm::StructType::create(
+      Ctx, {Ptr, Ptr, I32, I32, Ptr, Ptr}, "bs_assertion_info");
+  auto *AssertionsTy = llvm::StructType::create(Ctx, {I32, I32, I32, Ptr},
+                                                "bs_assertion_layout");
   auto *InfoTy = llvm::StructType::create(
-      Ctx, {I32, I32, I32, I32, Ptr, I32, Ptr, Ptr, Ptr, TraceTy, BudgetTy},
+      Ctx,
+      {I32, I32, I32, I32, Ptr, I32, Ptr, Ptr, Ptr, TraceTy, BudgetTy,
+       AssertionsTy},
       "bs_behavior_info");
 
   // A private constant array, or null when there is nothing to list.
@@ -305,7 +311,8 @@ void ModuleEmitter::emitInfo() {
                                : llvm::ConstantPointerNull::get(
                                      llvm::PointerType::getUnqual(Ctx)),
                getDebugTables(), TraceInit,
-               getBudgetInfo(BudgetTy, LoopTy)});
+               getBudgetInfo(BudgetTy, LoopTy),
+               getAssertionInfo(AssertionsTy, AssertionTy)});
   Info = new llvm::GlobalVariable(M, InfoTy, /*isConstant=*/true,
                                   llvm::GlobalValue::ExternalLinkage, Init,
                                   Layout.InfoSymbol);
@@ -420,12 +427,20 @@ void ModuleEmitter::emitProgramMain() {
   // The end of the behavior: the class values running tasks still hold,
   // then the input and output objects (in `bsc run`'s order).
   IRB.SetInsertPoint(Done);
+  // `--assertions=count`: the assertions that failed, on stderr, and the
+  // program's status says whether any did.
+  llvm::Value *Status = llvm::ConstantInt::get(I32, 0);
+  if (Opts.Assertions == AssertionMode::Count && !B.Assertions.empty())
+    Status = IRB.CreateCall(
+        M.getOrInsertFunction("bs_report_assertions",
+                              llvm::FunctionType::get(I32, {Ptr, Ptr}, false)),
+        {State, Info}, "assertions.failed");
   IRB.CreateCall(Destroy, {State, Info});
   for (unsigned K = 0; K < 2; ++K)
     if (needsDestroy(WorldClasses[K]))
       IRB.CreateCall(getLifeThunk(WorldClasses[K]->Destroy, 1),
                      {WorldObjects[K]});
-  IRB.CreateRet(llvm::ConstantInt::get(I32, 0));
+  IRB.CreateRet(Status);
 }
 
 // `input` and `output` of the world module are objects on main's stack,

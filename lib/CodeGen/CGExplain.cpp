@@ -445,12 +445,30 @@ llvm::Value *FunctionEmitter::emitCondition(const Stmt &S, const Expr *Cond) {
   if (!CGM.getOptions().Explain || Explaining ||
       llvm::isa<BoolLiteralExpr>(Cond))
     return emitFullCond(Cond);
-  ExplainSite Site =
-      makeSite(llvm::isa<ForStmt>(S) ? ExplainSite::For : ExplainSite::If, D,
-               S.getLoc(), CGM.getOptions().Sources);
+  return emitRecordedCond(
+      llvm::isa<ForStmt>(S) ? ExplainSite::For : ExplainSite::If, S.getLoc(),
+      Cond, [&](unsigned Number, uint32_t Size) -> llvm::Value * {
+        return Builder.CreateCall(
+            CGM.getExplainBegin(),
+            {Builder.getInt32(Number), Builder.getInt32(Size)}, "explain");
+      });
+}
+
+llvm::Value *FunctionEmitter::emitRecordedCond(
+    ExplainSite::SiteKind Kind, llvm::SMLoc Loc, const Expr *Cond,
+    llvm::function_ref<llvm::Value *(unsigned, uint32_t)> BeginRecord) {
+  ExplainSite Site = makeSite(Kind, D, Loc, CGM.getOptions().Sources);
   collectOperands(Site, Cond, -1);
-  assert(!Site.Operands.empty() && Site.Operands[0].E == Cond &&
-         "a condition is a bool, recorded");
+  // The condition is always operand 0, whose value says which way it
+  // went; one that is not an operand by itself (a constant's name) comes
+  // first with nothing under it.
+  if (Site.Operands.empty() || Site.Operands[0].E != Cond) {
+    Site.Operands.insert(Site.Operands.begin(),
+                         {Cond, printExpr(Cond), Cond->Ty, -1, 0});
+    for (ExplainSite::Operand &O : llvm::drop_begin(Site.Operands))
+      if (O.Parent >= 0)
+        ++O.Parent;
+  }
   layoutRecord(Site);
   uint32_t Size = Site.RecordSize;
   unsigned Number = CGM.addExplainSite(std::move(Site));
@@ -460,9 +478,7 @@ llvm::Value *FunctionEmitter::emitCondition(const Stmt &S, const Expr *Cond) {
   const ExplainSite &Added = CGM.getLayout().ExplainSites[Number - 1];
   for (unsigned I = 0; I < Added.Operands.size(); ++I)
     R.Index[Added.Operands[I].E] = I;
-  R.Record = Builder.CreateCall(
-      CGM.getExplainBegin(), {Builder.getInt32(Number), Builder.getInt32(Size)},
-      "explain");
+  R.Record = BeginRecord(Number, Size);
   Explaining = &R;
   llvm::Value *V = emitFullCond(Cond);
   Explaining = nullptr;

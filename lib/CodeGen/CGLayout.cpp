@@ -125,6 +125,12 @@ void ModuleEmitter::layoutState() {
     BudgetRecordField = StateFields.size();
     StateFields.push_back(llvm::ArrayType::get(I32, BudgetRecordWords));
   }
+  // `--assertions=count`: a counter per assertion.
+  Layout.Assertions = {Opts.Assertions, 0};
+  if (Opts.Assertions == AssertionMode::Count && !B.Assertions.empty()) {
+    AssertionCountersField = StateFields.size();
+    StateFields.push_back(llvm::ArrayType::get(I32, B.Assertions.size()));
+  }
   StateTy = llvm::StructType::create(Ctx, StateFields, "bs.state");
   recordStateLayout();
 }
@@ -246,6 +252,8 @@ void ModuleEmitter::recordStateLayout() {
     Layout.Trace.Offset = SL->getElementOffset(TraceRecordField);
   if (Opts.CycleBudget)
     Layout.Budget.Offset = SL->getElementOffset(BudgetRecordField);
+  if (AssertionCountersField)
+    Layout.Assertions.Offset = SL->getElementOffset(AssertionCountersField);
   Layout.Tasks.clear();
   for (const TaskDecl *T : B.Tasks) {
     const FrameInfo &FI = Frames[T];

@@ -121,6 +121,8 @@ void FunctionEmitter::emitStmtImpl(const Stmt *S) {
     return emitReturn(*llvm::cast<ReturnStmt>(S));
   case NodeKind::YieldStmt:
     return emitYield(*llvm::cast<YieldStmt>(S));
+  case NodeKind::AssertStmt:
+    return emitAssert(*llvm::cast<AssertStmt>(S));
   case NodeKind::ErrorStmt:
     llvm_unreachable("a behavior with a parse error never reaches CodeGen");
 #define DECL(Class) case NodeKind::Class:

@@ -388,6 +388,20 @@ public:
   /// state.
   uint64_t getTaskWordOffset(const TaskDecl *T, TaskWord W) const;
 
+  // Assertions (CodeGenOptions::Assertions, CGAssert.cpp) -------------------
+
+  /// The index of `S` in Behavior::Assertions.
+  unsigned getAssertionIndex(const AssertStmt *S);
+  /// AssertionMode::Count: a pointer to the counter of assertion `Index`.
+  llvm::Value *getAssertionCounterPtr(llvm::IRBuilderBase &IRB,
+                                      llvm::Value *State, unsigned Index);
+  /// AssertionMode::Report: the global a failing assertion's record is
+  /// copied to (AssertRecordSymbol), defined on first use.
+  llvm::GlobalVariable *getAssertRecord();
+  /// bs_behavior_info.assertions' initializer.
+  llvm::Constant *getAssertionInfo(llvm::StructType *LayoutTy,
+                                   llvm::StructType *AssertionTy);
+
   // Debugging probes (CodeGenOptions::Probes) -------------------------------
 
   /// Records a site; returns its number (from 1).
@@ -466,6 +480,9 @@ private:
   llvm::StructType *StateTy = nullptr;
   unsigned TraceRecordField = 0;
   unsigned BudgetRecordField = 0;
+  unsigned AssertionCountersField = 0;
+  /// Behavior::Assertions' indices, built on first use.
+  llvm::DenseMap<const AssertStmt *, unsigned> AssertionIndex;
   llvm::Function *BudgetRanOutFn = nullptr;
   unsigned HeadersField = 0;
   llvm::DenseMap<const TaskDecl *, FrameInfo> Frames;
@@ -678,6 +695,14 @@ private:
   /// The condition of an `if` or `for` statement as a full expression
   /// (emitFullCond); with Explain it also writes the condition's record.
   llvm::Value *emitCondition(const Stmt &S, const Expr *Cond);
+  /// Evaluates `Cond` as a full expression, writing its operands into the
+  /// record that BeginRecord(site number, record size) returns for a new
+  /// site of kind `Kind` at `Loc`.
+  llvm::Value *emitRecordedCond(
+      ExplainSite::SiteKind Kind, llvm::SMLoc Loc, const Expr *Cond,
+      llvm::function_ref<llvm::Value *(unsigned, uint32_t)> BeginRecord);
+  /// `assert(cond)` as CodeGenOptions::Assertions says (CGAssert.cpp).
+  void emitAssert(const AssertStmt &S);
   /// While a condition is explained, emitExpr of one of its operands: the
   /// value, also stored into the record. Null for other expressions, which
   /// emitExpr emits as usual.

@@ -115,6 +115,13 @@ void debug::printJSON(llvm::raw_ostream &OS, const Value &V) {
   }
 }
 
+std::string debug::formatValue(const Type *T, const llvm::json::Value &V) {
+  if (T->isEnum())
+    if (std::optional<llvm::StringRef> Name = V.getAsString())
+      return Name->str();
+  return toJSONString(V);
+}
+
 std::string debug::toJSONString(const Value &V) {
   std::string S;
   llvm::raw_string_ostream OS(S);

@@ -177,7 +177,8 @@ bool CompileJob::checkTarget() {
 /// CodeGenOptions from the options; reports a bad one.
 bool CompileJob::setUpCodeGen() {
   CGOpts.Instrument = Opts.Instrument;
-  if (!parseCycleBudget(C.Diags, Opts.CycleBudget, CGOpts.CycleBudget))
+  if (!parseCycleBudget(C.Diags, Opts.CycleBudget, CGOpts.CycleBudget) ||
+      !parseAssertionMode(C.Diags, Opts.Assertions, CGOpts.Assertions))
     return false;
   CGOpts.NarrowX87Floats = usesX87Floats(*TM);
   CGOpts.DebugInfo = Opts.DebugInfo;

@@ -77,6 +77,24 @@ bool bsc::applyWarningOptions(DiagnosticEngine &Diags,
   return OK;
 }
 
+bool bsc::parseAssertionMode(DiagnosticEngine &Diags,
+                             const std::optional<std::string> &Arg,
+                             AssertionMode &Mode) {
+  Mode = AssertionMode::None;
+  if (!Arg || *Arg == "none")
+    return true;
+  if (*Arg == "count")
+    Mode = AssertionMode::Count;
+  else if (*Arg == "trap")
+    Mode = AssertionMode::Trap;
+  else {
+    Diags.report(llvm::SMLoc(), diag::err_bad_option_value)
+        << *Arg << "--assertions";
+    return false;
+  }
+  return true;
+}
+
 bool bsc::parseCycleBudget(DiagnosticEngine &Diags,
                            const std::optional<std::string> &Arg,
                            uint32_t &Passes) {

@@ -169,6 +169,9 @@ void IndexBuilder::stmt(const Stmt *S) {
   case NodeKind::YieldStmt:
     expr(llvm::cast<YieldStmt>(S)->Value);
     return;
+  case NodeKind::AssertStmt:
+    expr(llvm::cast<AssertStmt>(S)->Cond);
+    return;
   case NodeKind::BreakStmt:
   case NodeKind::ContinueStmt:
   case NodeKind::ErrorStmt:

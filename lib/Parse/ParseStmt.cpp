@@ -38,6 +38,7 @@ static bool startsExpression(tok::Kind K) {
 
 /// statement ::= if-stmt | for-stmt | 'break' NEWLINE | 'continue' NEWLINE
 ///             | ('return' | 'yield') expr? NEWLINE
+///             | 'assert' '(' expr (',' string-literal)? ')' NEWLINE
 ///             | func-decl (top level of a task body only)
 ///             | simple-stmt NEWLINE
 Stmt *Parser::parseStatement() {
@@ -66,6 +67,8 @@ Stmt *Parser::parseStatement() {
     Expr *Value = parseOptionalValue();
     return finishLine(make<YieldStmt>(rangeFrom(Start), Value), Start);
   }
+  if (Tok.is(tok::kw_assert))
+    return parseAssert();
   if (Tok.is(tok::kw_func))
     return parseNestedFunc();
   if (Tok.is(tok::kw_task)) {
@@ -95,6 +98,32 @@ Stmt *Parser::parseStatement() {
     return recoverStatement(nullptr, Start);
   }
   return finishLine(parseSimpleStatement(), Start);
+}
+
+/// assert-stmt ::= 'assert' '(' expr (',' string-literal)? ')' NEWLINE
+Stmt *Parser::parseAssert() {
+  llvm::SMLoc Start = Tok.Loc;
+  consume();
+  if (Tok.isNot(tok::l_paren)) {
+    diag(Tok.Loc, diag::err_expected_after) << "'('" << "'assert'";
+    return recoverStatement(nullptr, Start);
+  }
+  consume();
+  Expr *Cond = parseExpr();
+  StringLiteralExpr *Message = nullptr;
+  if (!InError && consumeIf(tok::comma)) {
+    // A literal, so that the message costs nothing where it is not shown.
+    llvm::SMLoc MessageLoc = Tok.Loc;
+    if (Tok.is(tok::string_literal)) {
+      Message = make<StringLiteralExpr>(Tok.getRange(), Tok.StringValue);
+      consume();
+    }
+    if (!Message || Tok.isNot(tok::r_paren)) // `"a" + b` is not one either.
+      diag(MessageLoc, diag::err_assert_message_not_literal);
+  }
+  if (!InError)
+    expect(tok::r_paren, "')'");
+  return finishLine(make<AssertStmt>(rangeFrom(Start), Cond, Message), Start);
 }
 
 /// The value of `return` / `yield`, if the line has one.

@@ -81,6 +81,7 @@ private:
   Stmt *parseFor();
   Stmt *parseForStep();
   Stmt *parseNestedFunc();
+  Stmt *parseAssert();
   Expr *parseOptionalValue();
 
   //--- ParseHabits.cpp: spellings of other languages ---------------------

@@ -356,13 +356,6 @@ std::optional<Repl::Compiled> Repl::compileLine(llvm::StringRef Text) {
   return R;
 }
 
-std::string repl::formatValue(const Type *T, const llvm::json::Value &V) {
-  if (T->isEnum())
-    if (std::optional<llvm::StringRef> Name = V.getAsString())
-      return Name->str();
-  return debug::toJSONString(V);
-}
-
 std::string Repl::describe(const Type *T, const void *Addr) {
   return "(" + T->getName().str() + ") " +
          formatValue(T, Values->read(T, Addr));

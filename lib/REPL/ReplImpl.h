@@ -55,9 +55,7 @@ struct Breakpoint {
   Probe If;
 };
 
-/// A value as the REPL prints it: an enum's value by name, unquoted, as
-/// the script writes it; anything else as JSON.
-std::string formatValue(const Type *T, const llvm::json::Value &V);
+using debug::formatValue;
 
 /// Splits `EXPR [N]` (`:until`, `:history`): a number at the end is N
 /// unless the expression needs it (`x == 2` ends in an operand; `x 100`

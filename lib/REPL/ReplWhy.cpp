@@ -93,6 +93,8 @@ CycleLog decodeLog(const BehaviorLayout &Layout, const ExplainLogHeader &H,
                                  readWord<int32_t>(R + ExplainTaskEndState)};
       break;
     }
+    case ExplainSite::Assert: // Never in the log.
+      break;
     case ExplainSite::If:
     case ExplainSite::For:
       Log.Tasks[Open.empty() ? -1 : Open.back()].Conditions.push_back(

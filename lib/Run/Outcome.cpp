@@ -53,6 +53,8 @@ bool bsc::reportOutcome(Compilation &C, const LoadedBehavior &L,
           << Cycle << LimitMs << "a constructor or destructor";
     return false;
   case BehaviorSession::Outcome::Crashed:
+    if (O.Signal == SIGILL && reportFailedAssertion(C, L, Cycle))
+      return false;
     if (const DebugSite *N = Site(O.NativeSite)) {
       C.Diags.report(N->Loc, diag::err_cycle_crash_native)
           << Cycle << describeSignal(O.Signal) << N->Native;

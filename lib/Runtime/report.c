@@ -1,7 +1,8 @@
 /*===- report.c - what a program tells about its behavior -----------------===*
  *
  * The messages a program that bsc links prints when bs_state_init refuses
- * its state, and when a cycle ran out of its budget (`--cycle-budget`).
+ * its state, when a cycle ran out of its budget (`--cycle-budget`), and
+ * which assertions failed (`--assertions=count`).
  * Like io.c it uses stdio, so it is kept out of bscript.c; an embedding
  * that has no stderr calls bs_check_bindings and bs_budget_ran_out and
  * reports in its own way.
@@ -41,4 +42,22 @@ int bs_report_budget(const void *state, const bs_behavior_info *info) {
           (unsigned)info->budget.budget, loop->owner, (unsigned)loop->line,
           loop->task >= 0 ? "failed the task" : "returned its zero");
   return 1;
+}
+
+int bs_report_assertions(const void *state, const bs_behavior_info *info) {
+  int failed = 0;
+  for (uint32_t i = 0; i < info->assertions.num_assertions; ++i) {
+    uint32_t count = bs_assertion_failures(state, info, i);
+    if (!count)
+      continue;
+    const bs_assertion_info *a = &info->assertions.assertions[i];
+    fprintf(stderr,
+            "bscript: error: %s:%u:%u: assertion '%s' in '%s' failed %u "
+            "time%s%s%s\n",
+            a->file, (unsigned)a->line, (unsigned)a->column, a->condition,
+            a->owner, (unsigned)count, count == 1 ? "" : "s",
+            a->message ? ": " : "", a->message ? a->message : "");
+    failed = 1;
+  }
+  return failed;
 }

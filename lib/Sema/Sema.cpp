@@ -120,6 +120,7 @@ bool Sema::run(llvm::ArrayRef<ModuleAST *> Modules) {
 
   exportCalls();
   checkCallGraph();
+  checkAssertionEffects();
   return !HadError;
 }
 

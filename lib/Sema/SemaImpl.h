@@ -252,6 +252,16 @@ public:
   void checkReturn(ReturnStmt *S);
   void checkCondition(Expr *&Cond);
   void checkMissingReturn(FuncDecl *F);
+  /// `assert(cond[, "message"])`: a bool condition, remembered for
+  /// checkAssertionEffects.
+  void checkAssert(AssertStmt *S);
+
+  //--- SemaAssert.cpp: assertions change nothing ---------------------------
+  /// Reports every assertion whose condition could change the behavior
+  /// (objects for the robot leave assertions out by default).
+  void checkAssertionEffects();
+  /// Checking a REPL line (ReplChecker), where `assert` has no use.
+  bool InReplLine = false;
 
   //--- SemaExpr.cpp ---------------------------------------------------------
   /// Checks `E` (for the given use), sets E->Ty and returns it.

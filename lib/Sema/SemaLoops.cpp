@@ -64,6 +64,7 @@ static bool canLeaveLoop(const Stmt *S, bool InInnerLoop) {
   case NodeKind::FuncDeclStmt:
   case NodeKind::AssignStmt:
   case NodeKind::ExprStmt:
+  case NodeKind::AssertStmt:
   case NodeKind::ContinueStmt:
     return false;
 #define STMT(Class)
@@ -154,6 +155,7 @@ bool containsYield(const Stmt *S) {
   case NodeKind::FuncDeclStmt:
   case NodeKind::AssignStmt:
   case NodeKind::ExprStmt:
+  case NodeKind::AssertStmt:
   case NodeKind::BreakStmt:
   case NodeKind::ContinueStmt:
   case NodeKind::ReturnStmt:
@@ -200,6 +202,7 @@ public:
     case NodeKind::FuncDeclStmt:
     case NodeKind::AssignStmt:
     case NodeKind::ExprStmt:
+    case NodeKind::AssertStmt:
       return SkipPaths::fallThrough();
 #define STMT(Class)
 #define NODE(Class) case NodeKind::Class:
@@ -299,6 +302,7 @@ bool assigns(const Stmt *S, const VarDecl *V) {
   case NodeKind::DeclStmt:
   case NodeKind::FuncDeclStmt:
   case NodeKind::ExprStmt:
+  case NodeKind::AssertStmt:
   case NodeKind::BreakStmt:
   case NodeKind::ContinueStmt:
   case NodeKind::ReturnStmt:

@@ -169,6 +169,7 @@ std::optional<ReplChecker::Line> ReplChecker::check(BlockStmt *Body,
   L.Func->ResultTy = Ctx.getTypes().getVoid();
 
   S->HadError = false;
+  S->InReplLine = true;
   S->CurModule = S->InfoOf.lookup(Frame ? Frame->Module : Context);
   S->CurTask = nullptr;
   S->ReplFrame = Frame;
@@ -219,6 +220,7 @@ std::optional<ReplChecker::Line> ReplChecker::check(BlockStmt *Body,
   S->Scopes.clear();
   S->CurCallable = nullptr;
   S->CurModule = nullptr;
+  S->InReplLine = false;
   if (S->HadError)
     return std::nullopt;
   for (VarDecl *V : L.Func->Locals)

@@ -53,6 +53,15 @@ void Sema::checkCondition(Expr *&Cond) {
         << T->getName() << Cond->getRange();
 }
 
+void Sema::checkAssert(AssertStmt *S) {
+  if (InReplLine) {
+    diag(S->getLoc(), diag::err_repl_assert);
+    return;
+  }
+  checkCondition(S->Cond);
+  Out.Assertions.push_back({S, CurCallable});
+}
+
 void Sema::checkIf(IfStmt *S) {
   checkCondition(S->Cond);
   if (S->Then)
@@ -163,6 +172,8 @@ void Sema::checkStmt(Stmt *S) {
     return checkReturn(llvm::cast<ReturnStmt>(S));
   case NodeKind::YieldStmt:
     return checkYield(llvm::cast<YieldStmt>(S));
+  case NodeKind::AssertStmt:
+    return checkAssert(llvm::cast<AssertStmt>(S));
   case NodeKind::ErrorStmt:
     return;
 #define DECL(Class) case NodeKind::Class:

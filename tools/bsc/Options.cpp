@@ -142,6 +142,13 @@ cl::opt<bool> InstrumentFlag(
              "the debugger's tables (task names, yield lines) in the object, "
              "for `bsc trace-decode` of robot trace logs"),
     BSC_TOP);
+cl::opt<std::string> AssertionsArg(
+    "assertions",
+    cl::desc("What `assert` compiles to in objects and programs: none (the "
+             "default: left out), count (a counter per assertion in the "
+             "state, bscript.h \"Assertions\") or trap (a failure stops "
+             "the robot); `bsc run` and the REPL always check them"),
+    cl::value_desc("none|count|trap"), BSC_TOP);
 cl::opt<std::string> CycleBudgetArg(
     "cycle-budget",
     cl::desc("Give each cycle N loop passes: a task whose loop runs past them "
@@ -296,6 +303,7 @@ CompileOptions getCompileOptions() {
   Opts.EntryName = EntryName;
   Opts.BehaviorName = BehaviorNameArg;
   Opts.CycleBudget = given(CycleBudgetArg);
+  Opts.Assertions = given(AssertionsArg);
   Opts.DebugInfo = DebugInfo;
   Opts.Instrument = InstrumentFlag;
   Opts.DepFile = {DepFileFlag, DepFilePath};

@@ -421,6 +421,20 @@ public:
   }
 };
 
+/// `assert(cond)` or `assert(cond, "message")`: what must hold whenever
+/// the statement runs (docs/language.md "Assertions"). The JIT checks it and
+/// stops the cycle; an object checks it only with --assertions=count|trap.
+class AssertStmt : public Stmt {
+public:
+  AssertStmt(llvm::SMRange R, Expr *Cond, class StringLiteralExpr *Message)
+      : Stmt(NodeKind::AssertStmt, R), Cond(Cond), Message(Message) {}
+  Expr *Cond;
+  class StringLiteralExpr *Message; ///< May be null.
+  static bool classof(const Node *N) {
+    return N->getKind() == NodeKind::AssertStmt;
+  }
+};
+
 /// `yield [state]`: ends this step of the task; the next call resumes after
 /// it. Without a value the state is running (1).
 class YieldStmt : public Stmt {

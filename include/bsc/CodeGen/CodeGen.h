@@ -73,6 +73,8 @@ struct CodeGenOptions {
   /// record after the frames (BehaviorLayout::Budget) names it. Each entry
   /// starts the budget of a new cycle. 0: no budget, and no code for it.
   uint32_t CycleBudget = 0;
+  /// `--assertions=`: what `assert` compiles to (AssertionMode, CGAssert.cpp).
+  AssertionMode Assertions = AssertionMode::None;
   /// Floats on the x87 unit (usesX87Floats): every float that an operation
   /// computes (arithmetic, conversion from int, a result of registered C++)
   /// goes through a float in memory before it is used, so that it has a

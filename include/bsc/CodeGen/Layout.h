@@ -49,6 +49,8 @@ struct ExplainSite {
     For,       ///< `for(...; cond; ...)`, at each evaluation.
     TaskStart, ///< A call of task In begins; no operands.
     TaskEnd,   ///< It returns: its state and resume point (ExplainTaskEnd*).
+    Assert,    ///< `assert(cond)`: never in the log; a failure's record is
+               ///< copied to AssertRecordSymbol (AssertionMode::Report).
   };
   SiteKind Kind;
   const CallableDecl *In; ///< The func or task whose body holds it.
@@ -97,6 +99,23 @@ inline constexpr uint32_t MaxExplainedClassSize = 16;
 /// A TaskEnd record: the task's state (int32) and resume point (uint32).
 inline constexpr uint32_t ExplainTaskEndState = ExplainRecordHeaderSize;
 inline constexpr uint32_t ExplainTaskEndResume = ExplainRecordHeaderSize + 4;
+
+/// What `assert` compiles to (bscript.h "Assertions").
+enum class AssertionMode {
+  None,  ///< Nothing: the condition is not evaluated (objects by default).
+  Count, ///< A failure adds one to its counter in the state.
+  Trap,  ///< A failure executes a trap instruction.
+  /// The JIT's (with probes): a failure copies its condition's record
+  /// (an ExplainSite of kind Assert) to AssertRecordSymbol and traps, so
+  /// that the session's guard ends the cycle and the driver reports the
+  /// assertion with the values of its operands.
+  Report,
+};
+/// AssertionMode::Report: the record of the assertion that failed.
+inline constexpr const char *AssertRecordSymbol = "bs.assert.record";
+/// Its room: a header and 64 operands of the largest size.
+inline constexpr uint32_t AssertRecordCapacity =
+    ExplainRecordHeaderSize + MaxExplainOperands * MaxExplainedClassSize;
 
 /// Where things ended up; what --emit-header and the JIT need.
 struct BehaviorLayout {
@@ -183,6 +202,13 @@ struct BehaviorLayout {
     std::vector<Loop> Loops;
   };
   BudgetLayout Budget;
+  /// CodeGenOptions::Assertions (bscript.h bs_assertion_layout); the
+  /// assertions are Behavior::Assertions.
+  struct AssertionLayout {
+    AssertionMode Mode = AssertionMode::None;
+    uint64_t Offset = 0; ///< Count: of the uint32 counters in the state.
+  };
+  AssertionLayout Assertions;
 };
 
 } // namespace bsc

@@ -84,6 +84,9 @@ std::optional<double> floatFromJSON(const llvm::json::Value &V);
 /// floats in their shortest round-trip form.
 void printJSON(llvm::raw_ostream &OS, const llvm::json::Value &V);
 std::string toJSONString(const llvm::json::Value &V);
+/// A value as the REPL and the driver show it: an enum's value by name,
+/// unquoted, as the script writes it; anything else as JSON.
+std::string formatValue(const Type *T, const llvm::json::Value &V);
 
 /// The first place where `Got` differs from `Recorded`, with both values as
 /// text; numbers compare exactly (as the floats they were written from).

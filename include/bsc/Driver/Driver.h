@@ -25,6 +25,7 @@
 #ifndef BSC_DRIVER_DRIVER_H
 #define BSC_DRIVER_DRIVER_H
 
+#include "bsc/CodeGen/Layout.h"
 #include "bsc/CodeGen/Target.h"
 #include "bsc/Debug/Trace.h"
 #include "bsc/Driver/ToolChain.h"
@@ -81,6 +82,11 @@ bool parseBackendOptions(DiagnosticEngine &Diags, const BackendArgs &Args,
 bool applyWarningOptions(DiagnosticEngine &Diags,
                          llvm::ArrayRef<std::string> Options);
 
+/// Checks --assertions (none, count or trap; std::nullopt: none); false
+/// after reporting another value.
+bool parseAssertionMode(DiagnosticEngine &Diags,
+                        const std::optional<std::string> &Arg,
+                        AssertionMode &Mode);
 /// Checks --cycle-budget (1 to 2^32 - 1 loop passes; std::nullopt, the
 /// option not given, is 0: none). Reports and returns false if it is bad.
 bool parseCycleBudget(DiagnosticEngine &Diags,
@@ -201,6 +207,8 @@ struct CompileOptions {
   /// --behavior-name; empty: the first input's module.
   std::string BehaviorName;
   std::optional<std::string> CycleBudget;
+  /// --assertions=none|count|trap; std::nullopt: none.
+  std::optional<std::string> Assertions;
   bool DebugInfo = false, Instrument = false;
   DepFileOptions DepFile;
 };

@@ -133,6 +133,12 @@ llvm::Expected<int> replayLogs(Compilation &C, LoadedBehavior &L,
 llvm::json::Value recordCycle(debug::ValueIO &Values, const LoadedBehavior &L,
                               const BehaviorSession &S);
 
+/// After a cycle the guard ended with SIGILL: if an `assert` failed
+/// (AssertionMode::Report), reports it at the assertion with the values of
+/// its condition's operands, and returns true.
+bool reportFailedAssertion(Compilation &C, const LoadedBehavior &L,
+                           uint32_t Cycle);
+
 /// What ended a cycle early, as a diagnostic (at the loop or the call of
 /// registered C++ the probes name). Returns false after reporting.
 bool reportOutcome(Compilation &C, const LoadedBehavior &L,

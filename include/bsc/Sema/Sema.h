@@ -47,6 +47,13 @@ struct Behavior {
   /// order (a task, then its nested funcs), each caller's calls in source
   /// order. A call whose callee did not resolve is left out.
   std::vector<CallSite> Calls;
+  /// Every `assert`, with the func or task whose body holds it, in module
+  /// and source order: assertion k's counter with --assertions=count.
+  struct Assertion {
+    const AssertStmt *S;
+    const CallableDecl *Owner;
+  };
+  std::vector<Assertion> Assertions;
   /// The native modules some module requires.
   std::vector<const NativeModule *> NativeModules;
   /// The module declaring `input`/`output`, if the registry has one.
