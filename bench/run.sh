@@ -17,6 +17,8 @@
 #    state machines written in C (steps_reference.c).
 # 4. The cycle budget: the -O2 programs with the behavior compiled with
 #    --cycle-budget (a charge per loop pass; never running out here).
+# 5. Assertions: soccer.bs's four `assert`s (which hold) compiled with
+#    --assertions=count and trap, against the default (left out).
 #
 #   bench/run.sh [BUILD_DIR]        (default: build)
 #   BENCH_CYCLES=N                  cycles per callgrind run (default 100000)
@@ -123,6 +125,25 @@ for t in i586 x86_64; do
     budget=$(per_cycle "$OUT/budget-$t-$b/$b" "$b")
     echo "$b $t: $plain -> $budget instructions per cycle ($(pct "$plain" "$budget")); state bytes $(field state_bytes "$got")"
   done
+done
+
+echo "== assertions (soccer -O2; the default leaves soccer.bs's 4 assertions out)"
+for t in i586 x86_64; do
+  plain=$(per_cycle "$OUT/bsc-$t-soccer-O2" soccer)
+  line="soccer $t: none $plain"
+  for m in COUNT TRAP; do
+    shared/build.sh "$BUILD" "$SHARED" "$t" soccer -O2 "$OUT/assert-$m-$t" "-DBENCH_ASSERT_$m"
+    ref=$(field checksum "$("$OUT/proto-$t" soccer verify)")
+    got=$("$OUT/assert-$m-$t/soccer" soccer verify)
+    if [[ $(field checksum "$got") != "$ref" ]]; then
+      echo "bench: soccer $t with --assertions=${m,,}: checksum $(field checksum "$got"), protothreads $ref" >&2
+      status=1
+    fi
+    n=$(per_cycle "$OUT/assert-$m-$t/soccer" soccer)
+    line+=", ${m,,} $n ($(pct "$plain" "$n"))"
+    [[ $m == COUNT ]] && count_bytes=$(field state_bytes "$got")
+  done
+  echo "$line instructions per cycle; state bytes with count $count_bytes"
 done
 
 echo "== Steps.bs against hand-written C (host)"

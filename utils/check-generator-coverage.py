@@ -110,7 +110,8 @@ def required():
         for form in forms:
             req.add(f"for {part} {form}")
     for form in ("return value", "return none in func", "return none in task",
-                 "yield none", "yield int", "yield TaskState"):
+                 "yield none", "yield int", "yield TaskState",
+                 "assert", "assert with message"):
         req.add(f"stmt {form}")
     for kind in ("local", "param", "callable", "native", "enum", "const", "input", "output"):
         req.add(f"name {kind}")
@@ -233,6 +234,8 @@ def features(dump):
             else:
                 o = owner(n)
                 found.add("stmt return none in " + ("task" if o and o.kind == "TaskDecl" else "func"))
+        elif k == "AssertStmt":
+            found.add("stmt assert with message" if len(c) > 1 else "stmt assert")
         elif k == "YieldStmt":
             found.add("stmt yield " + (category(c[0].type) if c else "none"))
         elif k == "NameExpr":

@@ -34,6 +34,9 @@ checks that the generator writes every node kind, operator and form):
 - int `/` and `%` by zero and `INT_MIN / -1`, wrapping `+ - *`, hex
   literals, `int(float)` of huge, infinite and NaN values, conversions;
 - `&&` and `||` whose right operand calls a func that prints;
+- `assert(cond)` and `assert(cond, "message")` whose conditions always hold
+  (`b || !b`, `i == i`) and call nothing: the JIT checks them, objects
+  leave them out, and both must print the same;
 - bounded `for` loops (a counter only the step changes) with `break` and
   `continue`, and `for(...; yield)` loops in tasks;
 - with `Gen`: class values (constructors, fields, a property, const and
@@ -122,6 +125,10 @@ class Ctx:
         self.no_yield = 0
         self.stmt_depth = 0
         self.mult = 1                   # loop trips around the current point
+        # Inside an assertion's condition: no calls of funcs, which may
+        # print or write output (bsc requires it only of tasks and of what
+        # changes state; printing is registered C++ it cannot see into).
+        self.pure = 0
 
 
 class Gen:
@@ -317,6 +324,8 @@ class Gen:
                       if t == ty and (a or not assignable))
 
     def value_callees(self, ctx, ty):
+        if ctx.pure:
+            return []
         fs = [c for c in ctx.callees if not c.is_task and c.ret == ty]
         fs += [c for c in ctx.nested if c.ret == ty]
         return fs
@@ -919,12 +928,37 @@ class Gen:
         if k == 18:
             self.state_oracle(ctx, ind)
             return
+        if k == 19 and r.random() < 0.5:
+            self.assert_stmt(ctx, ind)
+            return
         if k == 17 and self.world:
             # A call as a statement: a const method or a C++ function.
             self.emit(ind, r.choice([f"{self.vec_expr(ctx, 1)}.quad()",
                                      f"Gen::mix({self.int_expr(ctx, 1)})"]))
             return
         self.emit(ind, f'io::prints("{ctx.owner.name}:{self.fresh("s")}")')
+
+    def assert_stmt(self, ctx, ind):
+        """An assertion that always holds, so that the JIT (which checks
+        it and would stop) and objects (which leave it out) agree; its
+        condition still computes values of every kind."""
+        r = self.rng
+        ctx.pure += 1
+        k = r.randrange(3)
+        if k == 0:
+            b = self.bool_expr(ctx, 0)
+            cond = f"{b} || !{b}"
+        elif k == 1:
+            i = self.int_expr(ctx, 0)
+            cond = f"{i} == {i}"
+        else:
+            b = self.bool_expr(ctx, 0)
+            cond = f"!({b} && !{b})"
+        ctx.pure -= 1
+        if r.random() < 0.5:
+            self.emit(ind, f'assert({cond}, "{ctx.owner.name} holds")')
+        else:
+            self.emit(ind, f"assert({cond})")
 
     def bounded_loop(self, ctx, ind):
         """A loop of 1 to 4 trips with a counter only it changes, in every
