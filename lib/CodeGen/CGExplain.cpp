@@ -441,6 +441,13 @@ void ModuleEmitter::emitExplainEntryEnd(llvm::IRBuilderBase &IRB) {
 //===----------------------------------------------------------------------===//
 
 llvm::Value *FunctionEmitter::emitCondition(const Stmt &S, const Expr *Cond) {
+  llvm::Value *Holds = emitExplainedCondition(S, Cond);
+  emitBranchCount(S, Cond, Holds);
+  return Holds;
+}
+
+llvm::Value *FunctionEmitter::emitExplainedCondition(const Stmt &S,
+                                                     const Expr *Cond) {
   // `for(; true; yield)` says all there is to say.
   if (!CGM.getOptions().Explain || Explaining ||
       llvm::isa<BoolLiteralExpr>(Cond))

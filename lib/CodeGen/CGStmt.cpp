@@ -83,6 +83,7 @@ void FunctionEmitter::emitStmt(const Stmt *S) {
   llvm::DebugLoc OuterDebugLoc = Builder.getCurrentDebugLocation();
   CurStmtLoc = S->getLoc();
   setDebugLocation(S->getLoc());
+  emitStmtCount(*S);
   emitStmtImpl(S);
   popTemps(Depth);
   CurStmtLoc = Outer;

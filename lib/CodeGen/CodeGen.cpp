@@ -138,6 +138,7 @@ void ModuleEmitter::run() {
     if (Opts.NarrowX87Floats)
       narrowX87Floats(*getFunction(D));
   }
+  finishCoverage();
   emitEntries();
   emitDestroyFunctions();
   emitInfo();
@@ -213,6 +214,8 @@ void FunctionEmitter::run() {
     restoreLoopProbeOnReturn();
   if (CGM.getOptions().Explain && Task)
     emitExplainTaskMarks();
+  if (CGM.getOptions().Coverage)
+    emitCallCount();
   EntryPoint->eraseFromParent();
   EntryPoint = nullptr;
 }

@@ -402,6 +402,16 @@ public:
   llvm::Constant *getAssertionInfo(llvm::StructType *LayoutTy,
                                    llvm::StructType *AssertionTy);
 
+  // Coverage (CodeGenOptions::Coverage, CGCoverage.cpp) ---------------------
+
+  /// Adds a counter; returns its index.
+  unsigned addCoverageSite(CoverageSite Site);
+  /// `counters[Index] += By` (By: an i64), at IRB's place.
+  void emitCoverageAdd(llvm::IRBuilderBase &IRB, unsigned Index,
+                       llvm::Value *By);
+  /// After every function: the counters' global, sized for every site.
+  void finishCoverage();
+
   // Debugging probes (CodeGenOptions::Probes) -------------------------------
 
   /// Records a site; returns its number (from 1).
@@ -481,6 +491,8 @@ private:
   unsigned TraceRecordField = 0;
   unsigned BudgetRecordField = 0;
   unsigned AssertionCountersField = 0;
+  /// Coverage: where the counters are until finishCoverage sizes them.
+  llvm::GlobalVariable *CoveragePlaceholder = nullptr;
   /// Behavior::Assertions' indices, built on first use.
   llvm::DenseMap<const AssertStmt *, unsigned> AssertionIndex;
   llvm::Function *BudgetRanOutFn = nullptr;
@@ -695,6 +707,7 @@ private:
   /// The condition of an `if` or `for` statement as a full expression
   /// (emitFullCond); with Explain it also writes the condition's record.
   llvm::Value *emitCondition(const Stmt &S, const Expr *Cond);
+  llvm::Value *emitExplainedCondition(const Stmt &S, const Expr *Cond);
   /// Evaluates `Cond` as a full expression, writing its operands into the
   /// record that BeginRecord(site number, record size) returns for a new
   /// site of kind `Kind` at `Loc`.
@@ -703,6 +716,12 @@ private:
       llvm::function_ref<llvm::Value *(unsigned, uint32_t)> BeginRecord);
   /// `assert(cond)` as CodeGenOptions::Assertions says (CGAssert.cpp).
   void emitAssert(const AssertStmt &S);
+  /// Coverage: counts a run of `S` (not of blocks).
+  void emitStmtCount(const Stmt &S);
+  /// Coverage: counts which way condition `Cond` of `S` went.
+  void emitBranchCount(const Stmt &S, const Expr *Cond, llvm::Value *Holds);
+  /// Coverage: counts every call, at the top of the entry block.
+  void emitCallCount();
   /// While a condition is explained, emitExpr of one of its operands: the
   /// value, also stored into the record. Null for other expressions, which
   /// emitExpr emits as usual.

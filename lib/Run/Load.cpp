@@ -74,6 +74,7 @@ bsc::loadBehavior(Compilation &C, const CallableDecl &Entry,
   CGOpts.OptLevel = Opts.OptLevel;
   CGOpts.CycleBudget = Opts.CycleBudget;
   CGOpts.Explain = Opts.Explain;
+  CGOpts.Coverage = Opts.Coverage;
   CGOpts.Assertions = AssertionMode::Report;
   // The JIT calls the entry only.
   CGOpts.Exports.emplace();

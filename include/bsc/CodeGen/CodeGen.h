@@ -59,6 +59,12 @@ struct CodeGenOptions {
   /// starts a new log in each cycle. Values computed do not change; robot
   /// objects never have it. Needs `Sources` (the sites' lines).
   bool Explain = false;
+  /// Behavior coverage (CGCoverage.cpp), JIT only like Probes: a 64-bit
+  /// counter per func and task call, per statement run and per way each
+  /// `if` and `for` condition went, in the global `bs.coverage.counters`
+  /// (BehaviorLayout::CoverageSites says which is which). Values computed
+  /// do not change.
+  bool Coverage = false;
   /// `--instrument`: every way out of a task call writes the task's slot of
   /// the trace record, which follows the frames in the state
   /// (BehaviorLayout::Trace, bscript.h "Trace records"), and

@@ -117,6 +117,21 @@ inline constexpr const char *AssertRecordSymbol = "bs.assert.record";
 inline constexpr uint32_t AssertRecordCapacity =
     ExplainRecordHeaderSize + MaxExplainOperands * MaxExplainedClassSize;
 
+/// A counter of CodeGenOptions::Coverage: counter k of the global
+/// CoverageCountersSymbol counts what BehaviorLayout::CoverageSites[k] says.
+struct CoverageSite {
+  enum SiteKind {
+    Call,  ///< Calls of Owner (N is Owner).
+    Stmt,  ///< Runs of statement N (a `yield` counts when it is reached).
+    True,  ///< An `if` or `for` (N) whose condition held...
+    False, ///< ...or did not; the two are adjacent.
+  };
+  SiteKind Kind;
+  const Node *N;
+  const CallableDecl *Owner; ///< The func or task whose code holds it.
+};
+inline constexpr const char *CoverageCountersSymbol = "bs.coverage.counters";
+
 /// Where things ended up; what --emit-header and the JIT need.
 struct BehaviorLayout {
   uint64_t StateSize = 0;
@@ -163,6 +178,8 @@ struct BehaviorLayout {
   /// With CodeGenOptions::Explain: the sites of the log's records,
   /// numbered from 1.
   std::vector<ExplainSite> ExplainSites;
+  /// With CodeGenOptions::Coverage: what each counter counts.
+  std::vector<CoverageSite> CoverageSites;
   /// With CodeGenOptions::Instrument: the declared symbol of the tables.
   std::string DebugTablesSymbol;
   /// With CodeGenOptions::Instrument: the trace record every task call

@@ -42,6 +42,9 @@ struct LoadOptions {
   /// The log of the conditions each cycle evaluated, for the REPL's `:why`
   /// (CodeGenOptions::Explain).
   bool Explain = false;
+  /// Counters of what runs, for --coverage and `:coverage`
+  /// (CodeGenOptions::Coverage).
+  bool Coverage = false;
 };
 
 /// Reports every thunk or descriptor that `M` imports from the binding
