@@ -70,6 +70,10 @@ if not shutil.which("gdb"):
     lit_config.fatal("gdb not found: the debug-info tests need it "
                      "(dev.sh installs it)")
 
+if not shutil.which("genhtml"):
+    lit_config.fatal("genhtml not found: the coverage tests render lcov "
+                     "tracefiles with it (dev.sh installs lcov)")
+
 if not shutil.which("chromium"):
     lit_config.fatal("chromium not found: the timeline page's tests need it "
                      "(dev.sh installs it)")

@@ -25,10 +25,39 @@ static bool checkWorldOutputOption(Compilation &C, llvm::StringRef WorldLibrary,
   return false;
 }
 
+/// `--fail-under PERCENT` (0 to 100); false after reporting.
+static bool parseCoverageFloor(DiagnosticEngine &Diags, llvm::StringRef Arg,
+                               std::optional<double> &Floor) {
+  if (Arg.empty())
+    return true;
+  double V;
+  if (Arg.getAsDouble(V) || !(V >= 0 && V <= 100)) {
+    Diags.report(llvm::SMLoc(), diag::err_bad_option_value)
+        << Arg << "--fail-under";
+    return false;
+  }
+  Floor = V;
+  return true;
+}
+
+/// `bsc run --coverage/--fail-under` after the run: the tracefile and the
+/// floor. False after reporting.
+static bool finishRunCoverage(Compilation &C, const LoadedBehavior &L,
+                              const CoverageArgs &Args,
+                              std::optional<double> Floor) {
+  std::vector<uint64_t> Counts = readCoverage(L);
+  bool OK = Args.Path.empty() ||
+            writeLcov(C, L, Counts, Args.Path, L.Entry->getQualifiedName());
+  if (Floor)
+    OK &= checkCoverageFloor(C, summarizeCoverage(C, L, Counts), *Floor);
+  return OK;
+}
+
 /// Loads the checked behavior into the JIT and runs its cycles.
 static int loadAndRun(Compilation &C, const RunCommandOptions &Opts,
                       const LoadOptions &LOpts, const RunOptions &ROpts,
-                      const CallableDecl &Entry) {
+                      const CallableDecl &Entry,
+                      std::optional<double> CoverageFloor) {
   auto Loaded = loadBehavior(C, Entry, LOpts);
   if (!Loaded)
     return finishWithInternalError(C, Loaded.takeError());
@@ -55,6 +84,9 @@ static int loadAndRun(Compilation &C, const RunCommandOptions &Opts,
                    attachWorldLibrary(C, **Loaded, **Session,
                                       Opts.WorldLibrary, ROpts.CycleLimitMs)))
     runBehavior(C, **Loaded, **Session, ROpts, llvm::outs());
+  // What ran until the end or the error, so a failing run still tells.
+  if (LOpts.Coverage)
+    finishRunCoverage(C, **Loaded, Opts.Coverage, CoverageFloor);
   return finishCompilation(C);
 }
 
@@ -90,13 +122,16 @@ int bsc::runCommand(Compilation &C, const FrontendOptions &FOpts,
   OptionsOK &= parseCycleLimit(C.Diags, Opts.CycleLimit, ROpts.CycleLimitMs);
   uint32_t CycleBudget = 0;
   OptionsOK &= parseCycleBudget(C.Diags, Opts.CycleBudget, CycleBudget);
+  std::optional<double> CoverageFloor;
+  OptionsOK &= parseCoverageFloor(C.Diags, Opts.Coverage.Floor, CoverageFloor);
   LoadOptions LOpts;
   const CallableDecl *Entry = checkForJIT(C, FOpts, OptionsOK, Opts.EntryName,
                                           BOpts, Opts.DebugInfo, LOpts);
   if (!Entry)
     return finishCompilation(C);
   LOpts.CycleBudget = CycleBudget;
-  return loadAndRun(C, Opts, LOpts, ROpts, *Entry);
+  LOpts.Coverage = !Opts.Coverage.Path.empty() || CoverageFloor;
+  return loadAndRun(C, Opts, LOpts, ROpts, *Entry, CoverageFloor);
 }
 
 /// `--shard K/N` into K and N; false after reporting.
@@ -122,6 +157,8 @@ int bsc::replayCommand(Compilation &C, const FrontendOptions &FOpts,
   ROpts.JUnitPath = Opts.JUnitPath;
   OK &= parseShard(C.Diags, Opts.Shard, ROpts.Shard, ROpts.Shards);
   OK &= parseCycleLimit(C.Diags, Opts.CycleLimit, ROpts.CycleLimitMs);
+  ROpts.CoveragePath = Opts.Coverage.Path;
+  OK &= parseCoverageFloor(C.Diags, Opts.Coverage.Floor, ROpts.CoverageFloor);
   if (Opts.LogsDir.empty()) {
     C.Diags.report(llvm::SMLoc(), diag::err_option_needs_option)
         << "replay" << "--logs";
@@ -132,6 +169,7 @@ int bsc::replayCommand(Compilation &C, const FrontendOptions &FOpts,
                                           Opts.DebugInfo, LOpts);
   if (!Entry)
     return finishCompilation(C);
+  LOpts.Coverage = true; // The corpus's summary.
   auto Loaded = loadBehavior(C, *Entry, LOpts);
   if (!Loaded)
     return finishWithInternalError(C, Loaded.takeError());

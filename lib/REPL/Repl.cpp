@@ -98,7 +98,8 @@ bool Repl::load(std::unique_ptr<Compilation> NewC) {
   const CallableDecl *Entry = findProgramEntry(*NewC, Opts.EntryName);
   LoadOptions LOpts = Opts.Load;
   LOpts.ExternalFunctions = true;
-  LOpts.Explain = true; // :why
+  LOpts.Explain = true;  // :why
+  LOpts.Coverage = true; // :coverage
   auto Loaded = loadBehavior(*NewC, *Entry, LOpts);
   if (!Loaded) {
     llvm::WithColor::error(llvm::errs(), "bsc")

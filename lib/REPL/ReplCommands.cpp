@@ -283,6 +283,14 @@ void Repl::cmdGraph(llvm::StringRef Args, llvm::SMLoc Loc) {
   writeCallGraphDOT(C->Checked, C->SM, OS, &Active);
 }
 
+void Repl::cmdCoverage(llvm::StringRef Args, llvm::SMLoc Loc) {
+  std::vector<uint64_t> Counts = readCoverage(*L);
+  printCoverageSummary(OS, summarizeCoverage(*C, *L, Counts));
+  if (!Args.empty() &&
+      writeLcov(*C, *L, Counts, Args, L->Entry->getQualifiedName()))
+    OS << "wrote " << Args << "\n";
+}
+
 void Repl::cmdHelp(llvm::StringRef, llvm::SMLoc) {
   auto Head = [](const CommandInfo &Cmd) {
     return (":" + llvm::Twine(Cmd.Name) +
@@ -377,6 +385,11 @@ llvm::ArrayRef<Repl::CommandInfo> Repl::getCommands() {
       {"graph", "",
        "the call graph as DOT, the tasks of the last cycle filled",
        &Repl::cmdGraph},
+      {"coverage", "[FILE]",
+       "what the cycles since the behavior was loaded exercised (re-runs "
+       "of :goto included): lines, branches, tasks never active, yields "
+       "never reached; FILE: also as an lcov tracefile",
+       &Repl::cmdCoverage},
       {"why", "[TASK]",
        "the conditions TASK (or every task) evaluated in the last cycle, "
        "with their values, and the yield it stopped at",

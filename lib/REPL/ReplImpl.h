@@ -131,6 +131,7 @@ private:
   void cmdRecord(llvm::StringRef Args, llvm::SMLoc Loc);
   void cmdReplay(llvm::StringRef Args, llvm::SMLoc Loc);
   void cmdGraph(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdCoverage(llvm::StringRef Args, llvm::SMLoc Loc);
   void cmdHelp(llvm::StringRef Args, llvm::SMLoc Loc);
   void cmdWhy(llvm::StringRef Args, llvm::SMLoc Loc); // ReplWhy.cpp
   void cmdFrame(llvm::StringRef Args, llvm::SMLoc Loc);

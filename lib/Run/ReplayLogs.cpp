@@ -124,6 +124,22 @@ static bool writeJUnit(Compilation &C, llvm::StringRef Path,
   return true;
 }
 
+/// What the corpus exercised: the summary, `--coverage`'s tracefile and
+/// `--fail-under`. False after reporting.
+static bool reportCorpusCoverage(Compilation &C, const LoadedBehavior &L,
+                                 const ReplayLogsOptions &Opts,
+                                 llvm::ArrayRef<uint64_t> Counts,
+                                 llvm::raw_ostream &OS) {
+  CoverageSummary Summary = summarizeCoverage(C, L, Counts);
+  printCoverageSummary(OS, Summary);
+  OS.flush();
+  bool OK = Opts.CoveragePath.empty() ||
+            writeLcov(C, L, Counts, Opts.CoveragePath, "replay");
+  if (Opts.CoverageFloor)
+    OK &= checkCoverageFloor(C, Summary, *Opts.CoverageFloor);
+  return OK;
+}
+
 llvm::Expected<int> bsc::replayLogs(Compilation &C, LoadedBehavior &L,
                                     const ReplayLogsOptions &Opts,
                                     llvm::raw_ostream &OS) {
@@ -146,8 +162,9 @@ llvm::Expected<int> bsc::replayLogs(Compilation &C, LoadedBehavior &L,
   unsigned Failed = llvm::count_if(
       Results, [](const LogResult &R) { return !R.Passed; });
   OS << Results.size() - Failed << " passed, " << Failed << " failed\n";
-  OS.flush();
+  // The sessions shared the JIT's counters: they hold the whole corpus.
+  bool CoverageOK = reportCorpusCoverage(C, L, Opts, readCoverage(L), OS);
   if (!Opts.JUnitPath.empty() && !writeJUnit(C, Opts.JUnitPath, Results))
     return 1;
-  return Failed ? 1 : 0;
+  return Failed || !CoverageOK ? 1 : 0;
 }

@@ -175,6 +175,17 @@ cl::opt<std::string> TimelineOutput(
     cl::desc("The page to write (default: the first record's name with "
              "'.html')"),
     cl::value_desc("file.html"), BSC_TIMELINE);
+cl::opt<std::string> CoverageFile(
+    "coverage",
+    cl::desc("Write what the run (or every replayed log) exercised as an "
+             "lcov tracefile: line hits, both ways of each if and for "
+             "condition, calls of each task and func"),
+    cl::value_desc("file.info"), BSC_RUN, cl::sub(ReplayCmd));
+cl::opt<std::string> CoverageFloor(
+    "fail-under",
+    cl::desc("Exit with status 1 if fewer than this percentage of the "
+             "behavior's lines ran"),
+    cl::value_desc("percent"), BSC_RUN, cl::sub(ReplayCmd));
 cl::opt<std::string> ReplayLogs(
     "logs", cl::desc("The folder whose recordings (*.jsonl, also in its "
                      "subfolders) to replay"),
@@ -363,6 +374,7 @@ tool::CommandLine tool::readCommandLine() {
                  TimelineOutput};
   CL.Replay = {getBackendArgs(), EntryName, ReplayLogs, ReplayShard,
                ReplayJUnit, CycleLimitArg, DebugInfo};
+  CL.Replay.Coverage = CL.Run.Coverage = {CoverageFile, CoverageFloor};
   CL.Format = {{FormatFiles.begin(), FormatFiles.end()},
                FormatInPlace,
                FormatCheck};

@@ -221,6 +221,12 @@ struct CompileOptions {
 int compile(Compilation &C, const FrontendOptions &FOpts,
             const CompileOptions &Opts, const ToolChain &TC);
 
+/// `--coverage FILE` and `--fail-under PERCENT` of `bsc run` and `bsc
+/// replay`, as written.
+struct CoverageArgs {
+  std::string Path, Floor;
+};
+
 /// `bsc run` as written on the command line.
 struct RunCommandOptions {
   BackendArgs Backend;
@@ -229,6 +235,7 @@ struct RunCommandOptions {
   std::optional<std::string> Trace, CycleBudget;
   bool PrintOutput = false, DebugInfo = false;
   std::string WorldLibrary, WorldOutput;
+  CoverageArgs Coverage;
 };
 
 /// `bsc run`: the behavior in the host JIT, --cycles calls of --entry.
@@ -241,6 +248,7 @@ struct ReplayCommandOptions {
   BackendArgs Backend;
   std::string EntryName, LogsDir, Shard, JUnitPath, CycleLimit;
   bool DebugInfo = false;
+  CoverageArgs Coverage;
 };
 
 /// `bsc replay`: the behavior compiled once into the host JIT, every

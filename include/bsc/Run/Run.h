@@ -120,6 +120,9 @@ struct ReplayLogsOptions {
   unsigned Shard = 1, Shards = 1; ///< --shard K/N: every N-th log from the K-th.
   std::string JUnitPath;     ///< --junit: JUnit XML, one test case per log.
   unsigned CycleLimitMs = DefaultCycleLimitMs;
+  /// --coverage: the lcov tracefile of all logs together; --fail-under.
+  std::string CoveragePath;
+  std::optional<double> CoverageFloor;
 };
 
 /// `bsc replay`: replays every recording under Opts.LogsDir against the
@@ -135,6 +138,35 @@ llvm::Expected<int> replayLogs(Compilation &C, LoadedBehavior &L,
 /// the cycle the session just ran.
 llvm::json::Value recordCycle(debug::ValueIO &Values, const LoadedBehavior &L,
                               const BehaviorSession &S);
+
+/// The JIT's coverage counters now (LoadOptions::Coverage; empty without),
+/// one per BehaviorLayout::CoverageSites entry.
+std::vector<uint64_t> readCoverage(const LoadedBehavior &L);
+/// Sets them to zero.
+void clearCoverage(const LoadedBehavior &L);
+/// Writes `Counts` (readCoverage's, or their sum over runs) as an lcov
+/// tracefile named `TestName`. False after reporting a file that cannot be
+/// written.
+bool writeLcov(Compilation &C, const LoadedBehavior &L,
+               llvm::ArrayRef<uint64_t> Counts, llvm::StringRef Path,
+               llvm::StringRef TestName);
+/// What counters say a run (or a corpus) exercised.
+struct CoverageSummary {
+  unsigned Lines = 0, LinesHit = 0, Branches = 0, BranchesHit = 0;
+  /// Tasks never called; yields never reached and named states never
+  /// yielded (`file:line (Module::task)`).
+  std::vector<std::string> NeverActive, YieldsNeverReached, StatesNeverTaken;
+  double linePercent() const {
+    return Lines ? 100.0 * LinesHit / Lines : 100.0;
+  }
+};
+CoverageSummary summarizeCoverage(Compilation &C, const LoadedBehavior &L,
+                                  llvm::ArrayRef<uint64_t> Counts);
+/// `coverage: 85.7% of lines (...)` and the three lists.
+void printCoverageSummary(llvm::raw_ostream &OS, const CoverageSummary &S);
+/// `--fail-under PERCENT`: false after reporting a line coverage below it.
+bool checkCoverageFloor(Compilation &C, const CoverageSummary &S,
+                        double Floor);
 
 /// After a cycle the guard ended with SIGILL: if an `assert` failed
 /// (AssertionMode::Report), reports it at the assertion with the values of
