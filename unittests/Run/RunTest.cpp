@@ -41,6 +41,7 @@ protected:
       return false;
     LoadOptions LOpts;
     LOpts.StandardModules = FOpts.StandardModules;
+    LOpts.Coverage = Coverage;
     auto L = loadBehavior(C, *E, LOpts);
     EXPECT_TRUE(bool(L)) << llvm::toString(L.takeError());
     if (!L || !*L)
@@ -70,6 +71,7 @@ protected:
     return All;
   }
 
+  bool Coverage = false; ///< Load with LoadOptions::Coverage.
   Compilation C;
   std::unique_ptr<TempFile> Script;
   std::unique_ptr<LoadedBehavior> Loaded;
@@ -191,6 +193,77 @@ TEST_F(RunTest, AMissingReplayFileIsReported) {
   RunOptions Opts;
   Opts.ReplayPath = "/nonexistent/replay.jsonl";
   EXPECT_NE(run(Opts).find("cannot open"), std::string::npos);
+}
+
+constexpr const char *Counter = "task count()\n"
+                                "    int n = 0\n"
+                                "    for(; true; yield)\n"
+                                "        n += 1\n"
+                                "        assert(n < 3 && n > 0, \"small\")\n"
+                                "\n"
+                                "task idle()\n"
+                                "    yield\n"
+                                "\n"
+                                "task main()\n"
+                                "    count()\n"
+                                "    if(taskState(count) == TaskState::failure)\n"
+                                "        idle()\n";
+
+TEST_F(RunTest, AFailedAssertionStopsItsCycleWithTheValues) {
+  ASSERT_TRUE(load(Counter, "main")) << messages();
+  RunOptions Opts;
+  Opts.Cycles = 5;
+  std::string Got = run(Opts);
+  // Cycles 1 and 2 pass; n = 3 fails in cycle 3, and the run stops there.
+  EXPECT_EQ(Got, "failed: cycle 3: assertion failed: n < 3 && n > 0: small\n"
+                 "n < 3 = false\n"
+                 "  n = 3\n"
+                 "n > 0: not evaluated\n");
+  EXPECT_EQ(Session->getCycle(), 3u);
+}
+
+TEST_F(RunTest, CoverageCountsCallsStatementsAndBothWaysOfConditions) {
+  Coverage = true;
+  ASSERT_TRUE(load(Counter, "main")) << messages();
+  RunOptions Opts;
+  Opts.Cycles = 2;
+  ASSERT_EQ(run(Opts), "");
+  std::vector<uint64_t> Counts = readCoverage(*Loaded);
+  ASSERT_EQ(Counts.size(), Loaded->Layout.CoverageSites.size());
+  auto Count = [&](CoverageSite::SiteKind K, llvm::StringRef Owner,
+                   unsigned Line) -> std::optional<uint64_t> {
+    for (size_t I = 0; I < Counts.size(); ++I) {
+      const CoverageSite &S = Loaded->Layout.CoverageSites[I];
+      if (S.Kind == K && S.Owner->getName().Name == Owner &&
+          C.SM.getLineAndColumn(S.N->getLoc()).first == Line)
+        return Counts[I];
+    }
+    return std::nullopt;
+  };
+  EXPECT_EQ(Count(CoverageSite::Call, "count", 1), 2u);
+  EXPECT_EQ(Count(CoverageSite::Call, "idle", 7), 0u);
+  EXPECT_EQ(Count(CoverageSite::Stmt, "count", 2), 1u); // Resumed after it.
+  EXPECT_EQ(Count(CoverageSite::Stmt, "count", 4), 2u);
+  EXPECT_EQ(Count(CoverageSite::True, "main", 12), 0u);
+  EXPECT_EQ(Count(CoverageSite::False, "main", 12), 2u);
+
+  CoverageSummary S = summarizeCoverage(C, *Loaded, Counts);
+  EXPECT_EQ(S.NeverActive, std::vector<std::string>{"Behavior::idle"});
+  EXPECT_EQ(S.YieldsNeverReached,
+            std::vector<std::string>{"Behavior.bs:8 (Behavior::idle)"});
+  // Lines 1-5, 7-8, 10-13 have counters; 7, 8 and 13 never ran.
+  EXPECT_EQ(S.Lines, 11u);
+  EXPECT_EQ(S.LinesHit, 8u);
+
+  clearCoverage(*Loaded);
+  for (uint64_t N : readCoverage(*Loaded))
+    EXPECT_EQ(N, 0u);
+}
+
+TEST_F(RunTest, WithoutCoverageThereAreNoCounters) {
+  ASSERT_TRUE(load(Counter, "main")) << messages();
+  EXPECT_TRUE(readCoverage(*Loaded).empty());
+  EXPECT_TRUE(Loaded->Layout.CoverageSites.empty());
 }
 
 } // namespace
