@@ -22,7 +22,8 @@ int bs_report_init_failure(const bs_behavior_info *info, int code) {
     fprintf(stderr,
             "bscript: error: the behavior's state has %u bytes, but its "
             "header says otherwise; regenerate the header with the options "
-            "of the object (--instrument, -target)\n",
+            "of the object (--instrument, --cycle-budget, --assertions, "
+            "-target)\n",
             (unsigned)info->state_size);
   else
     fprintf(stderr, "bscript: error: cannot initialise the behavior state "
