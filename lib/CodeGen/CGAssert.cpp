@@ -23,6 +23,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "CodeGenImpl.h"
+#include "bscript/bscript.h"
 #include "llvm/IR/Intrinsics.h"
 #include "llvm/IR/MDBuilder.h"
 #include "llvm/Support/Path.h"
@@ -109,10 +110,10 @@ llvm::Constant *ModuleEmitter::getAssertionInfo(llvm::StructType *LayoutTy,
         llvm::ConstantArray::get(ArrTy, Elts),
         "bs_" + Opts.BehaviorName + "_assertions");
   }
-  // bscript.h's modes; Report is the JIT's, which has no table.
-  uint32_t CMode = Mode == AssertionMode::Count  ? 1
-                   : Mode == AssertionMode::Trap ? 2
-                                                 : 0;
+  // Report is the JIT's, which has no table.
+  uint32_t CMode = Mode == AssertionMode::Count  ? BS_ASSERTIONS_COUNT
+                   : Mode == AssertionMode::Trap ? BS_ASSERTIONS_TRAP
+                                                 : BS_ASSERTIONS_NONE;
   return llvm::ConstantStruct::get(
       LayoutTy,
       {llvm::ConstantInt::get(I32, CMode),
