@@ -90,9 +90,11 @@ function(bscript_add_behavior)
   if(NOT BS_TARGET_TRIPLE STREQUAL "")
     list(APPEND args -target ${BS_TARGET_TRIPLE})
   endif()
+  set(include_dirs)
   foreach(dir IN LISTS BS_INCLUDE_DIRS)
     get_filename_component(dir "${dir}" ABSOLUTE)
     list(APPEND args -I ${dir})
+    list(APPEND include_dirs ${dir})
   endforeach()
   if(BS_ENTRIES)
     list(JOIN BS_ENTRIES "," entries)
@@ -155,6 +157,116 @@ function(bscript_add_behavior)
     LINKER_LANGUAGE ${archive_language})
   target_include_directories(${BS_TARGET} INTERFACE ${out}/include)
   target_link_libraries(${BS_TARGET} INTERFACE ${runtime} ${bind_targets})
+  # What bscript_add_log_tests needs to replay recordings against it.
+  set(bind_args ${args})
+  list(FILTER bind_args INCLUDE REGEX "^--bind=")
+  set_target_properties(${BS_TARGET} PROPERTIES
+    BSCRIPT_SOURCES "${sources}"
+    BSCRIPT_BIND_ARGS "${bind_args}"
+    BSCRIPT_INCLUDE_DIRS "${include_dirs}"
+    BSCRIPT_ENTRIES "${BS_ENTRIES}"
+    BSCRIPT_OPTIMIZE "${BS_OPTIMIZE}"
+    BSCRIPT_TARGET_TRIPLE "${BS_TARGET_TRIPLE}")
+endfunction()
+
+# bscript_add_log_tests: registers with CTest a `bsc replay` of recorded
+# runs against a behavior of bscript_add_behavior (docs/cmake.md).
+#
+#   bscript_add_log_tests(NAME <test name>
+#     BEHAVIOR_TARGET <target of bscript_add_behavior>
+#     LOGS <folder>
+#     [ENTRY <Module::name>]
+#     [JOBS <N>]
+#     [SHARD <K/N>]
+#     [JUNIT <file.xml>]
+#     [OPTIONS <bsc replay option>...])
+#
+# The test replays every recording (`*.jsonl`) under LOGS against the
+# behavior's sources, with its binding objects, INCLUDE_DIRS and -O level,
+# in bsc's host JIT, and fails if a log fails. The binding objects must be
+# built for the host: in a cross build (TARGET_TRIPLE i586) the test is not
+# registered, with a message; register it in the host build.
+# - ENTRY: the entry to replay; by default the behavior's one ENTRIES.
+# - JOBS: worker processes (`--jobs`); by default one per core.
+# - SHARD, JUNIT, OPTIONS: passed on (`--shard`, `--junit`, anything else).
+function(bscript_add_log_tests)
+  cmake_parse_arguments(PARSE_ARGV 0 BS ""
+    "NAME;BEHAVIOR_TARGET;LOGS;ENTRY;JOBS;SHARD;JUNIT" "OPTIONS")
+  if(BS_UNPARSED_ARGUMENTS)
+    list(GET BS_UNPARSED_ARGUMENTS 0 first)
+    message(FATAL_ERROR "bscript_add_log_tests(${BS_NAME}): unexpected "
+      "'${first}'; the keywords are NAME, BEHAVIOR_TARGET, LOGS, ENTRY, JOBS, "
+      "SHARD, JUNIT and OPTIONS")
+  endif()
+  foreach(required NAME BEHAVIOR_TARGET LOGS)
+    if(NOT BS_${required})
+      message(FATAL_ERROR
+        "bscript_add_log_tests(${BS_NAME}): ${required} is required")
+    endif()
+  endforeach()
+  if(NOT TARGET ${BS_BEHAVIOR_TARGET})
+    message(FATAL_ERROR "bscript_add_log_tests(${BS_NAME}): "
+      "'${BS_BEHAVIOR_TARGET}' is not a target; BEHAVIOR_TARGET takes one "
+      "of bscript_add_behavior, defined before this call")
+  endif()
+  get_target_property(sources ${BS_BEHAVIOR_TARGET} BSCRIPT_SOURCES)
+  if(NOT sources)
+    message(FATAL_ERROR "bscript_add_log_tests(${BS_NAME}): "
+      "'${BS_BEHAVIOR_TARGET}' was not made by bscript_add_behavior")
+  endif()
+  get_target_property(triple ${BS_BEHAVIOR_TARGET} BSCRIPT_TARGET_TRIPLE)
+  if(NOT triple STREQUAL "" AND NOT triple MATCHES "^x86_64($|-)")
+    message(STATUS "bscript_add_log_tests(${BS_NAME}): not registered: "
+      "'${BS_BEHAVIOR_TARGET}' is built for ${triple}, and bsc replays in "
+      "the host JIT with host binding objects; register it in a host build")
+    return()
+  endif()
+  get_target_property(binds ${BS_BEHAVIOR_TARGET} BSCRIPT_BIND_ARGS)
+  get_target_property(include_dirs ${BS_BEHAVIOR_TARGET} BSCRIPT_INCLUDE_DIRS)
+  get_target_property(entries ${BS_BEHAVIOR_TARGET} BSCRIPT_ENTRIES)
+  get_target_property(optimize ${BS_BEHAVIOR_TARGET} BSCRIPT_OPTIMIZE)
+  foreach(property binds include_dirs entries)
+    if(NOT ${property})
+      set(${property})
+    endif()
+  endforeach()
+  if(NOT BS_ENTRY AND entries)
+    list(LENGTH entries count)
+    if(count GREATER 1)
+      message(FATAL_ERROR "bscript_add_log_tests(${BS_NAME}): "
+        "'${BS_BEHAVIOR_TARGET}' has ${count} ENTRIES; say which to replay "
+        "with ENTRY")
+    endif()
+    set(BS_ENTRY ${entries})
+  endif()
+
+  set(args replay -O${optimize} ${binds})
+  foreach(dir IN LISTS include_dirs)
+    list(APPEND args -I ${dir})
+  endforeach()
+  if(BS_ENTRY)
+    list(APPEND args --entry ${BS_ENTRY})
+  endif()
+  get_filename_component(logs "${BS_LOGS}" ABSOLUTE)
+  list(APPEND args --logs ${logs})
+  if(NOT BS_JOBS STREQUAL "")
+    list(APPEND args --jobs ${BS_JOBS})
+  endif()
+  if(BS_SHARD)
+    list(APPEND args --shard ${BS_SHARD})
+  endif()
+  if(BS_JUNIT)
+    get_filename_component(junit "${BS_JUNIT}" ABSOLUTE
+      BASE_DIR ${CMAKE_CURRENT_BINARY_DIR})
+    list(APPEND args --junit ${junit})
+  endif()
+  add_test(NAME ${BS_NAME}
+    COMMAND bscript::bsc ${args} ${BS_OPTIONS} ${sources}
+    COMMAND_EXPAND_LISTS)
+  if(BS_JOBS MATCHES "^[1-9][0-9]*$")
+    # `ctest -j` counts the cores the test's workers take.
+    set_tests_properties(${BS_NAME} PROPERTIES PROCESSORS ${BS_JOBS})
+  endif()
 endfunction()
 
 # The language server (`bsc lsp`, docs/editors.md) finds a behavior's

@@ -14,7 +14,10 @@
 #include "llvm/Support/Format.h"
 #include "llvm/Support/MemAlloc.h"
 #include "llvm/Support/raw_ostream.h"
+#include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -206,7 +209,12 @@ std::vector<Difference> debug::findDifferences(const Value &Recorded,
 //===----------------------------------------------------------------------===//
 
 void *ValueIO::thunk(llvm::StringRef Symbol) {
-  return Symbol.empty() ? nullptr : Resolve(Symbol);
+  if (Symbol.empty())
+    return nullptr;
+  auto [It, New] = Thunks.try_emplace(Symbol, nullptr);
+  if (New)
+    It->second = Resolve(Symbol);
+  return It->second;
 }
 
 /// An integer of `Size` bytes at `Addr`, sign- or zero-extended.
@@ -537,6 +545,32 @@ llvm::Error ValueIO::writeNative(const NativeType &NT, void *Addr,
   return Mismatch();
 }
 
+/// A scalar property's value as writeNative stored it in its wire type
+/// (int32 for int, enum and bool), handed to its setter thunk.
+static void callScalarSetter(const NativeType &NT, void *Setter, void *Obj,
+                             const unsigned char *Wire) {
+  switch (NT.TheCode) {
+  case NativeType::Float: {
+    float F;
+    std::memcpy(&F, Wire, 4);
+    reinterpret_cast<void (*)(void *, float)>(Setter)(Obj, F);
+    return;
+  }
+  case NativeType::String: {
+    const char *S;
+    std::memcpy(&S, Wire, sizeof S);
+    reinterpret_cast<void (*)(void *, const char *)>(Setter)(Obj, S);
+    return;
+  }
+  default: {
+    int32_t I;
+    std::memcpy(&I, Wire, 4);
+    reinterpret_cast<void (*)(void *, int32_t)>(Setter)(Obj, I);
+    return;
+  }
+  }
+}
+
 llvm::Error ValueIO::writeMember(const NativeClass &C, const NativeFunction &M,
                                  void *Obj, const Value &V,
                                  llvm::StringRef Path) {
@@ -577,26 +611,7 @@ llvm::Error ValueIO::writeMember(const NativeClass &C, const NativeFunction &M,
   WireType.StorageSize = NT.TheCode == NativeType::String ? sizeof(void *) : 4;
   if (llvm::Error E = writeNative(WireType, Wire, V, Path))
     return E;
-  switch (NT.TheCode) {
-  case NativeType::Float: {
-    float F;
-    std::memcpy(&F, Wire, 4);
-    reinterpret_cast<void (*)(void *, float)>(Setter)(Obj, F);
-    break;
-  }
-  case NativeType::String: {
-    const char *S;
-    std::memcpy(&S, Wire, sizeof S);
-    reinterpret_cast<void (*)(void *, const char *)>(Setter)(Obj, S);
-    break;
-  }
-  default: {
-    int32_t I;
-    std::memcpy(&I, Wire, 4);
-    reinterpret_cast<void (*)(void *, int32_t)>(Setter)(Obj, I);
-    break;
-  }
-  }
+  callScalarSetter(NT, Setter, Obj, Wire);
   return llvm::Error::success();
 }
 
@@ -675,4 +690,257 @@ llvm::Error ValueIO::write(const Type *T, void *Addr, const Value &V,
     return writeClass(*T->getClass(), Addr, V, Path);
   }
   return Mismatch("a value");
+}
+
+//===----------------------------------------------------------------------===//
+// A replay's fast paths
+//===----------------------------------------------------------------------===//
+
+llvm::ArrayRef<const NativeFunction *>
+ValueIO::getSortedData(const NativeClass &C) {
+  auto [It, New] = SortedData.try_emplace(&C);
+  if (New) {
+    for (const NativeFunction &M : C.Members)
+      if (M.isData())
+        It->second.push_back(&M);
+    // readClass keeps the last of two members of one name; so does this.
+    std::stable_sort(It->second.begin(), It->second.end(),
+                     [](const NativeFunction *A, const NativeFunction *B) {
+                       return A->Name < B->Name;
+                     });
+    auto Last = std::unique(
+        It->second.rbegin(), It->second.rend(),
+        [](const NativeFunction *A, const NativeFunction *B) {
+          return A->Name == B->Name;
+        });
+    It->second.erase(It->second.begin(), Last.base());
+  }
+  return It->second;
+}
+
+void ValueIO::printClass(llvm::raw_ostream &OS, const NativeClass &C,
+                         const void *Obj) {
+  OS << '{';
+  llvm::ListSeparator Sep(",");
+  for (const NativeFunction *M : getSortedData(C)) {
+    OS << Sep << Value(llvm::StringRef(M->Name)) << ':';
+    const NativeType &NT = M->Result;
+    if (M->FieldOffset && NT.TheCode == NativeType::Class && NT.TheClass &&
+        NT.Extents.empty())
+      printClass(OS, *NT.TheClass,
+                 static_cast<const char *>(Obj) + *M->FieldOffset);
+    else
+      printJSON(OS, readMember(C, *M, Obj));
+  }
+  OS << '}';
+}
+
+/// Reads the JSON text of a value into memory as writeClass would, for
+/// the plain form only (see writeClassText); every method returns false
+/// where that form ends.
+class ValueIO::TextWriter {
+public:
+  TextWriter(ValueIO &IO, llvm::StringRef Text) : IO(IO), Rest(Text) {}
+
+  bool writeClass(const NativeClass &C, void *Obj);
+  bool atEnd() {
+    skipSpace();
+    return Rest.empty();
+  }
+
+private:
+  bool writeMember(const NativeClass &C, const NativeFunction &M, void *Obj);
+  bool writeNative(const NativeType &NT, void *Addr, size_t Dim = 0);
+  /// The scalar at the front into `Addr` in `NT`'s storage.
+  bool writeScalar(const NativeType &NT, void *Addr);
+  /// A string without escapes (its text between the quotes).
+  bool takeString(llvm::StringRef &S);
+  /// A number: the integer it spells, or only its value as a double.
+  bool takeNumber(std::optional<int64_t> &I, double &D);
+  bool take(char Ch) {
+    skipSpace();
+    if (!Rest.consume_front(llvm::StringRef(&Ch, 1)))
+      return false;
+    skipSpace();
+    return true;
+  }
+  bool peek(char Ch) {
+    skipSpace();
+    return Rest.starts_with(llvm::StringRef(&Ch, 1));
+  }
+  void skipSpace() { Rest = Rest.ltrim(" \t\r\n"); }
+
+  ValueIO &IO;
+  llvm::StringRef Rest;
+};
+
+bool ValueIO::TextWriter::takeString(llvm::StringRef &S) {
+  if (!Rest.consume_front("\""))
+    return false;
+  size_t End = Rest.find_first_of("\"\\");
+  if (End == llvm::StringRef::npos || Rest[End] != '"')
+    return false;
+  S = Rest.take_front(End);
+  Rest = Rest.drop_front(End + 1);
+  // llvm::json keeps valid UTF-8 as it is; other bytes it would change.
+  return llvm::json::isUTF8(S);
+}
+
+bool ValueIO::TextWriter::takeNumber(std::optional<int64_t> &I, double &D) {
+  size_t End = Rest.find_first_not_of("0123456789+-.eE");
+  llvm::StringRef Token = Rest.take_front(End);
+  if (Token.empty() || Token.size() > 40)
+    return false;
+  Rest = Rest.drop_front(Token.size());
+  char Buf[48];
+  std::memcpy(Buf, Token.data(), Token.size());
+  Buf[Token.size()] = 0;
+  if (Token.find_first_of(".eE") == llvm::StringRef::npos) {
+    // As llvm::json reads it: an int64 when it fits, else a double.
+    errno = 0;
+    char *After;
+    long long N = std::strtoll(Buf, &After, 10);
+    if (errno || *After)
+      return false;
+    I = N;
+    D = double(N);
+    return true;
+  }
+  char *After;
+  D = std::strtod(Buf, &After);
+  return !*After;
+}
+
+bool ValueIO::TextWriter::writeScalar(const NativeType &NT, void *Addr) {
+  unsigned Size = NT.StorageSize;
+  switch (NT.TheCode) {
+  case NativeType::Bool: {
+    bool B = Rest.starts_with("true");
+    if (!Rest.consume_front(B ? "true" : "false"))
+      return false;
+    storeInt(Addr, Size ? Size : 1, B);
+    return true;
+  }
+  case NativeType::Int:
+  case NativeType::Enum: {
+    std::optional<int64_t> I;
+    double D;
+    llvm::StringRef Name;
+    if (NT.TheCode == NativeType::Enum && peek('"')) {
+      if (!takeString(Name) || !NT.TheEnum)
+        return false;
+      for (const NativeEnum::Value &EV : NT.TheEnum->Values)
+        if (EV.Name == Name)
+          I = EV.Number;
+    } else if (!takeNumber(I, D)) {
+      return false;
+    }
+    if (!I)
+      return false;
+    auto [Min, Max] = getIntRange(Size ? Size : 4, NT.Unsigned);
+    if (*I < Min || *I > Max)
+      return false;
+    storeInt(Addr, Size ? Size : 4, *I);
+    return true;
+  }
+  case NativeType::Float: {
+    std::optional<int64_t> I;
+    double D;
+    llvm::StringRef Name;
+    if (peek('"')) {
+      if (!takeString(Name))
+        return false;
+      std::optional<double> Special = floatFromJSON(Value(Name));
+      if (!Special)
+        return false;
+      D = *Special;
+    } else if (!takeNumber(I, D) || !std::isfinite(float(D))) {
+      return false;
+    }
+    if (Size == 8) {
+      double X = float(D);
+      std::memcpy(Addr, &X, 8);
+    } else {
+      float F = float(D);
+      std::memcpy(Addr, &F, 4);
+    }
+    return true;
+  }
+  case NativeType::String: {
+    const char *P = nullptr;
+    llvm::StringRef S;
+    if (takeString(S))
+      P = IO.Strings.insert(S.str()).first->c_str();
+    else if (!Rest.consume_front("null"))
+      return false;
+    std::memcpy(Addr, &P, sizeof P);
+    return true;
+  }
+  default:
+    return false;
+  }
+}
+
+bool ValueIO::TextWriter::writeNative(const NativeType &NT, void *Addr,
+                                      size_t Dim) {
+  skipSpace();
+  if (Dim < NT.Extents.size()) {
+    uint64_t Stride = getStride(NT, Dim);
+    if (!take('['))
+      return false;
+    for (uint32_t I = 0; I < NT.Extents[Dim]; ++I)
+      if ((I && !take(',')) ||
+          !writeNative(NT, static_cast<char *>(Addr) + I * Stride, Dim + 1))
+        return false;
+    return take(']');
+  }
+  if (NT.TheCode == NativeType::Class)
+    return NT.TheClass && writeClass(*NT.TheClass, Addr);
+  return writeScalar(NT, Addr);
+}
+
+bool ValueIO::TextWriter::writeMember(const NativeClass &C,
+                                      const NativeFunction &M, void *Obj) {
+  if (M.FieldOffset && !M.ReadOnly)
+    return writeNative(M.Result, static_cast<char *>(Obj) + *M.FieldOffset);
+  const NativeType &NT = M.Result;
+  void *Setter = IO.thunk(M.Setter);
+  // Read-only members and class-valued properties: writeClass's way.
+  if (M.ReadOnly || !Setter || NT.TheCode == NativeType::Class ||
+      !NT.Extents.empty())
+    return false;
+  alignas(8) unsigned char Wire[8] = {};
+  NativeType WireType = NT;
+  WireType.StorageSize = NT.TheCode == NativeType::String ? sizeof(void *) : 4;
+  skipSpace();
+  if (!writeScalar(WireType, Wire))
+    return false;
+  callScalarSetter(NT, Setter, Obj, Wire);
+  return true;
+}
+
+bool ValueIO::TextWriter::writeClass(const NativeClass &C, void *Obj) {
+  if (!take('{'))
+    return false;
+  llvm::StringRef Previous;
+  for (bool First = true; !take('}'); First = false) {
+    llvm::StringRef Key;
+    if ((!First && !take(',')) || !takeString(Key) || !take(':'))
+      return false;
+    // writeClass goes through the keys in order (and a repeated key is
+    // the last one's): the same when they are sorted and distinct.
+    if (!First && Key <= Previous)
+      return false;
+    Previous = Key;
+    const NativeFunction *M = C.findMember(Key);
+    if (!M || !M->isData() || !writeMember(C, *M, Obj))
+      return false;
+  }
+  return true;
+}
+
+bool ValueIO::writeClassText(const NativeClass &C, void *Obj,
+                             llvm::StringRef Text) {
+  TextWriter W(*this, Text);
+  return W.writeClass(C, Obj) && W.atEnd();
 }

@@ -10,7 +10,9 @@
 #include "bsc/Driver/Driver.h"
 #include "bsc/Run/Run.h"
 #include "bsc/REPL/Repl.h"
+#include "llvm/Support/Threading.h"
 #include "llvm/Support/raw_ostream.h"
+#include <algorithm>
 
 using namespace bsc;
 
@@ -148,6 +150,21 @@ static bool parseShard(DiagnosticEngine &Diags, llvm::StringRef Arg,
   return true;
 }
 
+/// `--jobs N` (N >= 1); without it, one worker per core this process may
+/// run on (its affinity: a cluster's job gets the cores it was given).
+static bool parseJobs(DiagnosticEngine &Diags, llvm::StringRef Arg,
+                      unsigned &Jobs) {
+  if (Arg.empty()) {
+    Jobs = std::max(1u, llvm::hardware_concurrency().compute_thread_count());
+    return true;
+  }
+  if (Arg.getAsInteger(10, Jobs) || Jobs < 1 || Jobs > MaxReplayJobs) {
+    Diags.report(llvm::SMLoc(), diag::err_bad_option_value) << Arg << "--jobs";
+    return false;
+  }
+  return true;
+}
+
 int bsc::replayCommand(Compilation &C, const FrontendOptions &FOpts,
                        const ReplayCommandOptions &Opts) {
   BackendOptions BOpts;
@@ -156,6 +173,7 @@ int bsc::replayCommand(Compilation &C, const FrontendOptions &FOpts,
   ROpts.LogsDir = Opts.LogsDir;
   ROpts.JUnitPath = Opts.JUnitPath;
   OK &= parseShard(C.Diags, Opts.Shard, ROpts.Shard, ROpts.Shards);
+  OK &= parseJobs(C.Diags, Opts.Jobs, ROpts.Jobs);
   OK &= parseCycleLimit(C.Diags, Opts.CycleLimit, ROpts.CycleLimitMs);
   ROpts.CoveragePath = Opts.Coverage.Path;
   OK &= parseCoverageFloor(C.Diags, Opts.Coverage.Floor, ROpts.CoverageFloor);

@@ -5,10 +5,11 @@
 // after the other. A log passes when every recorded output matches; a
 // damaged or failing log fails alone, with its diagnostics, and the others
 // still run. `--shard K/N` takes every N-th log from the K-th of the
-// sorted list, so that N machines together replay each log once.
+// sorted list, so that N machines together replay each log once;
+// `--jobs N` replays them in N worker processes (ReplayWorkers.h).
 //
 //===----------------------------------------------------------------------===//
-#include "bsc/Run/Run.h"
+#include "ReplayWorkers.h"
 #include "llvm/ADT/StringExtras.h"
 #include "llvm/Support/FileSystem.h"
 #include "llvm/Support/Path.h"
@@ -17,18 +18,6 @@
 #include <chrono>
 
 using namespace bsc;
-
-namespace {
-/// What replaying one log gave.
-struct LogResult {
-  std::string Path;
-  bool Passed = false;
-  uint32_t Cycles = 0;
-  double Seconds = 0;
-  /// Its diagnostics, as bsc prints them.
-  std::string Report;
-};
-} // namespace
 
 /// The `.jsonl` files under `Dir`, sorted; false after reporting a folder
 /// that cannot be read.
@@ -53,12 +42,40 @@ static bool findLogs(Compilation &C, llvm::StringRef Dir,
   return true;
 }
 
+namespace {
+/// Gives a log a SourceMgr of its own while it is replayed: views of the
+/// compilation's buffers (so that diagnostics in the behavior keep their
+/// places) and, added by the replay, the log's file, which is unmapped
+/// when the log is done. Without it every log would stay mapped until the
+/// end, and a corpus of thousands would grow without bound.
+class LogSources {
+public:
+  explicit LogSources(llvm::SourceMgr &SM) : SM(SM) {
+    llvm::SourceMgr Own;
+    Own.setIncludeDirs(SM.getIncludeDirs());
+    for (unsigned ID = 1; ID <= SM.getNumBuffers(); ++ID)
+      Own.AddNewSourceBuffer(
+          llvm::MemoryBuffer::getMemBuffer(
+              SM.getMemoryBuffer(ID)->getMemBufferRef(),
+              /*RequiresNullTerminator=*/false),
+          llvm::SMLoc());
+    Saved = std::move(SM);
+    SM = std::move(Own);
+  }
+  ~LogSources() { SM = std::move(Saved); }
+
+private:
+  llvm::SourceMgr &SM;
+  llvm::SourceMgr Saved;
+};
+} // namespace
+
 /// Replays one log in a fresh session of `L`; an llvm::Error is internal.
 static llvm::Expected<LogResult> replayOne(Compilation &C, LoadedBehavior &L,
                                            const ReplayLogsOptions &Opts,
                                            const std::string &Path) {
   LogResult R;
-  R.Path = Path;
+  LogSources Sources(C.SM);
   auto Start = std::chrono::steady_clock::now();
   auto S = startSession(C, L);
   if (!S)
@@ -82,6 +99,7 @@ static llvm::Expected<LogResult> replayOne(Compilation &C, LoadedBehavior &L,
 
 /// `--junit FILE`: one test case per log, for CI systems.
 static bool writeJUnit(Compilation &C, llvm::StringRef Path,
+                       llvm::ArrayRef<std::string> Logs,
                        const std::vector<LogResult> &Results) {
   std::error_code EC;
   llvm::ToolOutputFile Out(Path, EC, llvm::sys::fs::OF_Text);
@@ -108,8 +126,9 @@ static bool writeJUnit(Compilation &C, llvm::StringRef Path,
   OS << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
      << "<testsuite name=\"bsc replay\" tests=\"" << Results.size()
      << "\" failures=\"" << Failures << "\">\n";
-  for (const LogResult &R : Results) {
-    OS << "  <testcase classname=\"bsc.replay\" name=\"" << Escape(R.Path)
+  for (size_t I = 0; I < Results.size(); ++I) {
+    const LogResult &R = Results[I];
+    OS << "  <testcase classname=\"bsc.replay\" name=\"" << Escape(Logs[I])
        << "\" time=\"" << llvm::format("%.3f", R.Seconds) << "\"";
     if (R.Passed) {
       OS << "/>\n";
@@ -140,31 +159,81 @@ static bool reportCorpusCoverage(Compilation &C, const LoadedBehavior &L,
   return OK;
 }
 
+/// The log's line and, if it failed, its diagnostics.
+static void printResult(llvm::raw_ostream &OS, llvm::StringRef Path,
+                        const LogResult &R) {
+  OS << (R.Passed ? "PASS " : "FAIL ") << Path << " (" << R.Cycles
+     << (R.Cycles == 1 ? " cycle)\n" : " cycles)\n");
+  if (!R.Passed)
+    OS << R.Report;
+  OS.flush();
+}
+
+/// `--jobs N`: the logs in N worker processes; a worker that dies fails
+/// the log it was on with a diagnostic saying how it died.
+static llvm::Expected<std::vector<LogResult>>
+replayForked(Compilation &C, LoadedBehavior &L, const ReplayLogsOptions &Opts,
+             llvm::ArrayRef<std::string> Logs, llvm::raw_ostream &OS) {
+  auto Died = [&](llvm::StringRef Fate) {
+    LogResult R;
+    C.Diags.report(llvm::SMLoc(), diag::err_replay_worker_died) << Fate;
+    llvm::raw_string_ostream RS(R.Report);
+    printDiagnostics(C.SM, C.Diags.getDiagnostics(), RS);
+    C.Diags.clear();
+    return R;
+  };
+  // A worker's JIT counters are its own copy: each log sends what it
+  // added, and the parent sums them.
+  auto ReplayOne = [&](size_t I) {
+    llvm::Expected<LogResult> R = replayOne(C, L, Opts, Logs[I]);
+    if (R) {
+      R->Coverage = readCoverage(L);
+      clearCoverage(L);
+    }
+    return R;
+  };
+  return replayInWorkers(
+      Logs.size(), Opts.Jobs, ReplayOne, Died,
+      [&](size_t I, const LogResult &R) { printResult(OS, Logs[I], R); });
+}
+
 llvm::Expected<int> bsc::replayLogs(Compilation &C, LoadedBehavior &L,
                                     const ReplayLogsOptions &Opts,
                                     llvm::raw_ostream &OS) {
-  std::vector<std::string> Logs;
-  if (!findLogs(C, Opts.LogsDir, Logs))
+  std::vector<std::string> All, Logs;
+  if (!findLogs(C, Opts.LogsDir, All))
     return 1;
+  for (size_t I = Opts.Shard - 1; I < All.size(); I += Opts.Shards)
+    Logs.push_back(All[I]);
   std::vector<LogResult> Results;
-  for (size_t I = Opts.Shard - 1; I < Logs.size(); I += Opts.Shards) {
-    llvm::Expected<LogResult> One = replayOne(C, L, Opts, Logs[I]);
-    if (!One)
-      return One.takeError();
-    Results.push_back(std::move(*One));
-    const LogResult &R = Results.back();
-    OS << (R.Passed ? "PASS " : "FAIL ") << R.Path << " (" << R.Cycles
-       << (R.Cycles == 1 ? " cycle)\n" : " cycles)\n");
-    if (!R.Passed)
-      OS << R.Report;
-    OS.flush();
+  if (Opts.Jobs > 1) {
+    auto Forked = replayForked(C, L, Opts, Logs, OS);
+    if (!Forked)
+      return Forked.takeError();
+    Results = std::move(*Forked);
+  } else {
+    // In this process, so that a debugger sees the replay.
+    for (const std::string &Path : Logs) {
+      llvm::Expected<LogResult> One = replayOne(C, L, Opts, Path);
+      if (!One)
+        return One.takeError();
+      Results.push_back(std::move(*One));
+      printResult(OS, Path, Results.back());
+    }
   }
   unsigned Failed = llvm::count_if(
       Results, [](const LogResult &R) { return !R.Passed; });
   OS << Results.size() - Failed << " passed, " << Failed << " failed\n";
-  // The sessions shared the JIT's counters: they hold the whole corpus.
-  bool CoverageOK = reportCorpusCoverage(C, L, Opts, readCoverage(L), OS);
-  if (!Opts.JUnitPath.empty() && !writeJUnit(C, Opts.JUnitPath, Results))
+  OS.flush();
+  // In this process the sessions shared the JIT's counters, which then
+  // hold the whole corpus; workers sent each log's own.
+  std::vector<uint64_t> Counts = readCoverage(L);
+  for (const LogResult &R : Results)
+    for (size_t I = 0; I < R.Coverage.size() && I < Counts.size(); ++I)
+      Counts[I] += R.Coverage[I];
+  bool CoverageOK = reportCorpusCoverage(C, L, Opts, Counts, OS);
+  if (!Opts.JUnitPath.empty() &&
+      !writeJUnit(C, Opts.JUnitPath, Logs, Results))
     return 1;
   return Failed || !CoverageOK ? 1 : 0;
 }

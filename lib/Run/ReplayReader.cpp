@@ -2,7 +2,7 @@
 //
 // A line is checked to be JSON without building values (bsc::isJSON),
 // which also hands over its top-level members as text: `input` and
-// `output` are parsed with bsc::parseJSON, `cycle` and `tasks` skipped. A
+// `output` are kept as text for the runner, `cycle` and `tasks` skipped. A
 // line that is not JSON is parsed whole, so that its error is the JSON
 // parser's, at its byte.
 //
@@ -65,10 +65,7 @@ bool ReplayReader::read(llvm::StringRef Raw, ReplayLine &Line) {
         OK = false;
         continue;
       }
-      std::optional<llvm::json::Value> V = parseJSONLine(C.Diags, Value);
-      if (!V)
-        return false;
-      (Key == "input" ? Line.Input : Line.Output) = std::move(*V);
+      (Key == "input" ? Line.Input : Line.Output) = Value;
     } else if (Key != "cycle" && Key != "tasks") {
       C.Diags.report(Line.Loc, diag::err_replay_unknown_key) << Key;
       OK = false;

@@ -10,11 +10,11 @@ namespace bsc {
 /// One line of a replay file: the objects a replay uses.
 struct ReplayLine {
   llvm::SMLoc Loc; ///< Its first character.
-  std::optional<llvm::json::Value> Input, Output;
-  const llvm::json::Value *get(llvm::StringRef Key) const {
-    const std::optional<llvm::json::Value> &V = Key == "input" ? Input : Output;
-    return V ? &*V : nullptr;
-  }
+  /// The JSON text of its `input` and `output` (empty if it has none),
+  /// checked: a replay writes the one and compares the other from the
+  /// text, and parses them only where the text is not the plain form a
+  /// recording has (Runner.cpp).
+  llvm::StringRef Input, Output;
 };
 
 /// Reads a JSONL replay file a line at a time, as its cycles come: the

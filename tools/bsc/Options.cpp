@@ -195,6 +195,11 @@ cl::opt<std::string> ReplayShard(
     cl::desc("Replay the K-th of N slices of the sorted logs (every N-th "
              "from the K-th), for a CI matrix or a cluster's array job"),
     cl::value_desc("K/N"), BSC_REPLAY);
+cl::opt<std::string> ReplayJobs(
+    "jobs",
+    cl::desc("Replay in N worker processes (default: one per core; 1: in "
+             "this process)"),
+    cl::value_desc("N"), BSC_REPLAY);
 cl::opt<std::string> ReplayJUnit(
     "junit", cl::desc("Write JUnit XML, one test case per log"),
     cl::value_desc("file.xml"), BSC_REPLAY);
@@ -375,6 +380,7 @@ tool::CommandLine tool::readCommandLine() {
   CL.Replay = {getBackendArgs(), EntryName, ReplayLogs, ReplayShard,
                ReplayJUnit, CycleLimitArg, DebugInfo};
   CL.Replay.Coverage = CL.Run.Coverage = {CoverageFile, CoverageFloor};
+  CL.Replay.Jobs = ReplayJobs;
   CL.Format = {{FormatFiles.begin(), FormatFiles.end()},
                FormatInPlace,
                FormatCheck};

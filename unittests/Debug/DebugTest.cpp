@@ -496,3 +496,103 @@ TEST(DebugValuesTest, NegativeZeroIsNotZero) {
   EXPECT_FALSE(findDifference(floatToJSON(-0.0f), floatToJSON(-0.0f), "x"));
 }
 } // namespace
+
+namespace {
+/// A class with a member of each kind the replay's fast paths take: ints
+/// of two sizes, a float, a bool, a string, an enum, an int array and a
+/// nested class.
+struct Inner {
+  float X;
+};
+struct Fast {
+  int32_t I;
+  uint8_t U;
+  float F;
+  bool B;
+  const char *S;
+  int32_t E;
+  int16_t A[2];
+  Inner In;
+};
+
+struct FastClass {
+  NativeEnum Enum;
+  NativeClass InnerC, C;
+  FastClass() {
+    Enum.Name = "Mode";
+    Enum.Values = {{"off", 0}, {"on", 5}};
+    InnerC.Name = InnerC.QualifiedName = "Inner";
+    addField(InnerC, "x", NativeType::Float, offsetof(Inner, X), 4);
+    C.Name = C.QualifiedName = "Fast";
+    addField(C, "i", NativeType::Int, offsetof(Fast, I), 4);
+    addField(C, "u", NativeType::Int, offsetof(Fast, U), 1);
+    C.Members.back().Result.Unsigned = true;
+    addField(C, "f", NativeType::Float, offsetof(Fast, F), 4);
+    addField(C, "b", NativeType::Bool, offsetof(Fast, B), 1);
+    addField(C, "s", NativeType::String, offsetof(Fast, S), sizeof(char *));
+    addField(C, "e", NativeType::Enum, offsetof(Fast, E), 4);
+    C.Members.back().Result.TheEnum = &Enum;
+    addField(C, "a", NativeType::Int, offsetof(Fast, A), 2, {2});
+    addField(C, "in", NativeType::Class, offsetof(Fast, In), sizeof(Inner));
+    C.Members.back().Result.TheClass = &InnerC;
+  }
+};
+} // namespace
+
+/// printClass writes what printJSON(readClass) writes, without the tree.
+TEST(DebugValuesTest, PrintClassIsReadClassPrinted) {
+  FastClass FC;
+  Fast O = {-7, 200, 0.1f, true, "a\"b", 5, {-1, 3}, {-0.0f}};
+  ValueIO IO([](llvm::StringRef) -> void * { return nullptr; });
+  std::string Text;
+  llvm::raw_string_ostream OS(Text);
+  IO.printClass(OS, FC.C, &O);
+  EXPECT_EQ(toJSONString(IO.readClass(FC.C, &O)), Text);
+  EXPECT_EQ("{\"a\":[-1,3],\"b\":true,\"e\":\"on\",\"f\":0.1,\"i\":-7,"
+            "\"in\":{\"x\":-0.0},\"s\":\"a\\\"b\",\"u\":200}",
+            Text);
+  O.S = nullptr;
+  O.F = NAN;
+  Text.clear();
+  IO.printClass(OS, FC.C, &O);
+  EXPECT_EQ(toJSONString(IO.readClass(FC.C, &O)), Text);
+}
+
+/// writeClassText stores what writeClass of the parsed text stores, for
+/// the form a recording has; anything else it leaves to writeClass.
+TEST(DebugValuesTest, WriteClassTextTakesTheRecordedForm) {
+  FastClass FC;
+  ValueIO IO([](llvm::StringRef) -> void * { return nullptr; });
+  llvm::StringRef Text =
+      "{\"a\":[4,-5],\"b\":true,\"e\":\"on\",\"f\":0.1,\"i\":-7,"
+      "\"in\":{\"x\":\"-Infinity\"},\"s\":\"hi\",\"u\":255}";
+  Fast ByText = {}, ByTree = {};
+  ASSERT_TRUE(IO.writeClassText(FC.C, &ByText, Text));
+  llvm::Expected<llvm::json::Value> Tree = llvm::json::parse(Text);
+  ASSERT_TRUE(bool(Tree));
+  ASSERT_FALSE(bool(IO.writeClass(FC.C, &ByTree, *Tree, "input")));
+  EXPECT_EQ(toJSONString(IO.readClass(FC.C, &ByTree)),
+            toJSONString(IO.readClass(FC.C, &ByText)));
+  EXPECT_EQ(0.1f, ByText.F);
+  EXPECT_EQ(-HUGE_VALF, ByText.In.X);
+  EXPECT_STREQ("hi", ByText.S);
+  // Members left out keep their values; spaces are fine; an enum by number.
+  ASSERT_TRUE(IO.writeClassText(FC.C, &ByText, " { \"e\" : 0 , \"i\":3 } "));
+  EXPECT_EQ(0, ByText.E);
+  EXPECT_EQ(3, ByText.I);
+  EXPECT_EQ(255, ByText.U);
+  // Not the recorded form, or not a fit: writeClass's turn.
+  for (llvm::StringRef Other :
+       {"{\"i\":1,\"f\":2}",          // keys not sorted
+        "{\"i\":1,\"i\":2}",          // a key twice
+        "{\"s\":\"a\\nb\"}",          // an escape
+        "{\"i\":1.0}",                // an int spelled as a float
+        "{\"u\":256}",                // beyond the member
+        "{\"f\":1e39}",               // beyond a float
+        "{\"e\":\"dim\"}",            // no such enum value
+        "{\"a\":[1]}",                // too few elements
+        "{\"j\":1}",                  // no such member
+        "{\"in\":null}",              // not an object
+        "[1]"})
+    EXPECT_FALSE(IO.writeClassText(FC.C, &ByText, Other)) << Other.str();
+}

@@ -267,3 +267,31 @@ TEST_F(RunTest, WithoutCoverageThereAreNoCounters) {
 }
 
 } // namespace
+
+// `bsc replay --jobs`: a worker's result survives the pipe's encoding; a
+// field a newer worker adds is skipped; a damaged record is refused.
+#include "../../lib/Run/ReplayWorkers.h"
+namespace {
+TEST(ReplayWorkersTest, ResultsRoundTrip) {
+  LogResult R;
+  R.Passed = false;
+  R.Cycles = 123456;
+  R.Seconds = 0.25;
+  R.Report = std::string("error: x\n\0y", 11);
+  R.Coverage = {0, 7, uint64_t(1) << 40};
+  std::string Encoded = encodeResult(R);
+  LogResult Back;
+  ASSERT_TRUE(decodeResult(Encoded, Back));
+  EXPECT_FALSE(Back.Passed);
+  EXPECT_EQ(123456u, Back.Cycles);
+  EXPECT_EQ(0.25, Back.Seconds);
+  EXPECT_EQ(R.Report, Back.Report);
+  EXPECT_EQ(R.Coverage, Back.Coverage);
+  // A field of tag 200 (3 bytes) from a newer worker.
+  std::string Newer = Encoded + std::string("\xc8\x03\0\0\0abc", 8);
+  ASSERT_TRUE(decodeResult(Newer, Back));
+  EXPECT_EQ(R.Report, Back.Report);
+  EXPECT_FALSE(decodeResult(llvm::StringRef(Encoded).drop_back(1), Back));
+  EXPECT_FALSE(decodeResult(std::string("\x02\x02\0\0\0ab", 7), Back));
+}
+} // namespace

@@ -249,6 +249,7 @@ struct ReplayCommandOptions {
   std::string EntryName, LogsDir, Shard, JUnitPath, CycleLimit;
   bool DebugInfo = false;
   CoverageArgs Coverage;
+  std::string Jobs; ///< --jobs; empty: one worker per core.
 };
 
 /// `bsc replay`: the behavior compiled once into the host JIT, every

@@ -114,11 +114,17 @@ constexpr unsigned DefaultCycleLimitMs = 3000;
 bool runBehavior(Compilation &C, LoadedBehavior &L, BehaviorSession &S,
                  const RunOptions &Opts, llvm::raw_ostream &OS);
 
+/// The most worker processes `--jobs` takes: far above any machine's
+/// cores, low enough that a typo does not fork thousands of processes.
+constexpr unsigned MaxReplayJobs = 1024;
+
 /// `bsc replay`'s options beyond loading.
 struct ReplayLogsOptions {
   std::string LogsDir;       ///< --logs: the recordings (`*.jsonl`) below it.
   unsigned Shard = 1, Shards = 1; ///< --shard K/N: every N-th log from the K-th.
   std::string JUnitPath;     ///< --junit: JUnit XML, one test case per log.
+  /// --jobs: worker processes; 1 replays in this process.
+  unsigned Jobs = 1;
   unsigned CycleLimitMs = DefaultCycleLimitMs;
   /// --coverage: the lcov tracefile of all logs together; --fail-under.
   std::string CoveragePath;

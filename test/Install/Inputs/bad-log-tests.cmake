@@ -1,0 +1,21 @@
+# Used by log-tests.test: one mistake in a call of bscript_add_log_tests
+# per -DCASE.
+cmake_minimum_required(VERSION 3.20)
+project(bad C CXX)
+find_package(bscript 0.1 REQUIRED)
+file(WRITE ${CMAKE_BINARY_DIR}/b.bs "func main()\n    return\n\nfunc other()\n    return\n")
+bscript_add_behavior(TARGET b SOURCES ${CMAKE_BINARY_DIR}/b.bs
+  ENTRIES b::main b::other)
+add_library(lib STATIC ${CMAKE_BINARY_DIR}/b.bs)
+set_target_properties(lib PROPERTIES LINKER_LANGUAGE C)
+if(CASE EQUAL 1)
+  bscript_add_log_tests(NAME t BEHAVIOR_TARGET b)
+elseif(CASE EQUAL 2)
+  bscript_add_log_tests(NAME t BEHAVIOR_TARGET nothing LOGS logs)
+elseif(CASE EQUAL 3)
+  bscript_add_log_tests(NAME t BEHAVIOR_TARGET b LOGS logs)
+elseif(CASE EQUAL 4)
+  bscript_add_log_tests(NAME t BEHAVIOR_TARGET lib LOGS logs)
+elseif(CASE EQUAL 5)
+  bscript_add_log_tests(NAME t BEHAVIOR_TARGET b LOG logs)
+endif()
