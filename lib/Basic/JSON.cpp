@@ -58,9 +58,42 @@ static size_t findTooDeep(llvm::StringRef Text, unsigned Limit) {
   return llvm::StringRef::npos;
 }
 
+/// A number of the plain form `-?D+(.D+)?([eE][+-]?D+)?`, which strtod
+/// reads whole (and strtoll too, when it is an integer that fits): a
+/// replay's lines are full of them, and the C library's calls cost more
+/// than the rest of the check.
+static bool isPlainNumber(llvm::StringRef T) {
+  size_t I = 0, N = T.size();
+  auto Digits = [&] {
+    size_t From = I;
+    while (I < N && llvm::isDigit(T[I]))
+      ++I;
+    return I > From;
+  };
+  if (I < N && T[I] == '-')
+    ++I;
+  if (!Digits())
+    return false;
+  if (I < N && T[I] == '.') {
+    ++I;
+    if (!Digits())
+      return false;
+  }
+  if (I < N && (T[I] == 'e' || T[I] == 'E')) {
+    ++I;
+    if (I < N && (T[I] == '+' || T[I] == '-'))
+      ++I;
+    if (!Digits())
+      return false;
+  }
+  return I == N;
+}
+
 namespace {
 /// Checks JSON (RFC 8259, as llvm::json::parse reads it) without building
-/// values: one pass, no allocation.
+/// values: one pass, no allocation for the usual numbers. It refuses text
+/// nested deeper than MaxJSONDepth where it gets there (its recursion is
+/// bounded by it).
 class JSONChecker {
 public:
   JSONChecker(llvm::StringRef Text, JSONMemberFn OnMember)
@@ -73,8 +106,15 @@ public:
   }
 
 private:
+  static bool isSpace(char C) {
+    return C == ' ' || C == '\t' || C == '\r' || C == '\n';
+  }
+  static bool isNumberChar(char C) {
+    return llvm::isDigit(C) || C == '+' || C == '-' || C == '.' || C == 'e' ||
+           C == 'E';
+  }
   void space() {
-    while (At < Text.size() && llvm::StringRef(" \t\r\n").contains(Text[At]))
+    while (At < Text.size() && isSpace(Text[At]))
       ++At;
   }
   bool eat(char C) {
@@ -88,8 +128,10 @@ private:
   /// numbers, `1e` is not).
   bool number() {
     size_t Start = At;
-    while (At < Text.size() && llvm::StringRef("0123456789+-.eE").contains(Text[At]))
+    while (At < Text.size() && isNumberChar(Text[At]))
       ++At;
+    if (isPlainNumber(Text.slice(Start, At)))
+      return true;
     std::string Token = Text.slice(Start, At).str();
     const char *End = Token.c_str() + Token.size();
     char *Stop;
@@ -108,12 +150,17 @@ private:
   }
   bool string() {
     size_t Start = ++At;
+    bool ASCII = true; // Then it is UTF-8, without asking isUTF8.
     for (; At < Text.size(); ++At) {
       unsigned char C = Text[At];
+      if (C == '"') {
+        llvm::StringRef S = Text.slice(Start, At++);
+        return ASCII || llvm::json::isUTF8(S);
+      }
       if (C < 0x20)
         return false;
-      if (C == '"')
-        return llvm::json::isUTF8(Text.slice(Start, At++));
+      if (C >= 0x80)
+        ASCII = false;
       if (C != '\\')
         continue;
       if (++At >= Text.size())
@@ -136,7 +183,7 @@ private:
     char C = Text[At];
     if (C == '"')
       return string();
-    if (llvm::StringRef("+-.").contains(C) || llvm::isDigit(C))
+    if (C == '+' || C == '-' || C == '.' || llvm::isDigit(C))
       return number();
     for (llvm::StringRef Word : {"true", "false", "null"})
       if (Text.substr(At).starts_with(Word))
@@ -146,7 +193,8 @@ private:
     ++At;
     char Close = C == '{' ? '}' : ']';
     bool TopObject = C == '{' && Level == 0;
-    ++Level;
+    if (++Level > MaxJSONDepth)
+      return false;
     if (eat(Close))
       return --Level, true;
     do {
@@ -179,8 +227,7 @@ private:
 } // namespace
 
 bool bsc::isJSON(llvm::StringRef Text, JSONMemberFn OnMember) {
-  return findTooDeep(Text, MaxJSONDepth) == llvm::StringRef::npos &&
-         JSONChecker(Text, OnMember).document();
+  return JSONChecker(Text, OnMember).document();
 }
 
 /// A JSONReadError at byte `Offset` of `Text`.

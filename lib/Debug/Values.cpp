@@ -10,6 +10,7 @@
 //===----------------------------------------------------------------------===//
 #include "bsc/Debug/Values.h"
 #include "bsc/AST/Native.h"
+#include "bsc/Basic/JSON.h"
 #include "llvm/ADT/StringExtras.h"
 #include "llvm/Support/Format.h"
 #include "llvm/Support/MemAlloc.h"
@@ -695,252 +696,221 @@ llvm::Error ValueIO::write(const Type *T, void *Addr, const Value &V,
 //===----------------------------------------------------------------------===//
 // A replay's fast paths
 //===----------------------------------------------------------------------===//
+//
+// Both walk the text of an object in the form a recording has: keys sorted
+// and distinct, strings of ASCII without escapes, plain numbers. A member
+// that is a registered class held in place is walked into; any other
+// value becomes a JSON value (a scalar read straight from its token, an
+// array parsed) and goes through what writeClass and findDifferences
+// do with it, so the results are theirs. Text of any other form makes them
+// give up, and the caller takes the slow way.
 
-llvm::ArrayRef<const NativeFunction *>
-ValueIO::getSortedData(const NativeClass &C) {
-  auto [It, New] = SortedData.try_emplace(&C);
-  if (New) {
-    for (const NativeFunction &M : C.Members)
-      if (M.isData())
-        It->second.push_back(&M);
-    // readClass keeps the last of two members of one name; so does this.
-    std::stable_sort(It->second.begin(), It->second.end(),
-                     [](const NativeFunction *A, const NativeFunction *B) {
-                       return A->Name < B->Name;
-                     });
-    auto Last = std::unique(
-        It->second.rbegin(), It->second.rend(),
-        [](const NativeFunction *A, const NativeFunction *B) {
-          return A->Name == B->Name;
-        });
-    It->second.erase(It->second.begin(), Last.base());
-  }
-  return It->second;
-}
-
-void ValueIO::printClass(llvm::raw_ostream &OS, const NativeClass &C,
-                         const void *Obj) {
-  OS << '{';
-  llvm::ListSeparator Sep(",");
-  for (const NativeFunction *M : getSortedData(C)) {
-    OS << Sep << Value(llvm::StringRef(M->Name)) << ':';
-    const NativeType &NT = M->Result;
-    if (M->FieldOffset && NT.TheCode == NativeType::Class && NT.TheClass &&
-        NT.Extents.empty())
-      printClass(OS, *NT.TheClass,
-                 static_cast<const char *>(Obj) + *M->FieldOffset);
-    else
-      printJSON(OS, readMember(C, *M, Obj));
-  }
-  OS << '}';
-}
-
-/// Reads the JSON text of a value into memory as writeClass would, for
-/// the plain form only (see writeClassText); every method returns false
-/// where that form ends.
-class ValueIO::TextWriter {
+/// The reading half: tokens of the plain form, by hand (StringRef's
+/// searches build a table per call, which costs more than a token).
+class ValueIO::TextWalker {
 public:
-  TextWriter(ValueIO &IO, llvm::StringRef Text) : IO(IO), Rest(Text) {}
+  TextWalker(ValueIO &IO, llvm::StringRef Text) : IO(IO), Rest(Text) {}
 
-  bool writeClass(const NativeClass &C, void *Obj);
+  /// Calls `Member(C, M, Obj)` at each member of the object at the front,
+  /// with its value next; false if the object is not of the plain form, a
+  /// key is not a data member of `C`, or `Member` returns false.
+  template <typename Fn>
+  bool walkObject(const NativeClass &C, Fn Member) {
+    if (!take('{'))
+      return false;
+    llvm::StringRef Previous;
+    for (bool First = true; !take('}'); First = false) {
+      llvm::StringRef Key;
+      if ((!First && !take(',')) || !takeString(Key) || !take(':'))
+        return false;
+      // writeClass goes through the keys in order (and a key twice is
+      // the last one's): the same when they are sorted and distinct.
+      if (!First && Key <= Previous)
+        return false;
+      Previous = Key;
+      const NativeFunction *M = C.findMember(Key);
+      if (!M || !M->isData() || !Member(*M))
+        return false;
+    }
+    return true;
+  }
+  /// Whether the value at the front is an object: a registered class held
+  /// in place is walked into rather than read as a value.
+  bool atObject() { return peek() == '{'; }
+  /// The value at the front, as llvm::json would read it.
+  std::optional<Value> takeValue();
   bool atEnd() {
     skipSpace();
     return Rest.empty();
   }
 
 private:
-  bool writeMember(const NativeClass &C, const NativeFunction &M, void *Obj);
-  bool writeNative(const NativeType &NT, void *Addr, size_t Dim = 0);
-  /// The scalar at the front into `Addr` in `NT`'s storage.
-  bool writeScalar(const NativeType &NT, void *Addr);
-  /// A string without escapes (its text between the quotes).
-  bool takeString(llvm::StringRef &S);
-  /// A number: the integer it spells, or only its value as a double.
-  bool takeNumber(std::optional<int64_t> &I, double &D);
+  char peek() {
+    skipSpace();
+    return Rest.empty() ? 0 : Rest.front();
+  }
   bool take(char Ch) {
-    skipSpace();
-    if (!Rest.consume_front(llvm::StringRef(&Ch, 1)))
+    if (peek() != Ch)
       return false;
-    skipSpace();
+    Rest = Rest.drop_front();
     return true;
   }
-  bool peek(char Ch) {
-    skipSpace();
-    return Rest.starts_with(llvm::StringRef(&Ch, 1));
+  void skipSpace() {
+    size_t I = 0;
+    while (I < Rest.size() && (Rest[I] == ' ' || Rest[I] == '\t' ||
+                               Rest[I] == '\r' || Rest[I] == '\n'))
+      ++I;
+    Rest = Rest.drop_front(I);
   }
-  void skipSpace() { Rest = Rest.ltrim(" \t\r\n"); }
+  /// A string of ASCII without escapes: its text between the quotes.
+  bool takeString(llvm::StringRef &S);
+  std::optional<Value> takeNumber();
 
   ValueIO &IO;
   llvm::StringRef Rest;
 };
 
-bool ValueIO::TextWriter::takeString(llvm::StringRef &S) {
-  if (!Rest.consume_front("\""))
+bool ValueIO::TextWalker::takeString(llvm::StringRef &S) {
+  if (!take('"'))
     return false;
-  size_t End = Rest.find_first_of("\"\\");
-  if (End == llvm::StringRef::npos || Rest[End] != '"')
-    return false;
-  S = Rest.take_front(End);
-  Rest = Rest.drop_front(End + 1);
-  // llvm::json keeps valid UTF-8 as it is; other bytes it would change.
-  return llvm::json::isUTF8(S);
+  for (size_t I = 0; I < Rest.size(); ++I) {
+    unsigned char Ch = Rest[I];
+    if (Ch == '"') {
+      S = Rest.take_front(I);
+      Rest = Rest.drop_front(I + 1);
+      return true;
+    }
+    if (Ch == '\\' || Ch < 0x20 || Ch >= 0x80)
+      return false;
+  }
+  return false;
 }
 
-bool ValueIO::TextWriter::takeNumber(std::optional<int64_t> &I, double &D) {
-  size_t End = Rest.find_first_not_of("0123456789+-.eE");
+std::optional<Value> ValueIO::TextWalker::takeNumber() {
+  size_t End = 0;
+  bool Integer = true;
+  for (; End < Rest.size(); ++End) {
+    char Ch = Rest[End];
+    if (Ch == '.' || Ch == 'e' || Ch == 'E' || Ch == '+')
+      Integer = false;
+    else if (!llvm::isDigit(Ch) && Ch != '-')
+      break;
+  }
   llvm::StringRef Token = Rest.take_front(End);
-  if (Token.empty() || Token.size() > 40)
-    return false;
-  Rest = Rest.drop_front(Token.size());
-  char Buf[48];
+  Rest = Rest.drop_front(End);
+  llvm::StringRef Digits = Token;
+  bool Negative = Digits.consume_front("-");
+  if (Integer) {
+    // llvm::json reads an integer that fits into an int64; 18 digits do.
+    if (Digits.empty() || Digits.size() > 18 ||
+        !llvm::all_of(Digits, llvm::isDigit))
+      return std::nullopt;
+    int64_t N = 0;
+    for (char D : Digits)
+      N = N * 10 + (D - '0');
+    return Value(Negative ? -N : N);
+  }
+  char Buf[64];
+  if (Token.size() >= sizeof Buf)
+    return std::nullopt;
   std::memcpy(Buf, Token.data(), Token.size());
   Buf[Token.size()] = 0;
-  if (Token.find_first_of(".eE") == llvm::StringRef::npos) {
-    // As llvm::json reads it: an int64 when it fits, else a double.
-    errno = 0;
-    char *After;
-    long long N = std::strtoll(Buf, &After, 10);
-    if (errno || *After)
-      return false;
-    I = N;
-    D = double(N);
-    return true;
-  }
   char *After;
-  D = std::strtod(Buf, &After);
-  return !*After;
+  double D = std::strtod(Buf, &After);
+  if (After != Buf + Token.size())
+    return std::nullopt;
+  return Value(D);
 }
 
-bool ValueIO::TextWriter::writeScalar(const NativeType &NT, void *Addr) {
-  unsigned Size = NT.StorageSize;
-  switch (NT.TheCode) {
-  case NativeType::Bool: {
-    bool B = Rest.starts_with("true");
-    if (!Rest.consume_front(B ? "true" : "false"))
-      return false;
-    storeInt(Addr, Size ? Size : 1, B);
-    return true;
-  }
-  case NativeType::Int:
-  case NativeType::Enum: {
-    std::optional<int64_t> I;
-    double D;
-    llvm::StringRef Name;
-    if (NT.TheCode == NativeType::Enum && peek('"')) {
-      if (!takeString(Name) || !NT.TheEnum)
-        return false;
-      for (const NativeEnum::Value &EV : NT.TheEnum->Values)
-        if (EV.Name == Name)
-          I = EV.Number;
-    } else if (!takeNumber(I, D)) {
-      return false;
-    }
-    if (!I)
-      return false;
-    auto [Min, Max] = getIntRange(Size ? Size : 4, NT.Unsigned);
-    if (*I < Min || *I > Max)
-      return false;
-    storeInt(Addr, Size ? Size : 4, *I);
-    return true;
-  }
-  case NativeType::Float: {
-    std::optional<int64_t> I;
-    double D;
-    llvm::StringRef Name;
-    if (peek('"')) {
-      if (!takeString(Name))
-        return false;
-      std::optional<double> Special = floatFromJSON(Value(Name));
-      if (!Special)
-        return false;
-      D = *Special;
-    } else if (!takeNumber(I, D) || !std::isfinite(float(D))) {
-      return false;
-    }
-    if (Size == 8) {
-      double X = float(D);
-      std::memcpy(Addr, &X, 8);
-    } else {
-      float F = float(D);
-      std::memcpy(Addr, &F, 4);
-    }
-    return true;
-  }
-  case NativeType::String: {
-    const char *P = nullptr;
+std::optional<Value> ValueIO::TextWalker::takeValue() {
+  char Ch = peek();
+  if (Ch == '"') {
     llvm::StringRef S;
-    if (takeString(S))
-      P = IO.Strings.insert(S.str()).first->c_str();
-    else if (!Rest.consume_front("null"))
-      return false;
-    std::memcpy(Addr, &P, sizeof P);
-    return true;
+    if (!takeString(S))
+      return std::nullopt;
+    return Value(S);
   }
-  default:
-    return false;
+  if (Ch == '-' || llvm::isDigit(Ch))
+    return takeNumber();
+  for (llvm::StringRef Word : {"true", "false", "null"})
+    if (Rest.consume_front(Word))
+      return Word == "null" ? Value(nullptr) : Value(Word == "true");
+  if (Ch != '[')
+    return std::nullopt;
+  // An array field: parsed whole (its elements are what a member of its
+  // type takes; this is rarer than scalars). The walker's text is checked
+  // JSON, so the array ends at its bracket.
+  unsigned Depth = 0;
+  bool InString = false;
+  for (size_t I = 0; I < Rest.size(); ++I) {
+    char C = Rest[I];
+    if (InString) {
+      if (C == '\\')
+        ++I;
+      else if (C == '"')
+        InString = false;
+    } else if (C == '"') {
+      InString = true;
+    } else if (C == '[' || C == '{') {
+      ++Depth;
+    } else if ((C == ']' || C == '}') && --Depth == 0) {
+      llvm::Expected<Value> V = parseJSON(Rest.take_front(I + 1));
+      Rest = Rest.drop_front(I + 1);
+      if (!V) {
+        llvm::consumeError(V.takeError());
+        return std::nullopt;
+      }
+      return std::move(*V);
+    }
   }
+  return std::nullopt;
 }
 
-bool ValueIO::TextWriter::writeNative(const NativeType &NT, void *Addr,
-                                      size_t Dim) {
-  skipSpace();
-  if (Dim < NT.Extents.size()) {
-    uint64_t Stride = getStride(NT, Dim);
-    if (!take('['))
-      return false;
-    for (uint32_t I = 0; I < NT.Extents[Dim]; ++I)
-      if ((I && !take(',')) ||
-          !writeNative(NT, static_cast<char *>(Addr) + I * Stride, Dim + 1))
-        return false;
-    return take(']');
-  }
-  if (NT.TheCode == NativeType::Class)
-    return NT.TheClass && writeClass(*NT.TheClass, Addr);
-  return writeScalar(NT, Addr);
-}
-
-bool ValueIO::TextWriter::writeMember(const NativeClass &C,
-                                      const NativeFunction &M, void *Obj) {
-  if (M.FieldOffset && !M.ReadOnly)
-    return writeNative(M.Result, static_cast<char *>(Obj) + *M.FieldOffset);
+/// A member that is a registered class held at an offset: walked into.
+static const NativeClass *getClassInPlace(const NativeFunction &M) {
   const NativeType &NT = M.Result;
-  void *Setter = IO.thunk(M.Setter);
-  // Read-only members and class-valued properties: writeClass's way.
-  if (M.ReadOnly || !Setter || NT.TheCode == NativeType::Class ||
-      !NT.Extents.empty())
-    return false;
-  alignas(8) unsigned char Wire[8] = {};
-  NativeType WireType = NT;
-  WireType.StorageSize = NT.TheCode == NativeType::String ? sizeof(void *) : 4;
-  skipSpace();
-  if (!writeScalar(WireType, Wire))
-    return false;
-  callScalarSetter(NT, Setter, Obj, Wire);
-  return true;
+  if (M.FieldOffset && !M.ReadOnly && NT.TheCode == NativeType::Class &&
+      NT.Extents.empty())
+    return NT.TheClass;
+  return nullptr;
 }
 
-bool ValueIO::TextWriter::writeClass(const NativeClass &C, void *Obj) {
-  if (!take('{'))
+bool ValueIO::writeObjectText(TextWalker &W, const NativeClass &C, void *Obj) {
+  return W.walkObject(C, [&](const NativeFunction &M) {
+    if (const NativeClass *Inner = getClassInPlace(M); Inner && W.atObject())
+      return writeObjectText(W, *Inner,
+                             static_cast<char *>(Obj) + *M.FieldOffset);
+    std::optional<Value> V = W.takeValue();
+    if (!V)
+      return false;
+    llvm::Error E = writeMember(C, M, Obj, *V, "");
+    if (!E)
+      return true;
+    llvm::consumeError(std::move(E));
     return false;
-  llvm::StringRef Previous;
-  for (bool First = true; !take('}'); First = false) {
-    llvm::StringRef Key;
-    if ((!First && !take(',')) || !takeString(Key) || !take(':'))
-      return false;
-    // writeClass goes through the keys in order (and a repeated key is
-    // the last one's): the same when they are sorted and distinct.
-    if (!First && Key <= Previous)
-      return false;
-    Previous = Key;
-    const NativeFunction *M = C.findMember(Key);
-    if (!M || !M->isData() || !writeMember(C, *M, Obj))
-      return false;
-  }
-  return true;
+  });
 }
 
 bool ValueIO::writeClassText(const NativeClass &C, void *Obj,
                              llvm::StringRef Text) {
-  TextWriter W(*this, Text);
-  return W.writeClass(C, Obj) && W.atEnd();
+  TextWalker W(*this, Text);
+  return writeObjectText(W, C, Obj) && W.atEnd();
+}
+
+bool ValueIO::matchObjectText(TextWalker &W, const NativeClass &C,
+                              const void *Obj) {
+  return W.walkObject(C, [&](const NativeFunction &M) {
+    if (const NativeClass *Inner = getClassInPlace(M); Inner && W.atObject())
+      return matchObjectText(W, *Inner,
+                             static_cast<const char *>(Obj) + *M.FieldOffset);
+    std::optional<Value> Recorded = W.takeValue();
+    return Recorded &&
+           !findDifference(*Recorded, readMember(C, M, Obj), "").has_value();
+  });
+}
+
+bool ValueIO::matchesClassText(const NativeClass &C, const void *Obj,
+                               llvm::StringRef Text) {
+  TextWalker W(*this, Text);
+  return matchObjectText(W, C, Obj) && W.atEnd();
 }

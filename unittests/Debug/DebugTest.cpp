@@ -539,23 +539,30 @@ struct FastClass {
 };
 } // namespace
 
-/// printClass writes what printJSON(readClass) writes, without the tree.
-TEST(DebugValuesTest, PrintClassIsReadClassPrinted) {
+/// matchesClassText agrees with findDifferences where it answers, without
+/// a tree of the object.
+TEST(DebugValuesTest, MatchesClassTextIsFindDifferences) {
   FastClass FC;
-  Fast O = {-7, 200, 0.1f, true, "a\"b", 5, {-1, 3}, {-0.0f}};
+  Fast O = {-7, 200, 0.1f, true, "ab", 5, {-1, 3}, {-0.0f}};
   ValueIO IO([](llvm::StringRef) -> void * { return nullptr; });
-  std::string Text;
-  llvm::raw_string_ostream OS(Text);
-  IO.printClass(OS, FC.C, &O);
-  EXPECT_EQ(toJSONString(IO.readClass(FC.C, &O)), Text);
-  EXPECT_EQ("{\"a\":[-1,3],\"b\":true,\"e\":\"on\",\"f\":0.1,\"i\":-7,"
-            "\"in\":{\"x\":-0.0},\"s\":\"a\\\"b\",\"u\":200}",
-            Text);
-  O.S = nullptr;
-  O.F = NAN;
-  Text.clear();
-  IO.printClass(OS, FC.C, &O);
-  EXPECT_EQ(toJSONString(IO.readClass(FC.C, &O)), Text);
+  std::string Text = toJSONString(IO.readClass(FC.C, &O));
+  EXPECT_TRUE(IO.matchesClassText(FC.C, &O, Text)) << Text;
+  // The same values spelled otherwise, and members left out.
+  EXPECT_TRUE(IO.matchesClassText(FC.C, &O, " { \"e\" : \"on\", \"f\":0.100000001 } "));
+  // Differences, each where findDifferences finds one.
+  for (llvm::StringRef Other :
+       {"{\"i\":-6}", "{\"in\":{\"x\":0}}", "{\"a\":[-1,4]}",
+        "{\"s\":\"ac\"}", "{\"e\":\"off\"}", "{\"b\":false}",
+        "{\"f\":0.2}", "{\"u\":null}"}) {
+    llvm::Expected<llvm::json::Value> R = llvm::json::parse(Other);
+    ASSERT_TRUE(bool(R));
+    ASSERT_FALSE(findDifferences(*R, IO.readClass(FC.C, &O), "o").empty())
+        << Other.str();
+    EXPECT_FALSE(IO.matchesClassText(FC.C, &O, Other)) << Other.str();
+  }
+  // Not the plain form: no answer (false), though the values are the same.
+  EXPECT_FALSE(IO.matchesClassText(FC.C, &O, "{\"i\":-7,\"b\":true}"));
+  EXPECT_FALSE(IO.matchesClassText(FC.C, &O, "{\"s\":\"\\u0061b\"}"));
 }
 
 /// writeClassText stores what writeClass of the parsed text stores, for
@@ -586,7 +593,7 @@ TEST(DebugValuesTest, WriteClassTextTakesTheRecordedForm) {
        {"{\"i\":1,\"f\":2}",          // keys not sorted
         "{\"i\":1,\"i\":2}",          // a key twice
         "{\"s\":\"a\\nb\"}",          // an escape
-        "{\"i\":1.0}",                // an int spelled as a float
+        "{\"i\":1.5}",                // not an int
         "{\"u\":256}",                // beyond the member
         "{\"f\":1e39}",               // beyond a float
         "{\"e\":\"dim\"}",            // no such enum value

@@ -19,7 +19,6 @@
 #define BSC_DEBUG_VALUES_H
 
 #include "bsc/AST/Type.h"
-#include "llvm/ADT/DenseMap.h"
 #include "llvm/ADT/StringMap.h"
 #include "llvm/Support/Error.h"
 #include "llvm/Support/JSON.h"
@@ -57,17 +56,18 @@ public:
   llvm::Error writeClass(const NativeClass &C, void *Obj,
                          const llvm::json::Value &V, llvm::StringRef Path);
 
-  /// A replay's fast paths, which build no tree (a replay does this every
-  /// cycle, and the trees cost more than the cycle):
-  /// printJSON(readClass(C, Obj)), written as it is read.
-  void printClass(llvm::raw_ostream &OS, const NativeClass &C,
-                  const void *Obj);
-  /// writeClass of the JSON text of an object in the form recordings have
-  /// (keys sorted, strings without escapes, numbers that fit). False where
-  /// the text is not of that form or a value does not fit, perhaps after
-  /// writing some members: writeClass of the parsed text then does the
-  /// rest and says what is wrong.
+  /// A replay's fast paths, which build no tree of the object (a replay
+  /// does this every cycle, and the trees cost more than the cycle). Both
+  /// take checked JSON text of an object in the form recordings have (keys
+  /// sorted, ASCII strings without escapes, plain numbers).
+  /// writeClass of the text. False where the text is not of that form or
+  /// a value does not fit, perhaps after writing some members: writeClass
+  /// of the parsed text then does the rest and says what is wrong.
   bool writeClassText(const NativeClass &C, void *Obj, llvm::StringRef Text);
+  /// Whether findDifferences(text, readClass(C, Obj)) is empty. False may
+  /// also mean that the text is not of that form: ask findDifferences.
+  bool matchesClassText(const NativeClass &C, const void *Obj,
+                        llvm::StringRef Text);
 
 private:
   /// A field's value; an array field's from dimension `Dim` on (nested
@@ -83,16 +83,14 @@ private:
                           void *Obj, const llvm::json::Value &V,
                           llvm::StringRef Path);
   void *thunk(llvm::StringRef Symbol);
-  /// A class's data members sorted by name, as printJSON orders them.
-  llvm::ArrayRef<const NativeFunction *> getSortedData(const NativeClass &C);
-  class TextWriter;
+  class TextWalker;
+  bool writeObjectText(TextWalker &W, const NativeClass &C, void *Obj);
+  bool matchObjectText(TextWalker &W, const NativeClass &C, const void *Obj);
 
   std::function<void *(llvm::StringRef)> Resolve;
   /// The thunks found so far: a JIT lookup costs microseconds, and a
   /// replay calls each getter and setter every cycle.
   llvm::StringMap<void *> Thunks;
-  llvm::DenseMap<const NativeClass *, std::vector<const NativeFunction *>>
-      SortedData;
   /// Strings written into values: they must outlive the values.
   std::set<std::string> Strings;
 };
