@@ -57,7 +57,7 @@ size_mb=$(du -sm "$OUT/corpus" | cut -f1)
 # timed CMD...: "SECONDS MIB" of one run: wall time and maximum resident set.
 timed() {
   /usr/bin/time -f "%e %M" -o "$OUT/time" "$@" > /dev/null
-  awk '{ printf "%s %.0f", $1, $2 / 1024 }' "$OUT/time"
+  awk '{ printf "%s %.0f\n", $1, $2 / 1024 }' "$OUT/time"
 }
 REPLAY=("$BSC" replay "${COMMON[@]}")
 RUN=("$BSC" run "${COMMON[@]}" --world "$OUT/world.so" --world-output /dev/null "$PAPER/Behavior.bs")

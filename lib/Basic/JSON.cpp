@@ -89,6 +89,17 @@ static bool isPlainNumber(llvm::StringRef T) {
   return I == N;
 }
 
+/// The bytes a string holds as they are: not a quote, a backslash, a
+/// control character or the start of a multi-byte sequence.
+static const struct PlainStringBytes {
+  bool Table[256];
+  constexpr PlainStringBytes() : Table() {
+    for (unsigned C = 0x20; C < 0x80; ++C)
+      Table[C] = C != '"' && C != '\\';
+  }
+  bool operator[](unsigned char C) const { return Table[C]; }
+} PlainStringByte;
+
 namespace {
 /// Checks JSON (RFC 8259, as llvm::json::parse reads it) without building
 /// values: one pass, no allocation for the usual numbers. It refuses text
@@ -152,6 +163,12 @@ private:
     size_t Start = ++At;
     bool ASCII = true; // Then it is UTF-8, without asking isUTF8.
     for (; At < Text.size(); ++At) {
+      // Most of a line is plain string bytes: skip them a table look-up
+      // each.
+      while (At < Text.size() && PlainStringByte[(unsigned char)Text[At]])
+        ++At;
+      if (At == Text.size())
+        return false;
       unsigned char C = Text[At];
       if (C == '"') {
         llvm::StringRef S = Text.slice(Start, At++);
@@ -185,9 +202,13 @@ private:
       return string();
     if (C == '+' || C == '-' || C == '.' || llvm::isDigit(C))
       return number();
-    for (llvm::StringRef Word : {"true", "false", "null"})
-      if (Text.substr(At).starts_with(Word))
-        return At += Word.size(), true;
+    if (C == 't' || C == 'f' || C == 'n') {
+      llvm::StringRef Word = C == 't' ? "true" : C == 'f' ? "false" : "null";
+      if (!Text.substr(At).starts_with(Word))
+        return false;
+      At += Word.size();
+      return true;
+    }
     if (C != '{' && C != '[')
       return false;
     ++At;

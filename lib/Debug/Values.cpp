@@ -209,10 +209,10 @@ std::vector<Difference> debug::findDifferences(const Value &Recorded,
 // Reading
 //===----------------------------------------------------------------------===//
 
-void *ValueIO::thunk(llvm::StringRef Symbol) {
+void *ValueIO::thunk(const std::string &Symbol) {
   if (Symbol.empty())
     return nullptr;
-  auto [It, New] = Thunks.try_emplace(Symbol, nullptr);
+  auto [It, New] = Thunks.try_emplace(&Symbol, nullptr);
   if (New)
     It->second = Resolve(Symbol);
   return It->second;

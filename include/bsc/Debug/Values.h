@@ -19,7 +19,7 @@
 #define BSC_DEBUG_VALUES_H
 
 #include "bsc/AST/Type.h"
-#include "llvm/ADT/StringMap.h"
+#include "llvm/ADT/DenseMap.h"
 #include "llvm/Support/Error.h"
 #include "llvm/Support/JSON.h"
 #include <functional>
@@ -82,15 +82,18 @@ private:
   llvm::Error writeMember(const NativeClass &C, const NativeFunction &M,
                           void *Obj, const llvm::json::Value &V,
                           llvm::StringRef Path);
-  void *thunk(llvm::StringRef Symbol);
+  /// The address of a thunk named by a member of the registry (whose
+  /// strings live as long as this).
+  void *thunk(const std::string &Symbol);
   class TextWalker;
   bool writeObjectText(TextWalker &W, const NativeClass &C, void *Obj);
   bool matchObjectText(TextWalker &W, const NativeClass &C, const void *Obj);
 
   std::function<void *(llvm::StringRef)> Resolve;
-  /// The thunks found so far: a JIT lookup costs microseconds, and a
-  /// replay calls each getter and setter every cycle.
-  llvm::StringMap<void *> Thunks;
+  /// The thunks found so far, by the registry's string of the symbol: a
+  /// JIT lookup costs microseconds (hashing the name, a tenth of that), and
+  /// a replay calls each getter and setter every cycle.
+  llvm::DenseMap<const std::string *, void *> Thunks;
   /// Strings written into values: they must outlive the values.
   std::set<std::string> Strings;
 };
