@@ -8,11 +8,13 @@
 #       --bind SoccerBindings.o -I paper --entry Behavior::gotoBallAndKick \
 #       --logs /data/runs paper/Behavior.bs
 #
-# Arguments are bsc replay's (without --shard, --junit or --jobs).
-# Environment: BSC (default: bsc on PATH), REPLAY_RESULTS (the folder of
-# the slices' JUnit files, default replay-results; one per array job, since
-# slices of another N would not add up). Outside Slurm, set
-# SLURM_ARRAY_TASK_ID and SLURM_ARRAY_TASK_COUNT to run one slice.
+# Arguments are bsc replay's (without --shard, --junit, --jobs or
+# --coverage). Environment: BSC (default: bsc on PATH), REPLAY_RESULTS (the
+# folder of the slices' files, default replay-results; one per array job,
+# since slices of another N would not add up), REPLAY_COVERAGE=1 (each
+# slice also writes its lcov tracefile, slice-K-of-N.info, which
+# `lcov -a` adds up). Outside Slurm, set SLURM_ARRAY_TASK_ID and
+# SLURM_ARRAY_TASK_COUNT to run one slice.
 #SBATCH --job-name=bsc-replay
 #SBATCH --output=replay-%A_%a.out
 set -euo pipefail
@@ -34,7 +36,9 @@ if ((K < 1 || K > N)); then
 fi
 RESULTS=${REPLAY_RESULTS:-replay-results}
 mkdir -p "$RESULTS"
+coverage=()
+[[ ${REPLAY_COVERAGE:-} == 1 ]] && coverage=(--coverage "$RESULTS/slice-$K-of-$N.info")
 # bsc takes one worker per core it may run on (Slurm's cpuset), so
 # --cpus-per-task alone sets the workers.
 exec "${BSC:-bsc}" replay --shard "$K/$N" \
-  --junit "$RESULTS/slice-$K-of-$N.xml" "$@"
+  --junit "$RESULTS/slice-$K-of-$N.xml" "${coverage[@]}" "$@"
