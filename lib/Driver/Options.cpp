@@ -126,6 +126,20 @@ bool bsc::parseTraceMode(DiagnosticEngine &Diags,
   return true;
 }
 
+bool bsc::parseRobots(DiagnosticEngine &Diags,
+                      const std::optional<std::string> &Arg,
+                      unsigned &Robots) {
+  Robots = 1;
+  if (!Arg)
+    return true;
+  if (llvm::StringRef(*Arg).getAsInteger(10, Robots) || Robots < 1 ||
+      Robots > MaxRobots) {
+    Diags.report(llvm::SMLoc(), diag::err_bad_robots) << *Arg << MaxRobots;
+    return false;
+  }
+  return true;
+}
+
 bool bsc::parseCycleLimit(DiagnosticEngine &Diags, llvm::StringRef Arg,
                           unsigned &Ms) {
   if (Arg.getAsInteger(10, Ms) || Ms > MaxCycleLimitMs) {

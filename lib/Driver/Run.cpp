@@ -58,7 +58,7 @@ static bool finishRunCoverage(Compilation &C, const LoadedBehavior &L,
 /// Loads the checked behavior into the JIT and runs its cycles.
 static int loadAndRun(Compilation &C, const RunCommandOptions &Opts,
                       const LoadOptions &LOpts, const RunOptions &ROpts,
-                      const CallableDecl &Entry,
+                      unsigned RobotCount, const CallableDecl &Entry,
                       std::optional<double> CoverageFloor) {
   auto Loaded = loadBehavior(C, Entry, LOpts);
   if (!Loaded)
@@ -77,16 +77,17 @@ static int loadAndRun(Compilation &C, const RunCommandOptions &Opts,
   if (!Opts.WorldOutput.empty() &&
       (WorldOutputFd = openWorldOutput(C, Opts.WorldOutput)) < 0)
     return finishCompilation(C);
-  auto Session = startSession(C, **Loaded);
-  if (!Session)
-    return finishWithInternalError(C, Session.takeError());
-  if (*Session)
-    (*Session)->setWorldOutput(WorldOutputFd);
-  if (*Session && (Opts.WorldLibrary.empty() ||
-                   attachWorldLibrary(C, **Loaded, **Session,
-                                      Opts.WorldLibrary, ROpts.CycleLimitMs)))
-    runBehavior(C, **Loaded, **Session, ROpts, llvm::outs());
-  // What ran until the end or the error, so a failing run still tells.
+  auto Robots = Team::start(C, **Loaded, RobotCount);
+  if (!Robots)
+    return finishWithInternalError(C, Robots.takeError());
+  if (*Robots)
+    (*Robots)->setWorldOutput(WorldOutputFd);
+  if (*Robots && (Opts.WorldLibrary.empty() ||
+                  (*Robots)->attachWorld(C, **Loaded, Opts.WorldLibrary,
+                                         ROpts.CycleLimitMs)))
+    runTeam(C, **Loaded, **Robots, ROpts, llvm::outs());
+  // What ran until the end or the error, so a failing run still tells
+  // (every robot's cycles: the robots share the JIT's counters).
   if (LOpts.Coverage)
     finishRunCoverage(C, **Loaded, Opts.Coverage, CoverageFloor);
   return finishCompilation(C);
@@ -120,6 +121,10 @@ int bsc::runCommand(Compilation &C, const FrontendOptions &FOpts,
   ROpts.RecordPath = Opts.RecordPath;
   ROpts.ReplayPath = Opts.ReplayPath;
   ROpts.PrintOutput = Opts.PrintOutput;
+  unsigned Robots;
+  OptionsOK &= parseRobots(C.Diags, Opts.Robots, Robots);
+  // Without --robots a replay runs the recording's team.
+  ROpts.RobotsFromRecording = !Opts.Robots;
   OptionsOK &= parseTraceMode(C.Diags, Opts.Trace, ROpts.Trace);
   OptionsOK &= parseCycleLimit(C.Diags, Opts.CycleLimit, ROpts.CycleLimitMs);
   uint32_t CycleBudget = 0;
@@ -133,7 +138,7 @@ int bsc::runCommand(Compilation &C, const FrontendOptions &FOpts,
     return finishCompilation(C);
   LOpts.CycleBudget = CycleBudget;
   LOpts.Coverage = !Opts.Coverage.Path.empty() || CoverageFloor;
-  return loadAndRun(C, Opts, LOpts, ROpts, *Entry, CoverageFloor);
+  return loadAndRun(C, Opts, LOpts, ROpts, Robots, *Entry, CoverageFloor);
 }
 
 /// `--shard K/N` into K and N; false after reporting.
@@ -214,6 +219,7 @@ int bsc::replCommand(Compilation &C, const FrontendOptions &FOpts,
     OK = false;
   }
   OK &= checkWorldOutputOption(C, Opts.WorldLibrary, Opts.WorldOutput);
+  OK &= parseRobots(C.Diags, Opts.Robots, ROpts.Robots);
   if (!OK)
     return finishCompilation(C);
   ROpts.Frontend = FOpts;

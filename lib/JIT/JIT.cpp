@@ -434,10 +434,18 @@ BehaviorSession::Outcome BehaviorSession::runCycle(unsigned LimitMs,
         if (WithWorld && World.Begin)
           inHook("bs_world_begin",
                  [&] { World.Begin(WorldUser, Input, Output, Cycle); });
+        if (WithWorld && World.TeamBegin)
+          inHook("bs_team_begin", [&] {
+            World.TeamBegin(TeamUser, Robot, Input, Output, Cycle);
+          });
         Entry(State);
         if (WithWorld && World.End)
           inHook("bs_world_end",
                  [&] { World.End(WorldUser, Input, Output, Cycle); });
+        if (WithWorld && World.TeamEnd)
+          inHook("bs_team_end", [&] {
+            World.TeamEnd(TeamUser, Robot, Input, Output, Cycle);
+          });
       },
       LimitMs);
 }
@@ -448,6 +456,24 @@ BehaviorSession::Outcome BehaviorSession::attachWorld(const WorldHooks &Hooks,
   return runGuardedBody(
       [&] {
         inHook("bs_world_init", [&] { WorldUser = World.Init(Input, Output); });
+        bs_state_set_user(State, WorldUser);
+      },
+      LimitMs);
+}
+
+BehaviorSession::Outcome
+BehaviorSession::attachTeamWorld(const WorldHooks &Hooks, void *Team,
+                                 unsigned Index, unsigned LimitMs) {
+  World = Hooks;
+  TeamUser = Team;
+  Robot = Index;
+  WorldUser = Team;
+  return runGuardedBody(
+      [&] {
+        if (World.TeamRobot)
+          inHook("bs_team_robot", [&] {
+            WorldUser = World.TeamRobot(Team, Index, Input, Output);
+          });
         bs_state_set_user(State, WorldUser);
       },
       LimitMs);

@@ -44,8 +44,9 @@ Repl::~Repl() {
   for (Slot &V : Variables)
     destroySlot(V);
   destroyBreakpoints();
-  // The session goes before the descriptors it writes the world's output to.
-  S.reset();
+  // The sessions go before the descriptors they write the world's output to.
+  S = nullptr;
+  Robots.reset();
   for (int Fd : {WorldOutputFd, QuietFd})
     if (Fd >= 0)
       close(Fd);
@@ -110,27 +111,29 @@ bool Repl::load(std::unique_ptr<Compilation> NewC) {
     printDiagnostics(NewC->SM, NewC->Diags.getDiagnostics(), llvm::errs());
     return false;
   }
-  auto Session = startSession(*NewC, **Loaded);
-  if (!Session || !*Session) {
-    if (!Session)
+  auto NewTeam = Team::start(*NewC, **Loaded, Opts.Robots);
+  if (!NewTeam || !*NewTeam) {
+    if (!NewTeam)
       llvm::WithColor::error(llvm::errs(), "bsc")
-          << "internal error: " << llvm::toString(Session.takeError()) << "\n";
+          << "internal error: " << llvm::toString(NewTeam.takeError()) << "\n";
     printDiagnostics(NewC->SM, NewC->Diags.getDiagnostics(), llvm::errs());
     return false;
   }
   std::unique_ptr<LoadedBehavior> NewL = std::move(*Loaded);
-  std::unique_ptr<BehaviorSession> NewS = std::move(*Session);
+  std::unique_ptr<Team> NewRobots = std::move(*NewTeam);
   auto NewValues = std::make_unique<debug::ValueIO>(
       [J = NewL->JIT.get()](llvm::StringRef Sym) { return J->lookup(Sym); });
   bool FirstLoad = !S;
-  if (S)
-    carryOver(*NewL, *NewS, *NewValues);
+  if (S) // One robot: :reload is refused for a team (oneRobot).
+    carryOver(*NewL, (*NewRobots)[0], *NewValues);
   // `:frame` stays on a task of the same name.
   std::string FrameTask = Checker && Checker->getFrame()
                               ? Checker->getFrame()->getQualifiedName()
                               : "";
   // The old session ends before its JIT, the JIT before its compilation.
-  S = std::move(NewS);
+  S = nullptr;
+  Robots = std::move(NewRobots);
+  S = &(*Robots)[Selected];
   Checker.reset();
   Values = std::move(NewValues);
   L = std::move(NewL);
@@ -213,10 +216,10 @@ bool Repl::attachWorld() {
       printDiagnostics(C->SM, C->Diags.getDiagnostics(), llvm::errs());
       return false;
     }
-    S->setWorldOutput(WorldOutputFd);
+    Robots->setWorldOutput(WorldOutputFd);
   }
   if (!Opts.WorldLibrary.empty() &&
-      !attachWorldLibrary(*C, *L, *S, Opts.WorldLibrary, Opts.CycleLimitMs)) {
+      !Robots->attachWorld(*C, *L, Opts.WorldLibrary, Opts.CycleLimitMs)) {
     printDiagnostics(C->SM, C->Diags.getDiagnostics(), llvm::errs());
     return false;
   }
@@ -229,7 +232,7 @@ bool Repl::start() {
 }
 
 void Repl::cmdReload(llvm::StringRef Args, llvm::SMLoc Loc) {
-  if (!noArgs("reload", Args, Loc))
+  if (!noArgs("reload", Args, Loc) || !oneRobot(":reload", Loc))
     return;
   std::unique_ptr<Compilation> NewC = compileFiles();
   if (!NewC || !load(std::move(NewC))) {
@@ -259,6 +262,10 @@ void Repl::requireModule(llvm::StringRef Line, llvm::SMLoc Loc) {
   if (Loaded) {
     OS << "module " << Name << " is loaded: its names are reachable as "
        << Name << "::name\n";
+    return;
+  }
+  if (!oneRobot("requires", Loc)) { // Loading a module is a :reload.
+    flushDiagnostics();
     return;
   }
   std::string Searched;

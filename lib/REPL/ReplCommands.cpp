@@ -75,11 +75,35 @@ static void collectChanges(const llvm::json::Value &Old,
     Out.push_back(Path + " = " + debug::toJSONString(New));
 }
 
+std::string Repl::cycleName(uint32_t Cycle, unsigned Robot) const {
+  std::string Name = "cycle " + std::to_string(Cycle);
+  if (Robots->size() > 1)
+    Name += ", robot " + std::to_string(Robot);
+  return Name;
+}
+
+bool Repl::oneRobot(llvm::StringRef Name, llvm::SMLoc Loc) {
+  if (Robots->size() == 1)
+    return true;
+  C->Diags.report(Loc, diag::err_repl_team_command) << Name << Robots->size();
+  return false;
+}
+
+BehaviorSession::Outcome Repl::runTeamCycle(unsigned &Broke) {
+  BehaviorSession::Outcome O;
+  for (Broke = 0; Broke < Robots->size(); ++Broke) {
+    O = (*Robots)[Broke].runCycle(Opts.CycleLimitMs);
+    if (O.K != BehaviorSession::Outcome::Completed)
+      break;
+  }
+  return O;
+}
+
 void Repl::reportStop(llvm::StringRef Why) {
   flushDiagnostics();
   uint32_t Cycle = S->getCycle();
-  OS << "stopped after cycle " << Cycle << ": " << Why << "\n"
-     << "cycle " << Cycle << ": "
+  OS << "stopped after " << cycleName(Cycle, Selected) << ": " << Why << "\n"
+     << cycleName(Cycle, Selected) << ": "
      << debug::formatTraceLine(
             L->Tables, debug::takeSnapshot(S->getState(), &S->getInfo()))
      << "\n";
@@ -90,32 +114,43 @@ StepEnd Repl::step(unsigned N, bool Report, Probe *Until) {
   Interrupted = 0;
   auto OldHandler = std::signal(SIGINT, onInterrupt);
   StepEnd End = StepEnd::Ran;
+  unsigned Team = Robots->size();
   for (unsigned I = 0; I < N; ++I) {
-    llvm::json::Value Before =
-        L->OutputClass && Report
-            ? Values->readClass(*L->OutputClass, S->getOutput())
-            : llvm::json::Value(nullptr);
+    std::vector<llvm::json::Value> Before;
+    for (unsigned K = 0; K < Team; ++K)
+      Before.push_back(L->OutputClass && Report
+                           ? Values->readClass(*L->OutputClass,
+                                               (*Robots)[K].getOutput())
+                           : llvm::json::Value(nullptr));
     uint32_t Cycle = S->getCycle() + 1;
-    bool FromHistory;
-    BehaviorSession::Outcome O = runNextCycle(FromHistory);
+    bool FromHistory = false;
+    unsigned Broke = 0;
+    // A team has no history (startHistory): its cycles always run live.
+    BehaviorSession::Outcome O =
+        Team == 1 ? runNextCycle(FromHistory) : runTeamCycle(Broke);
     if (!reportOutcome(*C, *L, O, Cycle, Opts.CycleLimitMs)) {
+      noteRobot(*C, Broke, Team);
       flushDiagnostics();
       OS << "stopped in cycle " << Cycle << "; the state is as it left it\n";
       End = StepEnd::Broken;
       break;
     }
-    if (Recording && !FromHistory) {
-      debug::printJSON(*Recording, recordCycle(*Values, *L, *S));
+    for (unsigned K = 0; K < Team && Recording && !FromHistory; ++K) {
+      llvm::json::Value Rec = recordCycle(*Values, *L, (*Robots)[K]);
+      if (Team > 1) // One file with every robot, as `bsc run --record`.
+        (*Rec.getAsObject())["robot"] = int64_t(K);
+      debug::printJSON(*Recording, Rec);
       *Recording << "\n";
       Recording->flush();
     }
-    if (Report) {
-      OS << "cycle " << Cycle;
+    for (unsigned K = 0; K < Team && Report; ++K) {
+      OS << cycleName(Cycle, K);
       if (L->OutputClass) {
         std::vector<std::string> Changes;
-        collectChanges(Before,
-                       Values->readClass(*L->OutputClass, S->getOutput()),
-                       "output", Changes);
+        collectChanges(
+            Before[K],
+            Values->readClass(*L->OutputClass, (*Robots)[K].getOutput()),
+            "output", Changes);
         OS << (Changes.empty() ? ": output unchanged"
                                : ": " + llvm::join(Changes, ", "));
       }
@@ -207,6 +242,8 @@ void Repl::cmdRecord(llvm::StringRef Args, llvm::SMLoc Loc) {
 }
 
 void Repl::cmdReplay(llvm::StringRef Args, llvm::SMLoc Loc) {
+  if (!oneRobot(":replay", Loc))
+    return;
   if (Args.empty()) {
     C->Diags.report(Loc, diag::err_repl_missing_argument)
         << "replay" << "a file name";
@@ -262,15 +299,30 @@ void Repl::cmdQuiet(llvm::StringRef Args, llvm::SMLoc Loc) {
   if (Args.empty() || Args == "on") {
     if (QuietFd < 0)
       QuietFd = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
-    S->setWorldOutput(QuietFd);
+    Robots->setWorldOutput(QuietFd);
     OS << "the world's output is discarded\n";
   } else if (Args == "off") {
-    S->setWorldOutput(WorldOutputFd);
+    Robots->setWorldOutput(WorldOutputFd);
     OS << "the world's output goes to "
        << (WorldOutputFd < 0 ? "standard output" : Opts.WorldOutput) << "\n";
   } else {
     C->Diags.report(Loc, diag::err_repl_extra_argument) << "quiet" << Args;
   }
+}
+
+void Repl::cmdRobot(llvm::StringRef Args, llvm::SMLoc Loc) {
+  unsigned K;
+  if (!Args.empty()) {
+    if (Args.getAsInteger(10, K) || K >= Robots->size()) {
+      C->Diags.report(Loc, diag::err_repl_bad_robot)
+          << Robots->size() - 1 << Args;
+      return;
+    }
+    Selected = K;
+    S = &(*Robots)[K];
+  }
+  OS << "robot " << Selected << " of " << Robots->size()
+     << ": lines, :tasks, breakpoints and watches follow it\n";
 }
 
 void Repl::cmdGraph(llvm::StringRef Args, llvm::SMLoc Loc) {
@@ -394,6 +446,10 @@ llvm::ArrayRef<Repl::CommandInfo> Repl::getCommands() {
        "the conditions TASK (or every task) evaluated in the last cycle, "
        "with their values, and the yield it stopped at",
        &Repl::cmdWhy},
+      {"robot", "[K]",
+       "show robot K of a team (--robots N, from 0): lines, :tasks, "
+       "breakpoints and watches follow it",
+       &Repl::cmdRobot},
       {"help", "", "this list", &Repl::cmdHelp},
       {"quit", "", "leave (so does the end of input)", nullptr},
   };

@@ -136,6 +136,15 @@ private:
   void cmdWhy(llvm::StringRef Args, llvm::SMLoc Loc); // ReplWhy.cpp
   void cmdFrame(llvm::StringRef Args, llvm::SMLoc Loc);
   void cmdQuiet(llvm::StringRef Args, llvm::SMLoc Loc);
+  void cmdRobot(llvm::StringRef Args, llvm::SMLoc Loc);
+  /// Reports command `Name` for a team, which it cannot follow (it needs
+  /// one state: time travel, `:why`'s log, `:reload`); true for one robot.
+  bool oneRobot(llvm::StringRef Name, llvm::SMLoc Loc);
+  /// Runs the next cycle of every robot in index order; at the first that
+  /// does not complete, stops with its outcome and index in `Broke`.
+  BehaviorSession::Outcome runTeamCycle(unsigned &Broke);
+  /// "cycle N" and, for a team, ", robot K".
+  std::string cycleName(uint32_t Cycle, unsigned Robot) const;
 
   // Time travel (ReplTime.cpp).
   void cmdGoto(llvm::StringRef Args, llvm::SMLoc Loc);
@@ -218,7 +227,11 @@ private:
   // types and natives they refer to.
   std::unique_ptr<Compilation> C;
   std::unique_ptr<LoadedBehavior> L;
-  std::unique_ptr<BehaviorSession> S;
+  /// The robots (`--robots N`; one without it) and the one the prompt
+  /// shows (`:robot K`): lines, `:tasks`, breakpoints and watches follow it.
+  std::unique_ptr<Team> Robots;
+  BehaviorSession *S = nullptr;
+  unsigned Selected = 0;
   std::unique_ptr<ReplChecker> Checker;
   std::unique_ptr<debug::ValueIO> Values;
   std::vector<Slot> Variables;

@@ -47,6 +47,10 @@ static std::string whyNotBytes(const NativeClass *NC, const std::string &What) {
 void Repl::startHistory() {
   History.reset();
   NoHistory.clear();
+  if (Robots->size() > 1) { // :goto, :back and :history say so (oneRobot).
+    NoHistory = "it runs a team";
+    return;
+  }
   for (const BehaviorLayout::Task &T : L->Layout.Tasks)
     for (const BehaviorLayout::FrameField &F : T.Fields)
       if (NoHistory.empty())
@@ -168,6 +172,8 @@ bool Repl::checkInHistory(long long Cycle, bool Forward, llvm::SMLoc Loc) {
 }
 
 void Repl::cmdGoto(llvm::StringRef Args, llvm::SMLoc Loc) {
+  if (!oneRobot(":goto", Loc))
+    return;
   uint32_t Target;
   if (!parseCycle(Args, Target)) {
     C->Diags.report(Loc, diag::err_repl_missing_argument)
@@ -186,6 +192,8 @@ void Repl::cmdGoto(llvm::StringRef Args, llvm::SMLoc Loc) {
 }
 
 void Repl::cmdBack(llvm::StringRef Args, llvm::SMLoc Loc) {
+  if (!oneRobot(":back", Loc))
+    return;
   unsigned N = parseCount("back", Args, 1, Loc);
   if (!N || !checkHistory(Loc))
     return;
@@ -197,6 +205,8 @@ void Repl::cmdBack(llvm::StringRef Args, llvm::SMLoc Loc) {
 }
 
 void Repl::cmdHistory(llvm::StringRef Args, llvm::SMLoc Loc) {
+  if (!oneRobot(":history", Loc))
+    return;
   if (Args.empty()) {
     C->Diags.report(Loc, diag::err_repl_missing_argument)
         << "history" << "an expression";

@@ -287,6 +287,10 @@ std::vector<int> whyOrder(const CycleLog &Log, const debug::ActiveTree &Tree) {
 } // namespace
 
 void Repl::cmdWhy(llvm::StringRef Args, llvm::SMLoc Loc) {
+  // The log of conditions is the JIT's, one for the last cycle run: with
+  // a team, the last robot's.
+  if (!oneRobot(":why", Loc))
+    return;
   // The entry may be a func: its conditions have no task around them.
   bool EntryIsFunc = !llvm::isa<TaskDecl>(L->Entry);
   std::optional<int> Wanted;

@@ -2,8 +2,8 @@
 //
 // The same path serves `bsc run` and the REPL: generate the behavior for
 // the host with probes (CodeGenOptions::Probes), link the standard modules
-// and bindings as a program links them, start a session and attach a world
-// library to it.
+// and bindings as a program links them, start a session (Team.cpp starts
+// a team of them and attaches a world library).
 //
 //===----------------------------------------------------------------------===//
 #include "bsc/Run/Run.h"
@@ -11,7 +11,6 @@
 #include "bsc/CodeGen/Target.h"
 #include "llvm/ADT/StringSet.h"
 #include "llvm/Demangle/Demangle.h"
-#include "llvm/Support/DynamicLibrary.h"
 #include "llvm/Support/FileSystem.h"
 
 using namespace bsc;
@@ -137,38 +136,6 @@ bsc::startSession(Compilation &C, LoadedBehavior &L) {
   if (E)
     return E;
   return nullptr;
-}
-
-bool bsc::attachWorldLibrary(Compilation &C, const LoadedBehavior &L,
-                             BehaviorSession &S, llvm::StringRef Path,
-                             unsigned LimitMs) {
-  // By absolute path, as --bind loads a library: dlopen looks for a bare
-  // name in the library path, not in the current folder.
-  llvm::SmallString<256> Abs(Path);
-  llvm::sys::fs::make_absolute(Abs);
-  std::string Err;
-  llvm::sys::DynamicLibrary Lib =
-      llvm::sys::DynamicLibrary::getPermanentLibrary(Abs.c_str(), &Err);
-  if (!Lib.isValid()) {
-    C.Diags.report(llvm::SMLoc(), diag::err_world_load) << Path << Err;
-    return false;
-  }
-  WorldHooks H;
-  auto Find = [&](const char *Name, auto &Slot, bool Required) {
-    Slot = reinterpret_cast<std::remove_reference_t<decltype(Slot)>>(
-        Lib.getAddressOfSymbol(Name));
-    if (!Slot && Required)
-      C.Diags.report(llvm::SMLoc(), diag::err_world_missing_hook)
-          << Path << Name;
-    return Slot || !Required;
-  };
-  bool OK = Find("bs_world_init", H.Init, true);
-  OK &= Find("bs_world_begin", H.Begin, true);
-  Find("bs_world_end", H.End, false);
-  Find("bs_world_exit", H.Exit, false);
-  if (!OK)
-    return false;
-  return reportOutcome(C, L, S.attachWorld(H, LimitMs), 0, LimitMs);
 }
 
 int bsc::openWorldOutput(Compilation &C, llvm::StringRef Path) {

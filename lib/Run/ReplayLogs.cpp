@@ -77,16 +77,16 @@ static llvm::Expected<LogResult> replayOne(Compilation &C, LoadedBehavior &L,
   LogResult R;
   LogSources Sources(C.SM);
   auto Start = std::chrono::steady_clock::now();
-  auto S = startSession(C, L);
-  if (!S)
-    return S.takeError();
-  if (*S) {
+  auto T = Team::start(C, L, 1);
+  if (!T)
+    return T.takeError();
+  if (*T) {
     RunOptions Run;
     Run.ReplayPath = Path;
     Run.CycleLimitMs = Opts.CycleLimitMs;
-    R.Passed = runBehavior(C, L, **S, Run, llvm::nulls()) &&
-               !C.Diags.hasErrors();
-    R.Cycles = (*S)->getCycle();
+    Run.RobotsFromRecording = true; // A team's log replays its team.
+    R.Passed = runTeam(C, L, **T, Run, llvm::nulls()) && !C.Diags.hasErrors();
+    R.Cycles = (**T)[0].getCycle();
   }
   R.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() -
                                             Start)

@@ -66,10 +66,44 @@ bool ReplayReader::read(llvm::StringRef Raw, ReplayLine &Line) {
         continue;
       }
       (Key == "input" ? Line.Input : Line.Output) = Value;
+    } else if (Key == "robot") {
+      unsigned Robot = 0;
+      if (Value.trim().getAsInteger(10, Robot)) {
+        C.Diags.report(Line.Loc, diag::err_replay_value)
+            << "'robot' must be a robot's number, 0 or more";
+        OK = false;
+      }
+      Line.Robot = Robot;
     } else if (Key != "cycle" && Key != "tasks") {
       C.Diags.report(Line.Loc, diag::err_replay_unknown_key) << Key;
       OK = false;
     }
   }
   return OK;
+}
+
+/// The `robot` member of a line, if it has one that is a number.
+static std::optional<unsigned> findRobot(llvm::StringRef Raw) {
+  std::optional<unsigned> Robot;
+  isJSON(Raw, [&](llvm::StringRef Key, llvm::StringRef Value) {
+    unsigned N;
+    if (Key == "robot" && !Value.trim().getAsInteger(10, N))
+      Robot = N;
+  });
+  return Robot;
+}
+
+unsigned ReplayReader::countRobots() const {
+  unsigned Robots = 0;
+  for (llvm::StringRef Rest = this->Rest; !Rest.empty();) {
+    auto [Raw, After] = Rest.split('\n');
+    Rest = After;
+    if (Raw.trim().empty())
+      continue;
+    std::optional<unsigned> Robot = findRobot(Raw);
+    if (!Robot || *Robot != Robots)
+      break;
+    ++Robots;
+  }
+  return std::max(Robots, 1u);
 }

@@ -15,6 +15,8 @@ struct ReplayLine {
   /// text, and parses them only where the text is not the plain form a
   /// recording has (Runner.cpp).
   llvm::StringRef Input, Output;
+  /// A team recording's `robot` (docs/repl.md "A team in one process").
+  std::optional<unsigned> Robot;
 };
 
 /// Reads a JSONL replay file a line at a time, as its cycles come: the
@@ -32,6 +34,10 @@ public:
   /// (failed()).
   bool next(ReplayLine &Line);
   bool failed() const { return Failed; }
+  /// How many robots the recording's first cycle has lines for: its
+  /// leading lines with `robot` 0, 1, ... (1 without `robot`). Reads
+  /// ahead without moving on.
+  unsigned countRobots() const;
 
 private:
   bool read(llvm::StringRef Raw, ReplayLine &Line);

@@ -1,9 +1,11 @@
 //===- Runner.cpp - `bsc run`: cycles, with trace, record and replay ------===//
 //
-// Runs cycles of a session under its guard. Everything printed about the
-// behavior (traces, outputs, recordings) goes through bsc/Debug; a replay
-// (ReplayReader.h) writes each line's inputs before the cycle and
-// compares its outputs after it.
+// Runs cycles of a session, or of each robot of a team in index order,
+// under its guard. Everything printed about the behavior (traces, outputs,
+// recordings) goes through bsc/Debug; a replay (ReplayReader.h) writes
+// each line's inputs before the cycle and compares its outputs after it.
+// A team's lines carry `robot` (docs/repl.md "A team in one process"):
+// a recording has one line per robot and cycle, robots in index order.
 //
 //===----------------------------------------------------------------------===//
 #include "ReplayReader.h"
@@ -48,78 +50,150 @@ static bool reportMismatch(Compilation &C, const ReplayLine &Line,
 }
 
 namespace {
-/// One `bsc run`: its replay lines and recording file, and what it has
-/// seen so far (the first cycle a budget ran out in, the entry's failure).
-class CycleRunner {
-public:
-  CycleRunner(Compilation &C, LoadedBehavior &L, BehaviorSession &S,
-              const RunOptions &Opts, llvm::raw_ostream &OS)
-      : C(C), L(L), S(S), Opts(Opts), OS(OS), Traces(Opts.Trace),
-        Values([&L](llvm::StringRef Sym) { return L.JIT->lookup(Sym); }) {}
-
-  /// Opens the replay file and the recording. False after reporting.
-  bool open();
-  /// Runs the cycles the options ask for. False after reporting.
-  bool run();
-
-private:
-  /// Runs one cycle, fed by `Line` if replaying. False after reporting.
-  bool runCycle(const ReplayLine *Line);
-  /// The line's input into the input object. False after reporting.
-  bool writeInput(const ReplayLine &Line);
-  /// Whether the output object holds the line's output; if not, reports
-  /// the differences.
-  bool checkOutput(const ReplayLine &Line, uint32_t Cycle);
-  /// The trace line, the output line and the recording of the cycle just
-  /// run, each only if asked for.
-  void writeCycle(const llvm::json::Value &Rec, const llvm::json::Value &Out);
-  /// Warns once, at the first cycle the entry task ends in failure.
-  void checkEntryFailed(uint32_t Cycle);
-  /// `--record`: keeps the file (even after a mismatch, to compare).
-  void keepRecording() {
-    if (Record)
-      Record->keep();
-  }
-
-  Compilation &C;
-  LoadedBehavior &L;
-  BehaviorSession &S;
-  const RunOptions &Opts;
-  llvm::raw_ostream &OS;
+/// What a run follows of one robot.
+struct RobotRun {
+  explicit RobotRun(BehaviorSession *S, debug::TraceMode Mode)
+      : S(S), Traces(Mode) {}
+  BehaviorSession *S;
   debug::TraceFilter Traces;
-  debug::ValueIO Values;
-  std::optional<ReplayReader> Replay;
+  /// `--record` with `%r`: the robot's own file.
   std::unique_ptr<llvm::ToolOutputFile> Record;
-  /// The entry task's place in the task table, whose state tells a failure.
-  std::optional<unsigned> EntryIndex;
   bool ReportedFailure = false;
   /// `--cycle-budget`: the first cycle that ran out, and how many did.
   std::optional<std::pair<uint32_t, const bs_loop_info *>> FirstRanOut;
   unsigned RanOut = 0;
 };
+
+/// One `bsc run` of one robot or a team: its replay lines and recording
+/// files, and what it has seen of each robot so far (the first cycle a
+/// budget ran out in, the entry's failure).
+class CycleRunner {
+public:
+  /// `T`, if given, can grow to the size of a team recording.
+  CycleRunner(Compilation &C, LoadedBehavior &L, Team *T,
+              llvm::ArrayRef<BehaviorSession *> Sessions,
+              const RunOptions &Opts, llvm::raw_ostream &OS)
+      : C(C), L(L), T(T), Opts(Opts), OS(OS),
+        Values([&L](llvm::StringRef Sym) { return L.JIT->lookup(Sym); }) {
+    for (BehaviorSession *S : Sessions)
+      Robots.emplace_back(S, Opts.Trace);
+  }
+
+  /// Opens the replay file and the recordings. False after reporting.
+  bool open();
+  /// Runs the cycles the options ask for. False after reporting.
+  bool run();
+
+private:
+  bool openReplay();
+  bool openRecordings();
+  /// `--cycles N`: every robot N cycles.
+  bool runCycles();
+  /// Every line of the replay, each robot's in turn.
+  bool replay();
+  /// Runs one cycle of robot `K`, fed by `Line` if replaying. False after
+  /// reporting.
+  bool runCycle(unsigned K, const ReplayLine *Line);
+  /// The line's input into `S`'s input object. False after reporting.
+  bool writeInput(BehaviorSession &S, const ReplayLine &Line);
+  /// Whether `S`'s output object holds the line's output; if not, reports
+  /// the differences.
+  bool checkOutput(BehaviorSession &S, const ReplayLine &Line,
+                   uint32_t Cycle);
+  /// The trace line, the output line and the recording of the cycle robot
+  /// `K` just ran, each only if asked for.
+  void writeCycle(unsigned K, llvm::json::Value Rec,
+                  const llvm::json::Value &Out);
+  /// Warns once per robot, at the first cycle its entry task ends in
+  /// failure.
+  void checkEntryFailed(unsigned K, uint32_t Cycle);
+  /// `--record`: keeps the files (even after a mismatch, to compare).
+  void keepRecordings();
+  bool isTeam() const { return Robots.size() > 1; }
+  bool recording() const {
+    return Record || (!Robots.empty() && Robots[0].Record);
+  }
+
+  Compilation &C;
+  LoadedBehavior &L;
+  Team *T;
+  const RunOptions &Opts;
+  llvm::raw_ostream &OS;
+  debug::ValueIO Values;
+  std::vector<RobotRun> Robots;
+  std::optional<ReplayReader> Replay;
+  /// `--record` without `%r`: every robot's lines.
+  std::unique_ptr<llvm::ToolOutputFile> Record;
+  /// The entry task's place in the task table, whose state tells a failure.
+  std::optional<unsigned> EntryIndex;
+  /// A cycle broke off (a crash, a hang, input it could not take): its
+  /// recording is not kept.
+  bool Broken = false;
+};
 } // namespace
 
-bool CycleRunner::open() {
-  if (!Opts.ReplayPath.empty()) {
-    if (Opts.CyclesGiven) {
-      C.Diags.report(llvm::SMLoc(), diag::err_conflicting_options)
-          << "--cycles" << "--replay";
-      return false;
-    }
-    Replay.emplace(C, L);
-    if (!Replay->open(Opts.ReplayPath))
-      return false;
+bool CycleRunner::openReplay() {
+  if (Opts.CyclesGiven) {
+    C.Diags.report(llvm::SMLoc(), diag::err_conflicting_options)
+        << "--cycles" << "--replay";
+    return false;
   }
-  if (!Opts.RecordPath.empty()) {
+  Replay.emplace(C, L);
+  if (!Replay->open(Opts.ReplayPath))
+    return false;
+  unsigned Recorded = Replay->countRobots();
+  if (Opts.RobotsFromRecording && T && Recorded > Robots.size()) {
+    if (!T->grow(C, L, Recorded))
+      return false;
+    for (unsigned K = Robots.size(); K < Recorded; ++K)
+      Robots.emplace_back(&(*T)[K], Opts.Trace);
+  }
+  if (Recorded != Robots.size()) {
+    C.Diags.report(llvm::SMLoc(), diag::err_replay_robot_count)
+        << Opts.ReplayPath << Recorded << unsigned(Robots.size());
+    return false;
+  }
+  return true;
+}
+
+/// `--record` path `Path` with each `%r` replaced by robot `K`'s number.
+static std::string robotPath(llvm::StringRef Path, unsigned K) {
+  std::string File;
+  for (;;) {
+    auto [Before, After] = Path.split("%r");
+    File += Before.str();
+    if (Before.size() == Path.size()) // No `%r` left.
+      return File;
+    File += std::to_string(K);
+    Path = After;
+  }
+}
+
+bool CycleRunner::openRecordings() {
+  llvm::StringRef Path = Opts.RecordPath;
+  auto Open = [&](const std::string &File,
+                  std::unique_ptr<llvm::ToolOutputFile> &Into) {
     std::error_code EC;
-    Record = std::make_unique<llvm::ToolOutputFile>(Opts.RecordPath, EC,
-                                                    llvm::sys::fs::OF_Text);
-    if (EC) {
+    Into = std::make_unique<llvm::ToolOutputFile>(File, EC,
+                                                  llvm::sys::fs::OF_Text);
+    if (EC)
       C.Diags.report(llvm::SMLoc(), diag::err_cannot_write_output)
-          << Opts.RecordPath << EC.message();
+          << File << EC.message();
+    return !EC;
+  };
+  if (!Path.contains("%r"))
+    return Open(Path.str(), Record);
+  for (unsigned K = 0; K < Robots.size(); ++K)
+    if (!Open(robotPath(Path, K), Robots[K].Record))
       return false;
-    }
-  }
+  return true;
+}
+
+bool CycleRunner::open() {
+  if (!Opts.ReplayPath.empty() && !openReplay())
+    return false;
+  if (!Opts.RecordPath.empty() && !openRecordings())
+    return false;
   const TaskDecl *EntryTask = llvm::dyn_cast<TaskDecl>(L.Entry);
   for (unsigned T = 0; T < L.Layout.Tasks.size(); ++T)
     if (L.Layout.Tasks[T].Decl == EntryTask)
@@ -128,25 +202,60 @@ bool CycleRunner::open() {
 }
 
 bool CycleRunner::run() {
-  ReplayLine Line;
-  for (unsigned I = 0; Replay ? Replay->next(Line) : I < Opts.Cycles; ++I) {
-    if (!runCycle(Replay ? &Line : nullptr))
-      return false;
-    if (Opts.StopAfterCycle && Opts.StopAfterCycle())
-      break;
-  }
-  if (Replay && Replay->failed()) {
-    keepRecording();
+  bool OK = Replay ? replay() : runCycles();
+  keepRecordings();
+  if (!OK)
     return false;
-  }
-  if (FirstRanOut)
-    reportBudgetRanOut(C, L, S, FirstRanOut->first, *FirstRanOut->second,
-                       RanOut);
-  keepRecording();
+  for (unsigned K = 0; K < Robots.size(); ++K)
+    if (const RobotRun &R = Robots[K]; R.FirstRanOut) {
+      reportBudgetRanOut(C, L, *R.S, R.FirstRanOut->first,
+                         *R.FirstRanOut->second, R.RanOut);
+      noteRobot(C, K, Robots.size());
+    }
   return true;
 }
 
-bool CycleRunner::writeInput(const ReplayLine &Line) {
+bool CycleRunner::runCycles() {
+  for (unsigned I = 0; I < Opts.Cycles; ++I) {
+    for (unsigned K = 0; K < Robots.size(); ++K)
+      if (!runCycle(K, nullptr))
+        return false;
+    if (Opts.StopAfterCycle && Opts.StopAfterCycle())
+      break;
+  }
+  return true;
+}
+
+bool CycleRunner::replay() {
+  ReplayLine Line;
+  unsigned Next = 0; // The robot whose line comes next.
+  while (Replay->next(Line)) {
+    unsigned Robot = Line.Robot.value_or(0);
+    if (Robot != Next || (isTeam() && !Line.Robot)) {
+      std::string Found = Line.Robot
+                              ? "robot " + std::to_string(*Line.Robot) + "'s"
+                              : "one without 'robot'";
+      C.Diags.report(Line.Loc, diag::err_replay_robot_order)
+          << Robots[Next].S->getCycle() + 1 << Next << Found;
+      return false;
+    }
+    if (!runCycle(Next, &Line))
+      return false;
+    Next = (Next + 1) % Robots.size();
+    if (Next == 0 && Opts.StopAfterCycle && Opts.StopAfterCycle())
+      return true;
+  }
+  if (Replay->failed())
+    return false;
+  if (Next != 0) {
+    C.Diags.report(llvm::SMLoc(), diag::err_replay_team_ends)
+        << Next - 1 << Robots[Next - 1].S->getCycle() << Next;
+    return false;
+  }
+  return true;
+}
+
+bool CycleRunner::writeInput(BehaviorSession &S, const ReplayLine &Line) {
   // A recording's text is written as it is read; anything else (and any
   // mistake, for its message) goes through a tree. A setter the fast path
   // called before it gave up is then called once more, with the same value.
@@ -164,7 +273,8 @@ bool CycleRunner::writeInput(const ReplayLine &Line) {
   return true;
 }
 
-bool CycleRunner::checkOutput(const ReplayLine &Line, uint32_t Cycle) {
+bool CycleRunner::checkOutput(BehaviorSession &S, const ReplayLine &Line,
+                              uint32_t Cycle) {
   // Compared member by member along the text; only a difference (or text
   // of another form) builds trees, which name the differences.
   if (Values.matchesClassText(*L.OutputClass, S.getOutput(), Line.Output))
@@ -176,70 +286,107 @@ bool CycleRunner::checkOutput(const ReplayLine &Line, uint32_t Cycle) {
                          Values.readClass(*L.OutputClass, S.getOutput()));
 }
 
-bool CycleRunner::runCycle(const ReplayLine *Line) {
+bool CycleRunner::runCycle(unsigned K, const ReplayLine *Line) {
+  BehaviorSession &S = *Robots[K].S;
   uint32_t Cycle = S.getCycle() + 1;
-  if (Line && !Line->Input.empty() && !writeInput(*Line))
+  if (Line && !Line->Input.empty() && !writeInput(S, *Line)) {
+    Broken = true;
     return false;
+  }
   BehaviorSession::Outcome O = S.runCycle(Opts.CycleLimitMs);
-  if (!reportOutcome(C, L, O, Cycle, Opts.CycleLimitMs))
+  if (!reportOutcome(C, L, O, Cycle, Opts.CycleLimitMs)) {
+    noteRobot(C, K, Robots.size());
+    Broken = true;
     return false;
+  }
+  RobotRun &R = Robots[K];
   if (const bs_loop_info *Loop = bs_budget_ran_out(S.getState(), &S.getInfo())) {
-    ++RanOut;
-    if (!FirstRanOut)
-      FirstRanOut = {Cycle, Loop};
+    ++R.RanOut;
+    if (!R.FirstRanOut)
+      R.FirstRanOut = {Cycle, Loop};
   }
 
   // The objects are read as JSON only for what asks for them: a plain
   // run of many cycles does no more than the robot would.
-  llvm::json::Value Rec = Record ? recordCycle(Values, L, S) : nullptr;
+  llvm::json::Value Rec = recording() ? recordCycle(Values, L, S) : nullptr;
   llvm::json::Value Out = nullptr;
-  if (Record && L.OutputClass)
+  if (recording() && L.OutputClass)
     Out = *Rec.getAsObject()->get("output");
   else if (L.OutputClass && Opts.PrintOutput)
     Out = Values.readClass(*L.OutputClass, S.getOutput());
-  writeCycle(Rec, Out);
-  checkEntryFailed(Cycle);
-  if (Line && !Line->Output.empty() && !checkOutput(*Line, Cycle)) {
-    keepRecording();
+  writeCycle(K, std::move(Rec), Out);
+  checkEntryFailed(K, Cycle);
+  if (Line && !Line->Output.empty() && !checkOutput(S, *Line, Cycle)) {
+    noteRobot(C, K, Robots.size());
     return false;
   }
   return true;
 }
 
-void CycleRunner::writeCycle(const llvm::json::Value &Rec,
+void CycleRunner::writeCycle(unsigned K, llvm::json::Value Rec,
                              const llvm::json::Value &Out) {
-  int64_t Cycle = S.getCycle();
+  RobotRun &R = Robots[K];
+  int64_t Cycle = R.S->getCycle();
+  // A team's lines name the robot: `cycle 3, robot 1: ...`, "robot":1.
+  std::string Robot = isTeam() ? ", robot " + std::to_string(K) : "";
   if (Opts.Trace != debug::TraceMode::Off) {
     std::string Trace = debug::formatTraceLine(
-        L.Tables, debug::takeSnapshot(S.getState(), &S.getInfo()));
-    if (Traces.shouldPrint(Trace))
-      OS << "cycle " << Cycle << ": " << Trace << "\n";
+        L.Tables, debug::takeSnapshot(R.S->getState(), &R.S->getInfo()));
+    if (R.Traces.shouldPrint(Trace))
+      OS << "cycle " << Cycle << Robot << ": " << Trace << "\n";
   }
   if (Opts.PrintOutput && L.OutputClass) {
-    debug::printJSON(OS, llvm::json::Object{{"cycle", Cycle}, {"output", Out}});
+    llvm::json::Object Line{{"cycle", Cycle}, {"output", Out}};
+    if (isTeam())
+      Line["robot"] = int64_t(K);
+    debug::printJSON(OS, std::move(Line));
     OS << "\n";
   }
   OS.flush();
-  if (Record) {
+  if (R.Record) {
+    debug::printJSON(R.Record->os(), Rec);
+    R.Record->os() << "\n";
+  } else if (Record) {
+    if (isTeam())
+      (*Rec.getAsObject())["robot"] = int64_t(K);
     debug::printJSON(Record->os(), Rec);
     Record->os() << "\n";
   }
 }
 
-void CycleRunner::checkEntryFailed(uint32_t Cycle) {
-  if (!EntryIndex || ReportedFailure)
+void CycleRunner::checkEntryFailed(unsigned K, uint32_t Cycle) {
+  RobotRun &R = Robots[K];
+  if (!EntryIndex || R.ReportedFailure)
     return;
   int32_t State =
-      bs_task_state_at(S.getState(), &S.getInfo().tasks[*EntryIndex]);
+      bs_task_state_at(R.S->getState(), &R.S->getInfo().tasks[*EntryIndex]);
   if (State < 0) {
     C.Diags.report(L.Entry->getLoc(), diag::warn_entry_failed)
         << L.Entry->getQualifiedName() << State << Cycle;
-    ReportedFailure = true;
+    noteRobot(C, K, Robots.size());
+    R.ReportedFailure = true;
   }
+}
+
+void CycleRunner::keepRecordings() {
+  if (Broken)
+    return;
+  if (Record)
+    Record->keep();
+  for (RobotRun &R : Robots)
+    if (R.Record)
+      R.Record->keep();
 }
 
 bool bsc::runBehavior(Compilation &C, LoadedBehavior &L, BehaviorSession &S,
                       const RunOptions &Opts, llvm::raw_ostream &OS) {
-  CycleRunner Runner(C, L, S, Opts, OS);
+  BehaviorSession *One = &S;
+  CycleRunner Runner(C, L, nullptr, One, Opts, OS);
+  return Runner.open() && Runner.run();
+}
+
+bool bsc::runTeam(Compilation &C, LoadedBehavior &L, Team &T,
+                  const RunOptions &Opts, llvm::raw_ostream &OS) {
+  CycleRunner Runner(C, L, &T, T.getSessions(), Opts, OS);
   return Runner.open() && Runner.run();
 }

@@ -114,6 +114,12 @@ cl::opt<std::string> WorldOutput(
     cl::desc("Write what the --world library prints to this file instead of "
              "standard output"),
     cl::value_desc("file"), BSC_JIT);
+cl::opt<std::string> RobotsArg(
+    "robots",
+    cl::desc("Run a team: N states of the behavior in one process, each "
+             "with its own input, output and user pointer, stepped in "
+             "index order each cycle (default 1)"),
+    cl::value_desc("N"), BSC_JIT);
 cl::opt<std::string> BatchFile(
     "batch",
     cl::desc("Read the REPL's lines from this file, without a prompt (also "
@@ -340,6 +346,7 @@ RunCommandOptions getRunOptions() {
   Opts.DebugInfo = DebugInfo;
   Opts.WorldLibrary = WorldLibrary;
   Opts.WorldOutput = WorldOutput;
+  Opts.Robots = given(RobotsArg);
   return Opts;
 }
 
@@ -351,6 +358,7 @@ ReplCommandOptions getReplOptions() {
   Opts.BatchFile = BatchFile;
   Opts.WorldLibrary = WorldLibrary;
   Opts.WorldOutput = WorldOutput;
+  Opts.Robots = given(RobotsArg);
   Opts.DebugInfo = DebugInfo;
   return Opts;
 }

@@ -50,6 +50,8 @@ constexpr unsigned MaxCycles = 100000000;
 /// Limit of --cycle-limit in milliseconds: a day. Anything longer is a
 /// typo, and itimer values must stay small.
 constexpr unsigned MaxCycleLimitMs = 86400000;
+/// The most robots `--robots` runs in one process.
+constexpr unsigned MaxRobots = 1000;
 
 /// Prints the diagnostics of `C` (with `Verify`, checks them against the
 /// sources' `# expected-...` comments instead) and returns the exit status.
@@ -97,6 +99,11 @@ bool parseCycleBudget(DiagnosticEngine &Diags,
 bool parseTraceMode(DiagnosticEngine &Diags,
                     const std::optional<std::string> &Arg,
                     debug::TraceMode &Mode);
+
+/// `--robots N` into N (1 if not given); false after reporting a value
+/// that is not a number from 1 to MaxRobots.
+bool parseRobots(DiagnosticEngine &Diags,
+                 const std::optional<std::string> &Arg, unsigned &Robots);
 
 /// Checks --cycle-limit; reports and returns false if it is bad.
 bool parseCycleLimit(DiagnosticEngine &Diags, llvm::StringRef Arg,
@@ -236,6 +243,7 @@ struct RunCommandOptions {
   bool PrintOutput = false, DebugInfo = false;
   std::string WorldLibrary, WorldOutput;
   CoverageArgs Coverage;
+  std::optional<std::string> Robots; ///< --robots N, if given.
 };
 
 /// `bsc run`: the behavior in the host JIT, --cycles calls of --entry.
@@ -261,6 +269,7 @@ int replayCommand(Compilation &C, const FrontendOptions &FOpts,
 struct ReplCommandOptions {
   BackendArgs Backend;
   std::string EntryName, CycleLimit, BatchFile, WorldLibrary, WorldOutput;
+  std::optional<std::string> Robots; ///< --robots N, if given.
   bool DebugInfo = false;
 };
 

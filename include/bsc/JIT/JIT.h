@@ -159,6 +159,19 @@ struct WorldHooks {
   void (*End)(void *User, const void *Input, void *Output,
               uint32_t Cycle) = nullptr;
   void (*Exit)(void *User) = nullptr;
+  /// A team world (bscript/world.h, `--robots N`): one library simulates
+  /// every robot. TeamInit's result is the team's pointer, which the other
+  /// team hooks get with the robot's index (0 to N-1); TeamRobot, if any,
+  /// gives each robot's user pointer (else the team's).
+  void *(*TeamInit)(unsigned Robots) = nullptr;
+  void *(*TeamRobot)(void *Team, unsigned Robot, void *Input,
+                     void *Output) = nullptr;
+  void (*TeamBegin)(void *Team, unsigned Robot, void *Input, void *Output,
+                    uint32_t Cycle) = nullptr;
+  void (*TeamEnd)(void *Team, unsigned Robot, const void *Input, void *Output,
+                  uint32_t Cycle) = nullptr;
+  void (*TeamExit)(void *Team) = nullptr;
+  bool isTeam() const { return TeamInit != nullptr; }
 };
 
 /// A behavior running in the JIT: its state and its `input` and `output`
@@ -209,12 +222,26 @@ public:
   /// on: calls its Init (under the guard) and attaches the result to the
   /// state as its user pointer.
   Outcome attachWorld(const WorldHooks &Hooks, unsigned LimitMs);
+  /// Makes the session robot `Robot` of a team world whose bs_team_init
+  /// returned `Team`: its cycles call the team's begin and end hooks with
+  /// the index; bs_team_robot (if any, under the guard) gives the state's
+  /// user pointer, else `Team` is. The team's exit is its owner's.
+  Outcome attachTeamWorld(const WorldHooks &Hooks, void *Team, unsigned Robot,
+                          unsigned LimitMs);
+  /// Runs `Call` under the guard as the world hook `Name` (the team's own
+  /// hooks, bs_team_init and bs_team_exit, which no one robot runs).
+  Outcome runWorldHook(const char *Name, llvm::function_ref<void()> Call,
+                       unsigned LimitMs) {
+    return runGuardedBody([&] { inHook(Name, Call); }, LimitMs);
+  }
   /// :reload: the new session goes on with the old one's world (its user
   /// pointer included), which the old one then no longer ends.
   void takeWorldFrom(BehaviorSession &Old) {
     World = Old.World;
     WorldUser = Old.WorldUser;
     WorldOutput = Old.WorldOutput;
+    TeamUser = Old.TeamUser;
+    Robot = Old.Robot;
     bs_state_set_user(State, WorldUser);
     Old.World = WorldHooks();
   }
@@ -243,6 +270,9 @@ private:
   bool Started = false; ///< bs_state_init succeeded.
   WorldHooks World;
   void *WorldUser = nullptr;
+  /// A team world's pointer and this robot's index in the team.
+  void *TeamUser = nullptr;
+  unsigned Robot = 0;
   /// The hook running now (read after a signal or the watchdog).
   const char *volatile CurrentHook = nullptr;
   /// setWorldOutput's descriptor, and standard output's own while a hook

@@ -19,6 +19,7 @@ struct ReplOptions {
   std::string BatchFile; ///< --batch: read the lines from this file.
   std::string WorldLibrary; ///< --world: feeds input, reads output.
   std::string WorldOutput;  ///< --world-output: what the world prints.
+  unsigned Robots = 1;      ///< --robots N: a team, stepped together.
   unsigned CycleLimitMs = DefaultCycleLimitMs;
 };
 

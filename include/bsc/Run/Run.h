@@ -79,25 +79,63 @@ loadBehavior(Compilation &C, const CallableDecl &Entry,
 llvm::Expected<std::unique_ptr<BehaviorSession>>
 startSession(Compilation &C, LoadedBehavior &L);
 
+/// `--robots N` (docs/repl.md "A team in one process"): N sessions of one
+/// loaded behavior, each with its own state, input, output and user
+/// pointer, and the world library that feeds them. Robots count from 0.
+class Team {
+public:
+  /// Starts `Robots` sessions; null after reporting a stale binding module.
+  static llvm::Expected<std::unique_ptr<Team>>
+  start(Compilation &C, LoadedBehavior &L, unsigned Robots);
+  /// As a robot program ends: a team world's bs_team_exit, then each robot
+  /// (its own world's bs_world_exit, its state).
+  ~Team();
+
+  unsigned size() const { return Robots.size(); }
+  BehaviorSession &operator[](unsigned Robot) const { return *Robots[Robot]; }
+  std::vector<BehaviorSession *> getSessions() const;
+  /// Starts robots until there are `N` (a team recording to replay, which
+  /// needs no world). False after reporting.
+  bool grow(Compilation &C, LoadedBehavior &L, unsigned N);
+  /// Every robot's world prints to `Fd` (BehaviorSession::setWorldOutput).
+  void setWorldOutput(int Fd);
+  /// `--world LIB.so`: a library that exports bs_team_init is a team world
+  /// (bscript/world.h) for all the robots; any other gets one world of its
+  /// own per robot (bs_world_init each). False after reporting a library
+  /// that cannot be loaded, lacks a required hook, or whose init crashed.
+  bool attachWorld(Compilation &C, const LoadedBehavior &L,
+                   llvm::StringRef Path, unsigned LimitMs);
+
+private:
+  Team() = default;
+  std::vector<std::unique_ptr<BehaviorSession>> Robots;
+  /// A team world's hooks and bs_team_init's result.
+  WorldHooks TeamHooks;
+  void *TeamUser = nullptr;
+  unsigned LimitMs = 0;
+};
+
+/// With more than one robot, a note after a diagnostic about robot
+/// `Robot`: which one it was.
+void noteRobot(Compilation &C, unsigned Robot, unsigned Robots);
+
 /// `bsc run`'s options beyond loading.
 struct RunOptions {
   unsigned Cycles = 1;
   bool CyclesGiven = false; ///< --cycles was on the command line.
+  /// `--record`: a path with `%r` writes one file per robot (`%r` its
+  /// number); otherwise one file, with `robot` on each line of a team.
   std::string RecordPath, ReplayPath;
+  /// A replay runs as many robots as the recording's first cycle has
+  /// (bsc run without --robots, bsc replay); else the team's size must
+  /// match it.
+  bool RobotsFromRecording = false;
   debug::TraceMode Trace = debug::TraceMode::Off;
   bool PrintOutput = false;
   unsigned CycleLimitMs = 0;
   /// Called after each cycle (the REPL's breakpoints); true stops the run.
   std::function<bool()> StopAfterCycle;
 };
-
-/// `--world LIB.so`: loads the library, finds its hooks (JIT.h's
-/// WorldHooks) and attaches it to the session. Returns false after
-/// reporting a library that cannot be loaded, lacks bs_world_init or
-/// bs_world_begin, or whose init crashed.
-bool attachWorldLibrary(Compilation &C, const LoadedBehavior &L,
-                        BehaviorSession &S, llvm::StringRef Path,
-                        unsigned LimitMs);
 
 /// `--world-output FILE`: opens FILE (emptied) for what a world library
 /// prints (BehaviorSession::setWorldOutput). Returns its descriptor, or -1
@@ -113,6 +151,11 @@ constexpr unsigned DefaultCycleLimitMs = 3000;
 /// cycle).
 bool runBehavior(Compilation &C, LoadedBehavior &L, BehaviorSession &S,
                  const RunOptions &Opts, llvm::raw_ostream &OS);
+/// The same for a team: each cycle runs every robot in index order (and a
+/// replay of a team recording may start more robots, Opts'
+/// RobotsFromRecording).
+bool runTeam(Compilation &C, LoadedBehavior &L, Team &T,
+             const RunOptions &Opts, llvm::raw_ostream &OS);
 
 /// The most worker processes `--jobs` takes: far above any machine's
 /// cores, low enough that a typo does not fork thousands of processes.
