@@ -10,6 +10,7 @@ struct Input {
   int ballOffset = 0;       ///< The ball's position minus the robot's.
   bool haveBall = false;    ///< This robot has the ball.
   bool mateHasBall = false; ///< Another robot of the team has it.
+  int kickPower = 0;        ///< How far this robot kicks.
 };
 
 /// What a robot asks for (bs_team_end reads it).
@@ -18,8 +19,10 @@ struct Output {
   int kick = 0; ///< With the ball: kick it this far forward (0: keep it).
 };
 
-/// One robot in the world, and its user pointer (bs_team_robot):
-/// registered C++ reads it through bs::Context (bindings.cpp).
+/// One robot in the world, and its user pointer (bs_team_robot), which
+/// registered C++ could read through bs::Context. The behavior gets what
+/// it needs of it through its input instead, so that a recording holds
+/// all it depends on and replays without the world.
 struct Player {
   const char *name = "";
   int position = 0;

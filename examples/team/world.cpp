@@ -82,6 +82,7 @@ extern "C" void bs_team_begin(void *Team, unsigned Robot, void *Input, void *,
   In.ballOffset = P.Ball - P.Players[Robot].position;
   In.haveBall = P.Owner == int(Robot);
   In.mateHasBall = P.Owner >= 0 && P.Owner != int(Robot);
+  In.kickPower = P.Players[Robot].kickPower;
 }
 
 extern "C" void bs_team_end(void *Team, unsigned Robot, const void *,
