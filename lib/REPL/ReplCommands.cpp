@@ -114,10 +114,10 @@ StepEnd Repl::step(unsigned N, bool Report, Probe *Until) {
   Interrupted = 0;
   auto OldHandler = std::signal(SIGINT, onInterrupt);
   StepEnd End = StepEnd::Ran;
-  unsigned Team = Robots->size();
+  unsigned RobotCount = Robots->size();
   for (unsigned I = 0; I < N; ++I) {
     std::vector<llvm::json::Value> Before;
-    for (unsigned K = 0; K < Team; ++K)
+    for (unsigned K = 0; K < RobotCount; ++K)
       Before.push_back(L->OutputClass && Report
                            ? Values->readClass(*L->OutputClass,
                                                (*Robots)[K].getOutput())
@@ -127,23 +127,23 @@ StepEnd Repl::step(unsigned N, bool Report, Probe *Until) {
     unsigned Broke = 0;
     // A team has no history (startHistory): its cycles always run live.
     BehaviorSession::Outcome O =
-        Team == 1 ? runNextCycle(FromHistory) : runTeamCycle(Broke);
+        RobotCount == 1 ? runNextCycle(FromHistory) : runTeamCycle(Broke);
     if (!reportOutcome(*C, *L, O, Cycle, Opts.CycleLimitMs)) {
-      noteRobot(*C, Broke, Team);
+      noteRobot(*C, Broke, RobotCount);
       flushDiagnostics();
       OS << "stopped in cycle " << Cycle << "; the state is as it left it\n";
       End = StepEnd::Broken;
       break;
     }
-    for (unsigned K = 0; K < Team && Recording && !FromHistory; ++K) {
+    for (unsigned K = 0; K < RobotCount && Recording && !FromHistory; ++K) {
       llvm::json::Value Rec = recordCycle(*Values, *L, (*Robots)[K]);
-      if (Team > 1) // One file with every robot, as `bsc run --record`.
+      if (RobotCount > 1) // One file with every robot, as `bsc run --record`.
         (*Rec.getAsObject())["robot"] = int64_t(K);
       debug::printJSON(*Recording, Rec);
       *Recording << "\n";
       Recording->flush();
     }
-    for (unsigned K = 0; K < Team && Report; ++K) {
+    for (unsigned K = 0; K < RobotCount && Report; ++K) {
       OS << cycleName(Cycle, K);
       if (L->OutputClass) {
         std::vector<std::string> Changes;
