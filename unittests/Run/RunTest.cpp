@@ -134,7 +134,8 @@ TEST_F(RunTest, AReplayStopsAtItsFirstBadLine) {
   Opts.ReplayPath = Replay.Path;
   Opts.Trace = debug::TraceMode::EveryCycle;
   EXPECT_EQ(run(Opts), "failed: unknown key 'speed' in a replay line; "
-                       "expected 'cycle', 'input', 'output' or 'tasks'\n");
+                       "expected 'cycle', 'robot', 'input', 'output' or "
+                       "'tasks'\n");
   EXPECT_EQ(Session->getCycle(), 1u);
 }
 
