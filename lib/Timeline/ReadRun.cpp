@@ -58,7 +58,10 @@ public:
     }
     if (std::optional<llvm::StringRef> Key =
             findUnknownKey(*O, {"cycle", "input", "output", "tasks"})) {
-      C.Diags.report(Loc, diag::err_record_unknown_key) << *Key;
+      if (*Key == "robot") // `--robots N --record FILE`: every robot's lines.
+        C.Diags.report(Loc, diag::err_record_team);
+      else
+        C.Diags.report(Loc, diag::err_record_unknown_key) << *Key;
       return false;
     }
     const llvm::json::Value *CycleValue = O->get("cycle");
