@@ -347,6 +347,21 @@ RunCommandOptions getRunOptions() {
   Opts.WorldLibrary = WorldLibrary;
   Opts.WorldOutput = WorldOutput;
   Opts.Robots = given(RobotsArg);
+  Opts.Coverage = {CoverageFile, CoverageFloor};
+  return Opts;
+}
+
+ReplayCommandOptions getReplayOptions() {
+  ReplayCommandOptions Opts;
+  Opts.Backend = getBackendArgs();
+  Opts.EntryName = EntryName;
+  Opts.LogsDir = ReplayLogs;
+  Opts.Shard = ReplayShard;
+  Opts.JUnitPath = ReplayJUnit;
+  Opts.CycleLimit = CycleLimitArg;
+  Opts.DebugInfo = DebugInfo;
+  Opts.Coverage = {CoverageFile, CoverageFloor};
+  Opts.Jobs = ReplayJobs;
   return Opts;
 }
 
@@ -385,10 +400,7 @@ tool::CommandLine tool::readCommandLine() {
   CL.Timeline = {{TimelineRecords.begin(), TimelineRecords.end()},
                  TimelineObject,
                  TimelineOutput};
-  CL.Replay = {getBackendArgs(), EntryName, ReplayLogs, ReplayShard,
-               ReplayJUnit, CycleLimitArg, DebugInfo};
-  CL.Replay.Coverage = CL.Run.Coverage = {CoverageFile, CoverageFloor};
-  CL.Replay.Jobs = ReplayJobs;
+  CL.Replay = getReplayOptions();
   CL.Format = {{FormatFiles.begin(), FormatFiles.end()},
                FormatInPlace,
                FormatCheck};
