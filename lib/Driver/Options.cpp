@@ -150,24 +150,6 @@ bool bsc::parseCycleLimit(DiagnosticEngine &Diags, llvm::StringRef Arg,
   return true;
 }
 
-std::unique_ptr<llvm::ToolOutputFile>
-bsc::openOutput(DiagnosticEngine &Diags, llvm::StringRef Path, bool Text) {
-  std::error_code EC;
-  if (Path != "-" && llvm::sys::fs::is_directory(Path)) {
-    Diags.report(llvm::SMLoc(), diag::err_cannot_write_output)
-        << Path << "is a directory";
-    return nullptr;
-  }
-  auto Out = std::make_unique<llvm::ToolOutputFile>(
-      Path, EC, Text ? llvm::sys::fs::OF_Text : llvm::sys::fs::OF_None);
-  if (EC) {
-    Diags.report(llvm::SMLoc(), diag::err_cannot_write_output)
-        << Path << EC.message();
-    return nullptr;
-  }
-  return Out;
-}
-
 void bsc::addStandardModules(const ToolChain &TC, FrontendOptions &Opts) {
   if (!TC.hasRuntime())
     return;

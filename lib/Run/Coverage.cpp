@@ -16,6 +16,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "bsc/Run/Run.h"
+#include "bsc/Basic/Output.h"
 #include "llvm/ADT/StringExtras.h"
 #include "llvm/Support/FileSystem.h"
 #include "llvm/Support/Format.h"
@@ -113,14 +114,11 @@ CoverageMap::CoverageMap(const llvm::SourceMgr &SM,
 bool bsc::writeLcov(Compilation &C, const LoadedBehavior &L,
                     llvm::ArrayRef<uint64_t> Counts, llvm::StringRef Path,
                     llvm::StringRef TestName) {
-  std::error_code EC;
-  llvm::ToolOutputFile Out(Path, EC, llvm::sys::fs::OF_Text);
-  if (EC) {
-    C.Diags.report(llvm::SMLoc(), diag::err_cannot_write_output)
-        << Path << EC.message();
+  std::unique_ptr<llvm::ToolOutputFile> Out =
+      openOutput(C.Diags, Path, /*Text=*/true);
+  if (!Out)
     return false;
-  }
-  llvm::raw_ostream &OS = Out.os();
+  llvm::raw_ostream &OS = Out->os();
   // A test name is a C identifier to lcov (`C::main` becomes `C__main`).
   std::string Test = TestName.str();
   for (char &Ch : Test)
@@ -163,7 +161,7 @@ bool bsc::writeLcov(Compilation &C, const LoadedBehavior &L,
     }
     OS << "LF:" << R.Lines.size() << "\nLH:" << Hit << "\nend_of_record\n";
   }
-  Out.keep();
+  Out->keep();
   return true;
 }
 

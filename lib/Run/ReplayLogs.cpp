@@ -10,6 +10,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "ReplayWorkers.h"
+#include "bsc/Basic/Output.h"
 #include "llvm/ADT/StringExtras.h"
 #include "llvm/Support/FileSystem.h"
 #include "llvm/Support/Path.h"
@@ -101,13 +102,10 @@ static llvm::Expected<LogResult> replayOne(Compilation &C, LoadedBehavior &L,
 static bool writeJUnit(Compilation &C, llvm::StringRef Path,
                        llvm::ArrayRef<std::string> Logs,
                        const std::vector<LogResult> &Results) {
-  std::error_code EC;
-  llvm::ToolOutputFile Out(Path, EC, llvm::sys::fs::OF_Text);
-  if (EC) {
-    C.Diags.report(llvm::SMLoc(), diag::err_cannot_write_output)
-        << Path << EC.message();
+  std::unique_ptr<llvm::ToolOutputFile> Out =
+      openOutput(C.Diags, Path, /*Text=*/true);
+  if (!Out)
     return false;
-  }
   auto Escape = [](llvm::StringRef S) {
     std::string E;
     for (char Ch : S)
@@ -122,7 +120,7 @@ static bool writeJUnit(Compilation &C, llvm::StringRef Path,
   };
   unsigned Failures = llvm::count_if(
       Results, [](const LogResult &R) { return !R.Passed; });
-  llvm::raw_ostream &OS = Out.os();
+  llvm::raw_ostream &OS = Out->os();
   OS << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
      << "<testsuite name=\"bsc replay\" tests=\"" << Results.size()
      << "\" failures=\"" << Failures << "\">\n";
@@ -139,7 +137,7 @@ static bool writeJUnit(Compilation &C, llvm::StringRef Path,
        << Escape(R.Report) << "</failure>\n  </testcase>\n";
   }
   OS << "</testsuite>\n";
-  Out.keep();
+  Out->keep();
   return true;
 }
 

@@ -10,6 +10,7 @@
 //===----------------------------------------------------------------------===//
 #include "ReplayReader.h"
 #include "bsc/Basic/JSON.h"
+#include "bsc/Basic/Output.h"
 #include "llvm/Support/FileSystem.h"
 #include "llvm/Support/ToolOutputFile.h"
 
@@ -173,13 +174,8 @@ bool CycleRunner::openRecordings() {
   llvm::StringRef Path = Opts.RecordPath;
   auto Open = [&](const std::string &File,
                   std::unique_ptr<llvm::ToolOutputFile> &Into) {
-    std::error_code EC;
-    Into = std::make_unique<llvm::ToolOutputFile>(File, EC,
-                                                  llvm::sys::fs::OF_Text);
-    if (EC)
-      C.Diags.report(llvm::SMLoc(), diag::err_cannot_write_output)
-          << File << EC.message();
-    return !EC;
+    Into = openOutput(C.Diags, File, /*Text=*/true);
+    return Into != nullptr;
   };
   if (!Path.contains("%r"))
     return Open(Path.str(), Record);

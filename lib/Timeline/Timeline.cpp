@@ -1,6 +1,7 @@
 //===- Timeline.cpp - bsc timeline: read the runs, compare, write ---------===//
 #include "bsc/Timeline/Timeline.h"
 #include "TimelineImpl.h"
+#include "bsc/Basic/Output.h"
 #include "bsc/Debug/TraceDecode.h"
 #include "bsc/Frontend/Frontend.h"
 #include "llvm/Support/FileSystem.h"
@@ -56,25 +57,22 @@ bool timeline::writeTimeline(Compilation &C, const TimelineOptions &Opts,
           << Record;
       return false;
     }
-  std::error_code EC;
-  llvm::ToolOutputFile Page(Output, EC, llvm::sys::fs::OF_None);
-  if (EC) {
-    C.Diags.report(llvm::SMLoc(), diag::err_cannot_write_output)
-        << Output << EC.message();
+  std::unique_ptr<llvm::ToolOutputFile> Page =
+      openOutput(C.Diags, Output, /*Text=*/false);
+  if (!Page)
     return false;
-  }
   std::vector<const Run *> Drawn;
   for (const Run &R : Runs)
     Drawn.push_back(&R);
-  writePage(Page.os(), Drawn, Diff);
-  Page.os().close();
-  if (Page.os().has_error()) {
+  writePage(Page->os(), Drawn, Diff);
+  Page->os().close();
+  if (Page->os().has_error()) {
     C.Diags.report(llvm::SMLoc(), diag::err_cannot_write_output)
-        << Output << Page.os().error().message();
-    Page.os().clear_error();
+        << Output << Page->os().error().message();
+    Page->os().clear_error();
     return false;
   }
-  Page.keep();
+  Page->keep();
 
   if (Runs.size() == 2) {
     if (!Diff) {

@@ -25,6 +25,7 @@
 #ifndef BSC_DRIVER_DRIVER_H
 #define BSC_DRIVER_DRIVER_H
 
+#include "bsc/Basic/Output.h"
 #include "bsc/CodeGen/Layout.h"
 #include "bsc/CodeGen/Target.h"
 #include "bsc/Debug/Trace.h"
@@ -108,11 +109,6 @@ bool parseRobots(DiagnosticEngine &Diags,
 /// Checks --cycle-limit; reports and returns false if it is bad.
 bool parseCycleLimit(DiagnosticEngine &Diags, llvm::StringRef Arg,
                      unsigned &Ms);
-
-/// Opens `Path` for writing ("-" is stdout); reports failure and returns
-/// null.
-std::unique_ptr<llvm::ToolOutputFile>
-openOutput(DiagnosticEngine &Diags, llvm::StringRef Path, bool Text);
 
 /// The standard modules of `TC`'s target for the front end: its runtime
 /// archive, or, for a target with a runtime that is not found, what was
