@@ -9,7 +9,8 @@
 //   start  wait for the server to be initialized; run the command
 //          bscript.restartServer; change bscript.server.args to
 //          ["--changed"]; change unrelated settings; deactivate
-//   fail   wait a little; deactivate (a server that cannot start)
+//   fail   wait for the error message, and a little; deactivate (a server
+//          that cannot start)
 //   crash  wait until the server was started 5 times (it crashes); deactivate
 //   open   with the document $OPEN_DOCUMENT open: print the diagnostics the
 //          server publishes for it and the edits of formatting it through
@@ -174,7 +175,7 @@ const vscode = partly('vscode', {
     },
   }),
   window: partly('vscode.window', {
-    showErrorMessage(message) { say(`error message: ${message}`); return Promise.resolve(undefined); },
+    showErrorMessage(message) { errorMessages += 1; say(`error message: ${message}`); return Promise.resolve(undefined); },
     showWarningMessage(message) { say(`warning message: ${message}`); return Promise.resolve(undefined); },
     showInformationMessage(message) { say(`information message: ${message}`); return Promise.resolve(undefined); },
     createOutputChannel(name) {
@@ -212,6 +213,7 @@ require.cache.vscode = { id: 'vscode', filename: 'vscode', loaded: true, exports
 
 const serverLog = process.env.FAKE_BSC_LOG;
 const serverSaid = () => (serverLog && fs.existsSync(serverLog) ? fs.readFileSync(serverLog, 'utf8') : '');
+let errorMessages = 0;
 async function until(what, condition) {
   for (let i = 0; i < 200; i++) {
     if (condition()) return;
@@ -231,6 +233,10 @@ async function main() {
   const context = { subscriptions: [], extensionPath: extensionDir, asAbsolutePath: (p) => path.join(extensionDir, p) };
   await extension.activate(context);
   if (scenario === 'fail') {
+    // The error comes when the server's start fails, which a loaded
+    // machine may delay past any fixed wait; then a little longer, in case
+    // a second message follows (the tests say there is none).
+    await until('an error message', () => errorMessages > 0);
     await new Promise((r) => setTimeout(r, 500));
     say('deactivate');
     await extension.deactivate();
