@@ -76,6 +76,7 @@ inline void input_declared_twice() {}
 inline void output_declared_twice() {}
 inline void defaults_for_more_parameters_than_the_member_has() {}
 inline void defaults_without_a_preceding_func() {}
+inline void pure_without_a_preceding_func() {}
 inline void default_value_does_not_match_the_parameter_type() {}
 inline void enum_values_must_directly_follow_their_registerEnum() {}
 inline void empty_name() {}
@@ -273,6 +274,8 @@ public:
   }
 
   template <class... D> constexpr void setDefaults(const D &...Ds);
+  /// `.pure()`: marks the preceding func as pure.
+  constexpr void setPure();
 
   constexpr detail::u32 addEnum(const void *Key, const char *Name,
                                 const char *CppName, detail::u32 Size,
@@ -436,6 +439,15 @@ public:
     return *this;
   }
 
+  /// Declares the preceding .func pure: its result depends on its
+  /// arguments (and object) only, and it changes nothing and prints
+  /// nothing. The REPL's time travel and exact replays then call it again
+  /// rather than keep its result (docs/bindings.md, "Pure functions").
+  constexpr ClassBuilder &pure() {
+    M->setPure();
+    return *this;
+  }
+
   /// Opts in to copying values of T with memcpy instead of the copy thunk
   /// (for classes such as Eigen's whose copy constructor is user-provided
   /// but equivalent to a byte copy).
@@ -470,6 +482,11 @@ public:
   constexpr explicit FunctionBuilder(Module &M) : M(&M) {}
   template <class... D> constexpr FunctionBuilder &defaults(const D &...Ds) {
     M->setDefaults(Ds...);
+    return *this;
+  }
+  /// Declares the function pure (ClassBuilder::pure).
+  constexpr FunctionBuilder &pure() {
+    M->setPure();
     return *this;
   }
 
@@ -760,6 +777,15 @@ template <class... D> constexpr void Module::setDefaults(const D &...Ds) {
   }
   detail::u32 I = M.firstParam + M.numParams - sizeof...(D);
   (detail::setDefault(Tabs.params[I++], Ds), ...);
+}
+
+constexpr void Module::setPure() {
+  if (LastMember == detail::None) {
+    error::pure_without_a_preceding_func();
+    return;
+  }
+  if (filling())
+    Tabs.members[LastMember].flags |= detail::MemberPure;
 }
 
 namespace detail {

@@ -61,6 +61,7 @@ enum MemberFlag : u32 {
   MemberConstSelf = BS_MEMBER_CONST_SELF,
   MemberReadOnly = BS_MEMBER_READ_ONLY,
   MemberResultOut = BS_MEMBER_RESULT_OUT,
+  MemberPure = BS_MEMBER_PURE,
 };
 
 /// Flags of a class.

@@ -186,7 +186,8 @@ enum bs_member_kind {
 enum bs_member_flag {
   BS_MEMBER_CONST_SELF = 1, /* does not modify the object */
   BS_MEMBER_READ_ONLY = 2,  /* a field or property without setter */
-  BS_MEMBER_RESULT_OUT = 4  /* class result: the thunk's first parameter is `R *out` */
+  BS_MEMBER_RESULT_OUT = 4, /* class result: the thunk's first parameter is `R *out` */
+  BS_MEMBER_PURE = 8        /* .pure(): depends on its arguments only, changes nothing */
 };
 enum bs_class_flag {
   BS_CLASS_TRIVIALLY_COPYABLE = 1,

@@ -120,6 +120,8 @@ void dumpMember(const BindingModel &Model, const BoundMember &M,
   }
   if (M.resultViaOut())
     OS << " out";
+  if (M.isPure())
+    OS << " pure";
   if (!M.CppName.empty())
     OS << " = " << M.CppName;
   if (!Unusable.empty())

@@ -188,6 +188,7 @@ private:
     NF.Owner = Owner;
     NF.ConstSelf = B.isConstSelf();
     NF.ReadOnly = B.isReadOnly();
+    NF.Pure = B.isPure();
     NF.ResultViaOut = B.resultViaOut();
     bool Ok = convertType(B.Result, NF.Result);
     for (const BoundParam &P : B.Params) {

@@ -130,8 +130,9 @@ void ModuleEmitter::emitDestroyFunctions() {
       Values.push_back({V, V->Ty});
     for (auto It = Values.rbegin(); It != Values.rend(); ++It)
       if (needsDestroy(It->second))
-        IRB.CreateCall(getLifeThunk(It->second->getClass()->Destroy, 1),
-                       {Field(FI.Fields.lookup(It->first))});
+        if (const NativeClass *C = It->second->getClass())
+          IRB.CreateCall(getLifeThunk(C, C->Destroy, 1),
+                         {Field(FI.Fields.lookup(It->first))});
     IRB.CreateStore(llvm::ConstantInt::get(I8, 0), LiveAddr);
     IRB.CreateBr(Done);
     IRB.SetInsertPoint(Done);
@@ -438,7 +439,8 @@ void ModuleEmitter::emitProgramMain() {
   IRB.CreateCall(Destroy, {State, Info});
   for (unsigned K = 0; K < 2; ++K)
     if (needsDestroy(WorldClasses[K]))
-      IRB.CreateCall(getLifeThunk(WorldClasses[K]->Destroy, 1),
+      IRB.CreateCall(getLifeThunk(WorldClasses[K],
+                                  WorldClasses[K]->Destroy, 1),
                      {WorldObjects[K]});
   IRB.CreateRet(Status);
 }

@@ -201,7 +201,7 @@ void ModuleEmitter::emitClassInit(llvm::IRBuilderBase &IRB,
         IRB.CreateConstInBoundsGEP1_64(IRB.getInt8Ty(), Addr, Off),
         llvm::Align(U));
   if (!C->Construct.empty())
-    IRB.CreateCall(getLifeThunk(C->Construct, 1), {Addr});
+    IRB.CreateCall(getLifeThunk(C, C->Construct, 1), {Addr});
 }
 
 void FunctionEmitter::emitClassInit(const NativeClass *C, llvm::Value *Addr) {
@@ -214,14 +214,14 @@ void FunctionEmitter::emitClassCopy(const NativeClass *C, llvm::Value *Dst,
     return;
   if (!C->CopiesAsBytes) {
     if (DstConstructed && !C->Assign.empty()) {
-      Builder.CreateCall(CGM.getLifeThunk(C->Assign, 2), {Dst, Src});
+      Builder.CreateCall(CGM.getLifeThunk(C, C->Assign, 2), {Dst, Src});
       return;
     }
     if (!C->Copy.empty()) {
       // Without an assign thunk, assignment is destroy + copy-construct.
       if (DstConstructed && ModuleEmitter::needsDestroy(C))
         emitDestroy(C, Dst);
-      Builder.CreateCall(CGM.getLifeThunk(C->Copy, 2), {Dst, Src});
+      Builder.CreateCall(CGM.getLifeThunk(C, C->Copy, 2), {Dst, Src});
       return;
     }
     // Not copyable: Sema reports every copy (err_class_not_copyable).

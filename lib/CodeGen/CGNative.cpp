@@ -34,10 +34,137 @@ llvm::FunctionCallee ModuleEmitter::getNative(const NativeFunction &NF) {
   llvm::Type *Result = NF.ResultViaOut ? llvm::Type::getVoidTy(Ctx)
                                        : getNativeType(NF.Result);
   auto *FTy = llvm::FunctionType::get(Result, Params, false);
-  Slot = M.getOrInsertFunction(NF.Symbol, FTy);
-  if (auto *F = llvm::dyn_cast<llvm::Function>(Slot.getCallee()))
+  llvm::FunctionCallee Thunk = M.getOrInsertFunction(NF.Symbol, FTy);
+  if (auto *F = llvm::dyn_cast<llvm::Function>(Thunk.getCallee()))
     F->addFnAttr(llvm::Attribute::NoUnwind);
-  return Slot;
+  if (NF.Pure || !Opts.Boundary)
+    return Slot = Thunk;
+  // What the thunk may write besides the view: a class result's storage,
+  // the object of a non-const method, `T&` arguments.
+  llvm::SmallVector<std::pair<unsigned, uint64_t>, 4> Writable;
+  unsigned Arg = 0;
+  if (NF.ResultViaOut)
+    Writable.push_back({Arg++, NF.Result.TheClass->Size});
+  if (NF.hasSelf()) {
+    if (!NF.ConstSelf && NF.Owner)
+      Writable.push_back({Arg, NF.Owner->Size});
+    ++Arg;
+  }
+  if (NF.TakesContext)
+    ++Arg; // The state: in the view.
+  for (const NativeType &P : NF.Params) {
+    if (P.MutableRef && P.TheClass)
+      Writable.push_back({Arg, P.TheClass->Size});
+    ++Arg;
+  }
+  bool Standard = false;
+  std::string Name = getNativeName(NF, Standard);
+  uint32_t Flags = (Standard ? 2 : 0) |
+                   (!NF.ResultViaOut && NF.Result.TheCode == NativeType::String
+                        ? 1
+                        : 0);
+  return Slot = wrapForBoundary(Thunk, Name, Flags, Writable);
+}
+
+std::string ModuleEmitter::getNativeName(const NativeFunction &NF,
+                                         bool &Standard) const {
+  Standard = false;
+  if (NF.Owner) {
+    Standard = NF.Owner->Module && NF.Owner->Module->Standard;
+    return NF.Owner->QualifiedName + "::" + NF.Name;
+  }
+  for (const NativeModule *NM : B.NativeModules)
+    if (NM->findFunction(NF.Name) == &NF) {
+      Standard = NM->Standard;
+      return NM->Name + "::" + NF.Name;
+    }
+  return NF.Name;
+}
+
+llvm::FunctionCallee ModuleEmitter::wrapForBoundary(
+    llvm::FunctionCallee Thunk, llvm::StringRef Name, uint32_t Flags,
+    llvm::ArrayRef<std::pair<unsigned, uint64_t>> Writable) {
+  if (!Opts.Boundary)
+    return Thunk;
+  auto *ThunkFn = llvm::cast<llvm::Function>(Thunk.getCallee());
+  std::string WrapperName = ("bs.boundary." + ThunkFn->getName()).str();
+  if (llvm::Function *F = M.getFunction(WrapperName))
+    return F;
+  llvm::FunctionType *FTy = Thunk.getFunctionType();
+  llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
+  llvm::Type *I32 = llvm::Type::getInt32Ty(Ctx);
+  const llvm::DataLayout &DL = M.getDataLayout();
+  llvm::Type *RetTy = FTy->getReturnType();
+  uint64_t ResultSize = RetTy->isVoidTy() ? 0 : DL.getTypeStoreSize(RetTy);
+
+  // The site: struct bs_boundary_site (bsc/JIT/Boundary.h).
+  llvm::SmallVector<llvm::Constant *, 4> Sizes;
+  for (auto [Index, Size] : Writable)
+    Sizes.push_back(llvm::ConstantInt::get(I32, Size));
+  llvm::Constant *SizesPtr = llvm::ConstantPointerNull::get(
+      llvm::PointerType::getUnqual(Ctx));
+  if (!Sizes.empty()) {
+    auto *ArrTy = llvm::ArrayType::get(I32, Sizes.size());
+    auto *GV = new llvm::GlobalVariable(
+        M, ArrTy, true, llvm::GlobalValue::PrivateLinkage,
+        llvm::ConstantArray::get(ArrTy, Sizes), WrapperName + ".sizes");
+    SizesPtr = GV;
+  }
+  auto *SiteTy = llvm::StructType::get(Ctx, {Ptr, I32, I32, I32, Ptr});
+  auto *Site = new llvm::GlobalVariable(
+      M, SiteTy, true, llvm::GlobalValue::PrivateLinkage,
+      llvm::ConstantStruct::get(
+          SiteTy, {getString(Name), llvm::ConstantInt::get(I32, Flags),
+                   llvm::ConstantInt::get(I32, ResultSize),
+                   llvm::ConstantInt::get(I32, Writable.size()), SizesPtr}),
+      WrapperName + ".site");
+
+  auto *F = llvm::Function::Create(FTy, llvm::GlobalValue::InternalLinkage,
+                                   WrapperName, M);
+  F->addFnAttr(llvm::Attribute::NoUnwind);
+  auto *Entry = llvm::BasicBlock::Create(Ctx, "entry", F);
+  auto *Live = llvm::BasicBlock::Create(Ctx, "live", F);
+  auto *Leave = llvm::BasicBlock::Create(Ctx, "leave", F);
+  llvm::IRBuilder<> IRB(Entry);
+  llvm::AllocaInst *Result =
+      ResultSize ? IRB.CreateAlloca(RetTy, nullptr, "result") : nullptr;
+  llvm::AllocaInst *Ptrs =
+      Writable.empty()
+          ? nullptr
+          : IRB.CreateAlloca(llvm::ArrayType::get(Ptr, Writable.size()),
+                             nullptr, "ptrs");
+  llvm::FunctionCallee Enter = M.getOrInsertFunction(
+      "bs_boundary_enter", llvm::FunctionType::get(I32, {Ptr}, false));
+  llvm::FunctionCallee LeaveFn = M.getOrInsertFunction(
+      "bs_boundary_leave",
+      llvm::FunctionType::get(llvm::Type::getVoidTy(Ctx), {Ptr, Ptr, Ptr},
+                              false));
+  llvm::Value *Take = IRB.CreateCall(Enter, {Site}, "take");
+  IRB.CreateCondBr(IRB.CreateICmpNE(Take, IRB.getInt32(0)), Leave, Live);
+
+  IRB.SetInsertPoint(Live);
+  llvm::SmallVector<llvm::Value *, 6> Args;
+  for (llvm::Argument &A : F->args())
+    Args.push_back(&A);
+  llvm::CallInst *Call = IRB.CreateCall(Thunk, Args);
+  if (Result)
+    IRB.CreateStore(Call, Result);
+  IRB.CreateBr(Leave);
+
+  IRB.SetInsertPoint(Leave);
+  for (size_t I = 0; I < Writable.size(); ++I)
+    IRB.CreateStore(F->getArg(Writable[I].first),
+                    IRB.CreateConstInBoundsGEP2_32(Ptrs->getAllocatedType(),
+                                                   Ptrs, 0, I));
+  llvm::Value *Null = llvm::ConstantPointerNull::get(
+      llvm::PointerType::getUnqual(Ctx));
+  IRB.CreateCall(LeaveFn, {Site, Result ? (llvm::Value *)Result : Null,
+                           Ptrs ? (llvm::Value *)Ptrs : Null});
+  if (Result)
+    IRB.CreateRet(IRB.CreateLoad(RetTy, Result));
+  else
+    IRB.CreateRetVoid();
+  return F;
 }
 
 llvm::FunctionCallee
@@ -48,10 +175,14 @@ ModuleEmitter::getNativeSetter(const NativeFunction &NF) {
   llvm::FunctionCallee F = M.getOrInsertFunction(NF.Setter, FTy);
   if (auto *Fn = llvm::dyn_cast<llvm::Function>(F.getCallee()))
     Fn->addFnAttr(llvm::Attribute::NoUnwind);
-  return F;
+  bool Standard;
+  std::string Name = getNativeName(NF, Standard) + " (set)";
+  return wrapForBoundary(F, Name, Standard ? 2 : 0,
+                         {{0, NF.Owner ? NF.Owner->Size : 0}});
 }
 
-llvm::FunctionCallee ModuleEmitter::getLifeThunk(llvm::StringRef Symbol,
+llvm::FunctionCallee ModuleEmitter::getLifeThunk(const NativeClass *C,
+                                                 llvm::StringRef Symbol,
                                                  unsigned NumPtrs) {
   llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
   llvm::SmallVector<llvm::Type *, 2> Params(NumPtrs, Ptr);
@@ -60,7 +191,14 @@ llvm::FunctionCallee ModuleEmitter::getLifeThunk(llvm::StringRef Symbol,
   llvm::FunctionCallee F = M.getOrInsertFunction(Symbol, FTy);
   if (auto *Fn = llvm::dyn_cast<llvm::Function>(F.getCallee()))
     Fn->addFnAttr(llvm::Attribute::NoUnwind);
-  return F;
+  // The object (the copy's destination) is written.
+  const char *What = Symbol == C->Construct ? "construct"
+                     : Symbol == C->Copy    ? "copy"
+                     : Symbol == C->Assign  ? "assign"
+                                            : "destroy";
+  return wrapForBoundary(F, C->QualifiedName + " (" + What + ")",
+                         C->Module && C->Module->Standard ? 2 : 0,
+                         {{0, C->Size}});
 }
 
 llvm::Constant *ModuleEmitter::getString(llvm::StringRef S) {

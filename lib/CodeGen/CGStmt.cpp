@@ -30,7 +30,7 @@ void FunctionEmitter::emitBranch(llvm::BasicBlock *Dest) {
 }
 
 void FunctionEmitter::emitDestroy(const NativeClass *C, llvm::Value *Addr) {
-  Builder.CreateCall(CGM.getLifeThunk(C->Destroy, 1), {Addr});
+  Builder.CreateCall(CGM.getLifeThunk(C, C->Destroy, 1), {Addr});
 }
 
 void FunctionEmitter::pushTemp(const NativeClass *C, llvm::Value *Addr) {

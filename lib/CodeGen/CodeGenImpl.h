@@ -284,8 +284,19 @@ public:
   llvm::Type *getNativeType(const NativeType &NT);
   /// The setter thunk of a field or property: void(T *self, wire(X) v).
   llvm::FunctionCallee getNativeSetter(const NativeFunction &NF);
-  /// A life-cycle thunk of a class: void(T *) or void(T *dst, const T *src).
-  llvm::FunctionCallee getLifeThunk(llvm::StringRef Symbol, unsigned NumPtrs);
+  /// A life-cycle thunk of class `C`: void(T *) or void(T *dst, const T *src).
+  llvm::FunctionCallee getLifeThunk(const NativeClass *C,
+                                    llvm::StringRef Symbol, unsigned NumPtrs);
+  /// With CodeGenOptions::Boundary, `Thunk` wrapped so that the JIT's
+  /// recorder sees the call (bsc/JIT/Boundary.h): `Name` for messages,
+  /// `Flags` (BoundarySiteFlags), and the arguments the thunk may write
+  /// through as (argument index, bytes); else `Thunk` itself.
+  llvm::FunctionCallee
+  wrapForBoundary(llvm::FunctionCallee Thunk, llvm::StringRef Name,
+                  uint32_t Flags,
+                  llvm::ArrayRef<std::pair<unsigned, uint64_t>> Writable);
+  /// `Module::f` or `Class::m`, and whether the module is a standard one.
+  std::string getNativeName(const NativeFunction &NF, bool &Standard) const;
   /// The storage of a registered class value in frames and allocas: Size
   /// bytes with the class's alignment ([Size x i8] when Align is 1, else an
   /// array of Align-sized units whose ABI alignment is Align).

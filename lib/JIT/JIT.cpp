@@ -123,6 +123,9 @@ BehaviorJIT::create(unsigned OptLevel, bool Debuggable) {
   Add("bs_begin_cycle", &bs_begin_cycle);
   Add("bs_task_state", &bs_task_state);
   Add("bs_state_destroy", &bs_state_destroy);
+  // The boundary's recorder (Boundary.h, CodeGenOptions::Boundary).
+  Add("bs_boundary_enter", &bs_boundary_enter);
+  Add("bs_boundary_leave", &bs_boundary_leave);
   // What the io thunks call.
   Add("bs_io_printi", &bs_io_printi);
   Add("bs_io_printf", &bs_io_printf);
@@ -397,6 +400,9 @@ BehaviorSession::start(BehaviorJIT &JIT, llvm::StringRef InfoSymbol,
   auto *Header = static_cast<bs_state_header *>(S->State);
   Header->input = S->Input;
   Header->output = S->Output;
+  S->Calls = std::make_unique<Boundary>(S->State, S->Info->state_size,
+                                        S->Input, InputSpec.Size, S->Output,
+                                        OutputSpec.Size);
   installGuard();
   return S;
 }
@@ -424,12 +430,40 @@ uint32_t BehaviorSession::getCycle() const {
   return static_cast<const bs_state_header *>(State)->cycle;
 }
 
+/// The world's end hooks as calls of the boundary: a re-run takes what
+/// they wrote to `output` from the record.
+static const bs_boundary_site WorldEndSite = {"bs_world_end", 0, 0, 0,
+                                              nullptr};
+static const bs_boundary_site TeamEndSite = {"bs_team_end", 0, 0, 0, nullptr};
+
+void BehaviorSession::runEntry(bool WithWorld) {
+  Entry(State);
+  uint32_t Cycle = getCycle();
+  // Each end hook as a call: live, it runs and its writes are recorded;
+  // replayed, its writes come from the record, whether or not this session
+  // has the world that made them.
+  auto EndHook = [&](const bs_boundary_site &Site, bool Has, auto &&Call) {
+    if (Calls->isReplaying() ? !Calls->nextCallIs(Site.name)
+                             : !(WithWorld && Has))
+      return;
+    if (!Calls->enterPseudo(Site))
+      inHook(Site.name, Call);
+    Calls->leavePseudo(Site);
+  };
+  EndHook(WorldEndSite, World.End != nullptr,
+          [&] { World.End(WorldUser, Input, Output, Cycle); });
+  EndHook(TeamEndSite, World.TeamEnd != nullptr, [&] {
+    World.TeamEnd(TeamUser, Robot, Input, Output, Cycle);
+  });
+}
+
 BehaviorSession::Outcome BehaviorSession::runCycle(unsigned LimitMs,
                                                    bool WithWorld) {
   bs_begin_cycle(State, Input, Output);
   // A world's hooks run in the cycle: under its guard and time limit.
   uint32_t Cycle = getCycle();
-  return runGuardedBody(
+  Boundary::Current = Calls.get();
+  Outcome O = runGuardedBody(
       [&] {
         if (WithWorld && World.Begin)
           inHook("bs_world_begin",
@@ -438,16 +472,29 @@ BehaviorSession::Outcome BehaviorSession::runCycle(unsigned LimitMs,
           inHook("bs_team_begin", [&] {
             World.TeamBegin(TeamUser, Robot, Input, Output, Cycle);
           });
-        Entry(State);
-        if (WithWorld && World.End)
-          inHook("bs_world_end",
-                 [&] { World.End(WorldUser, Input, Output, Cycle); });
-        if (WithWorld && World.TeamEnd)
-          inHook("bs_team_end", [&] {
-            World.TeamEnd(TeamUser, Robot, Input, Output, Cycle);
-          });
+        if (KeepCalls)
+          Calls->startRecording(LastCalls);
+        runEntry(WithWorld);
       },
       LimitMs);
+  Calls->finish();
+  Boundary::Current = nullptr;
+  return O;
+}
+
+BehaviorSession::Outcome
+BehaviorSession::replayCycle(unsigned LimitMs, const CycleRecord &From) {
+  bs_begin_cycle(State, Input, Output);
+  Boundary::Current = Calls.get();
+  Calls->startReplay(From);
+  Outcome O = runGuardedBody([&] { runEntry(/*WithWorld=*/false); }, LimitMs);
+  std::string Why = Calls->finish();
+  Boundary::Current = nullptr;
+  if (O.K == Outcome::Completed && !Why.empty()) {
+    O.K = Outcome::Diverged;
+    O.Divergence = std::move(Why);
+  }
+  return O;
 }
 
 BehaviorSession::Outcome BehaviorSession::attachWorld(const WorldHooks &Hooks,
@@ -513,6 +560,8 @@ BehaviorSession::runGuardedBody(llvm::function_ref<void()> Body,
 void BehaviorSession::setWorldOutput(int Fd) {
   redirectStdout(false);
   WorldOutput = Fd;
+  // What registered C++ prints in a cycle goes there too.
+  Calls->setCaptureFd(Fd);
 }
 
 void BehaviorSession::redirectStdout(bool To) {

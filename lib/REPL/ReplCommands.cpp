@@ -130,8 +130,15 @@ StepEnd Repl::step(unsigned N, bool Report, Probe *Until) {
         RobotCount == 1 ? runNextCycle(FromHistory) : runTeamCycle(Broke);
     if (!reportOutcome(*C, *L, O, Cycle, Opts.CycleLimitMs)) {
       noteRobot(*C, Broke, RobotCount);
+      bool Diverged = O.K == BehaviorSession::Outcome::Diverged;
+      if (Diverged)
+        C->Diags.report(llvm::SMLoc(), diag::note_history_ends) << Cycle - 1;
       flushDiagnostics();
-      OS << "stopped in cycle " << Cycle << "; the state is as it left it\n";
+      OS << "stopped in cycle " << Cycle
+         << (Diverged ? "; the state is as the live run left cycle " +
+                            std::to_string(Cycle - 1)
+                      : std::string("; the state is as it left it"))
+         << "\n";
       End = StepEnd::Broken;
       break;
     }

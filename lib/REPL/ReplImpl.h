@@ -157,6 +157,9 @@ private:
   /// Runs the next cycle: from the history on its logged input (no world)
   /// if the present is in the past, else live, recorded into the history.
   BehaviorSession::Outcome runNextCycle(bool &FromHistory);
+  /// History->restore, keeping the session's user pointer; the copy's
+  /// cycle.
+  uint32_t restoreFromHistory(uint32_t Cycle, bool Before);
   /// A cycle that ran live outside runNextCycle (`:replay`) enters the
   /// history.
   void recordLiveCycle();

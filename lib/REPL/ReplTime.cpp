@@ -1,11 +1,15 @@
 //===- ReplTime.cpp - time travel: :goto, :back, :history ------------------===//
 //
-// The REPL keeps a CycleHistory of the session: the input every cycle saw
-// (fed by the world, a replay or typed at the prompt) and a copy of the
+// The REPL keeps a CycleHistory of the session: the input every cycle's
+// entry saw (fed by the world, a replay or typed at the prompt), what its
+// calls into registered C++ did (bsc/JIT/Boundary.h), and a copy of the
 // state every SnapshotEvery cycles. Going to a cycle restores the copy
 // before it and re-runs the cycles after the copy on their logged inputs,
-// without the world library (it is not re-run, and prints nothing again):
-// a behavior is deterministic given its inputs.
+// taking every call into C++ (and the world's end hook) from the log: the
+// C++ is not called again, prints nothing again, and a random number or
+// a clock reads as it did. Each re-run cycle is checked against how the
+// live one left the state, input and output; where they part, the history
+// ends at the cycle before and the REPL says which value differed.
 //
 // Stepping from a cycle in the past re-runs the history up to the present,
 // then goes on live. A line at the prompt that changes the state, input or
@@ -69,6 +73,7 @@ void Repl::startHistory() {
                           L->Output.Size},
       SnapshotEvery);
   History->reset(S->getCycle(), getBlocks());
+  S->keepCalls(true);
 }
 
 CycleHistory::Blocks Repl::getBlocks() const {
@@ -78,18 +83,64 @@ CycleHistory::Blocks Repl::getBlocks() const {
 BehaviorSession::Outcome Repl::runNextCycle(bool &FromHistory) {
   uint32_t Next = S->getCycle() + 1;
   FromHistory = History && Next <= History->last();
-  if (FromHistory) {
-    History->applyInput(Next, S->getInput());
-    return S->runCycle(Opts.CycleLimitMs, /*WithWorld=*/false);
+  if (!FromHistory) {
+    BehaviorSession::Outcome O = S->runCycle(Opts.CycleLimitMs);
+    if (O.K == BehaviorSession::Outcome::Completed) {
+      recordLiveCycle();
+    } else if (History) {
+      // A crashed cycle cannot be re-run: its moment is the copy.
+      History->recordCycle(S->getLastCalls(), getBlocks());
+      History->keepPresent(Next, getBlocks());
+    }
+    return O;
   }
-  BehaviorSession::Outcome O = S->runCycle(Opts.CycleLimitMs);
-  recordLiveCycle();
+  if (History->isEdited(Next)) {
+    // The prompt changed this moment: it is the copy, not a re-run.
+    restoreFromHistory(Next, /*Before=*/false);
+    return {};
+  }
+  History->applyInput(Next, S->getInput());
+  CycleRecord Calls;
+  History->getCalls(Next, Calls);
+  BehaviorSession::Outcome O = S->replayCycle(Opts.CycleLimitMs, Calls);
+  if (O.K == BehaviorSession::Outcome::Completed) {
+    std::string Why = describeViewDifference(*Values, *L, *S,
+                                             History->liveViewAt(Next));
+    if (!Why.empty()) {
+      O.K = BehaviorSession::Outcome::Diverged;
+      O.Divergence = "the re-run differs from the live run: " + Why;
+    }
+  }
+  if (O.K == BehaviorSession::Outcome::Diverged) {
+    // Back to the last moment both agree on; what follows is forgotten.
+    const std::vector<unsigned char> &View = History->liveViewAt(Next - 1);
+    CycleHistory::Blocks B = getBlocks();
+    size_t Sizes[3];
+    S->getViewSizes(Sizes);
+    void *User = bs_state_user(B.State);
+    std::memcpy(B.State, View.data(), Sizes[0]);
+    bs_state_set_user(B.State, User);
+    if (Sizes[1])
+      std::memcpy(B.Input, View.data() + Sizes[0], Sizes[1]);
+    if (Sizes[2])
+      std::memcpy(B.Output, View.data() + Sizes[0] + Sizes[1], Sizes[2]);
+    History->keepPresent(Next - 1, B);
+  }
   return O;
+}
+
+uint32_t Repl::restoreFromHistory(uint32_t Cycle, bool Before) {
+  // The user pointer is the session's (its world set it, perhaps after the
+  // copy was taken), not the moment's.
+  void *User = bs_state_user(S->getState());
+  uint32_t At = History->restore(Cycle, Before, getBlocks());
+  bs_state_set_user(S->getState(), User);
+  return At;
 }
 
 void Repl::recordLiveCycle() {
   if (History)
-    History->recordCycle(getBlocks());
+    History->recordCycle(S->getLastCalls(), getBlocks());
 }
 
 void Repl::forgetFuture() {
@@ -131,16 +182,21 @@ bool Repl::travelTo(uint32_t Target) {
   uint32_t Logged = std::min(Target, History->last());
   if (Target <= Now || (Logged > Now &&
                         Logged - Now > History->getSnapshotEvery()))
-    History->restore(Logged, /*Before=*/Target <= History->last(),
-                     getBlocks());
+    restoreFromHistory(Logged, /*Before=*/Target <= History->last());
   while (S->getCycle() < Target) {
     uint32_t Cycle = S->getCycle() + 1;
     bool FromHistory;
     BehaviorSession::Outcome O = runNextCycle(FromHistory);
     if (!reportOutcome(*C, *L, O, Cycle, Opts.CycleLimitMs)) {
+      bool Diverged = O.K == BehaviorSession::Outcome::Diverged;
+      if (Diverged)
+        C->Diags.report(llvm::SMLoc(), diag::note_history_ends) << Cycle - 1;
       flushDiagnostics();
       OS << "stopped in cycle " << Cycle << " on the way to cycle " << Target
-         << "; the state is as it left it\n";
+         << (Diverged ? "; the state is as the live run left cycle " +
+                            std::to_string(Cycle - 1)
+                      : std::string("; the state is as it left it"))
+         << "\n";
       return false;
     }
   }

@@ -67,6 +67,7 @@ bsc::loadBehavior(Compilation &C, const CallableDecl &Entry,
   CodeGenOptions CGOpts;
   CGOpts.BehaviorName = C.Modules.front()->Name;
   CGOpts.Probes = true;
+  CGOpts.Boundary = true;
   CGOpts.ExternalFunctions = Opts.ExternalFunctions;
   CGOpts.DebugInfo = Opts.DebugInfo;
   CGOpts.Sources = &C.SM;

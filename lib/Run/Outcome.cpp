@@ -41,6 +41,10 @@ bool bsc::reportOutcome(Compilation &C, const LoadedBehavior &L,
   switch (O.K) {
   case BehaviorSession::Outcome::Completed:
     return true;
+  case BehaviorSession::Outcome::Diverged:
+    C.Diags.report(llvm::SMLoc(), diag::err_cycle_diverged)
+        << Cycle << O.Divergence;
+    return false;
   case BehaviorSession::Outcome::TimedOut:
     if (const DebugSite *N = Site(O.NativeSite))
       C.Diags.report(N->Loc, diag::err_cycle_runaway_native)

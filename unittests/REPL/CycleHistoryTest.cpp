@@ -38,6 +38,14 @@ struct Toy {
   }
 };
 
+/// What the session keeps of a cycle the toy ran: the input its entry saw,
+/// no calls into C++.
+CycleRecord entryOf(const Toy &T) {
+  CycleRecord R;
+  R.EntryInput.assign(T.Input.begin(), T.Input.end());
+  return R;
+}
+
 CycleHistory::Sizes sizes() {
   return {sizeof(Toy::State), sizeof(Toy::Input), sizeof(Toy::Output)};
 }
@@ -49,8 +57,9 @@ std::vector<std::array<uint32_t, 8>> runAndRecord(Toy &T, CycleHistory &H,
   H.reset(0, T.blocks());
   for (uint32_t C = 1; C <= N; ++C) {
     T.Input = Toy::inputOf(C);
+    CycleRecord R = entryOf(T);
     T.cycle();
-    H.recordCycle(T.blocks());
+    H.recordCycle(R, T.blocks());
     States.push_back(T.State);
   }
   return States;
@@ -97,11 +106,13 @@ TEST(CycleHistoryTest, OnlyChangedWordsAreLogged) {
   H.reset(0, T.blocks());
   size_t Empty = H.getMemoryBytes();
   for (uint32_t C = 1; C <= 1000; ++C) {
-    T.cycle(); // The input never changes: nothing but the cycle's start.
-    H.recordCycle(T.blocks());
+    // Neither the input nor the state changes: nothing but the indices.
+    H.recordCycle(entryOf(T), T.blocks());
   }
-  // A start index per cycle (vector growth aside), no changed words.
-  EXPECT_LT(H.getMemoryBytes() - Empty, 1000 * sizeof(size_t) * 2 + 64);
+  // Three start indices and a call count per cycle (vector growth aside),
+  // no changed words.
+  EXPECT_LT(H.getMemoryBytes() - Empty,
+            1000 * (3 * sizeof(size_t) + sizeof(unsigned)) * 2 + 64);
 }
 
 TEST(CycleHistoryTest, AnEditAtThePromptEndsTheHistoryThere) {
@@ -116,8 +127,9 @@ TEST(CycleHistoryTest, AnEditAtThePromptEndsTheHistoryThere) {
   // Live again from 20; a copy at 20 holds the edit.
   for (uint32_t C = 21; C <= 30; ++C) {
     T.Input = Toy::inputOf(C + 100);
+    CycleRecord R = entryOf(T);
     T.cycle();
-    H.recordCycle(T.blocks());
+    H.recordCycle(R, T.blocks());
   }
   auto At30 = T.State;
   travel(T, H, 20, /*Before=*/true);
@@ -139,6 +151,60 @@ TEST(CycleHistoryTest, AnEditAtTheFirstCycle) {
   Toy U;
   H.restore(0, true, U.blocks());
   EXPECT_EQ(U.State, T.State);
+}
+
+TEST(CycleHistoryTest, LiveViewsAreHowEachCycleLeftTheBlocks) {
+  Toy T;
+  CycleHistory H(sizes(), 16);
+  H.reset(0, T.blocks());
+  std::vector<std::vector<unsigned char>> Views;
+  auto View = [&] {
+    std::vector<unsigned char> V(sizeof T.State + sizeof T.Input + 1);
+    std::memcpy(V.data(), T.State.data(), sizeof T.State);
+    std::memcpy(V.data() + sizeof T.State, T.Input.data(), sizeof T.Input);
+    V.back() = T.Output;
+    return V;
+  };
+  Views.push_back(View());
+  for (uint32_t C = 1; C <= 50; ++C) {
+    T.Input = Toy::inputOf(C);
+    CycleRecord R = entryOf(T);
+    R.Calls = {static_cast<unsigned char>(C)}; // Bytes only, here.
+    R.NumCalls = 1;
+    T.cycle();
+    T.Input[0] ^= 0x55; // What C++ wrote during the cycle.
+    H.recordCycle(R, T.blocks());
+    Views.push_back(View());
+  }
+  // In order (the cache), backwards and across copies.
+  for (uint32_t C : {0u, 1u, 2u, 3u, 17u, 16u, 50u, 49u, 33u, 0u, 31u, 32u})
+    EXPECT_EQ(H.liveViewAt(C), Views[C]) << "cycle " << C;
+  CycleRecord R;
+  H.getCalls(7, R);
+  EXPECT_EQ(R.Calls, std::vector<unsigned char>{7});
+  EXPECT_EQ(R.NumCalls, 1u);
+  // The entry's input, not the one the cycle left.
+  travel(T, H, 30, true);
+  H.applyInput(31, T.Input.data());
+  EXPECT_EQ(T.Input, Toy::inputOf(31));
+}
+
+TEST(CycleHistoryTest, AnEditIsTheLiveViewOfItsCycle) {
+  Toy T;
+  CycleHistory H(sizes(), 8);
+  runAndRecord(T, H, 20);
+  travel(T, H, 12, true);
+  T.State[2] = 99;
+  H.keepPresent(12, T.blocks());
+  EXPECT_TRUE(H.isEdited(12));
+  EXPECT_FALSE(H.isEdited(11));
+  uint32_t Word;
+  std::memcpy(&Word, H.liveViewAt(12).data() + 8, 4);
+  EXPECT_EQ(Word, 99u);
+  T.cycle();
+  H.recordCycle(entryOf(T), T.blocks());
+  std::memcpy(&Word, H.liveViewAt(13).data() + 8, 4);
+  EXPECT_EQ(Word, T.State[2]);
 }
 
 } // namespace

@@ -108,6 +108,10 @@ struct NativeFunction {
   /// The thunk's first argument after the object is the state
   /// (`bs::Context &`): generated code passes it, the script does not.
   bool TakesContext = false;
+  /// Registered `.pure()`: the result depends on the arguments alone and
+  /// the call changes nothing, so a re-run calls it again instead of
+  /// taking it from a record (bsc/JIT/Boundary.h).
+  bool Pure = false;
 
   /// Methods, fields and properties take the object; functions do not.
   bool hasSelf() const { return Kind != Function; }

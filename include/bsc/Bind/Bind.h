@@ -119,6 +119,7 @@ enum MemberFlags : unsigned {
   MF_ConstSelf = BS_MEMBER_CONST_SELF, ///< Does not modify the object.
   MF_ReadOnly = BS_MEMBER_READ_ONLY,   ///< Field or property without setter.
   MF_ResultOut = BS_MEMBER_RESULT_OUT, ///< Class result: the thunk's first parameter is `R *out`.
+  MF_Pure = BS_MEMBER_PURE,           ///< `.pure()`: no effects.
 };
 
 /// A field, property, method or function. The thunk shapes:
@@ -143,6 +144,7 @@ struct BoundMember {
   bool isConstSelf() const { return Flags & MF_ConstSelf; }
   bool isReadOnly() const { return Flags & MF_ReadOnly; }
   bool resultViaOut() const { return Flags & MF_ResultOut; }
+  bool isPure() const { return Flags & MF_Pure; }
   /// Methods, fields and properties take the object; functions,
   /// constructors and constants do not.
   bool hasSelf() const {

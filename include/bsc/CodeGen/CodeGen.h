@@ -50,6 +50,13 @@ struct CodeGenOptions {
   /// loop that ran away or the binding that crashed. Values computed do
   /// not change; robot objects never have probes (no mutable globals).
   bool Probes = false;
+  /// The boundary to registered C++ for the JIT's records (bsc/JIT/
+  /// Boundary.h): every call of a thunk that is not registered `pure`
+  /// goes through a wrapper that reports it to bs_boundary_enter and
+  /// bs_boundary_leave, so that the REPL's time travel and exact replays
+  /// take its effects from a record instead of calling the C++ again.
+  /// Values computed do not change; robot objects never have it.
+  bool Boundary = false;
   /// Explaining conditions for the REPL's `:why` (CGExplain.cpp), JIT only
   /// like Probes: every `if` and `for` condition appends a record to the
   /// log `bs.explain.log` (ExplainLogHeader) with its site

@@ -18,6 +18,7 @@
 #include "llvm/ADT/STLFunctionalExtras.h"
 #include "llvm/Support/Error.h"
 #include "llvm/TargetParser/Triple.h"
+#include "bsc/JIT/Boundary.h"
 #include "bscript/bscript.h"
 #include <memory>
 #include <string>
@@ -196,7 +197,10 @@ public:
 
   /// How a cycle ended.
   struct Outcome {
-    enum Kind { Completed, TimedOut, Crashed } K = Completed;
+    /// Diverged: a cycle run from a record parted from it (Divergence
+    /// says how); it completed, with whatever its calls returned after.
+    enum Kind { Completed, TimedOut, Crashed, Diverged } K = Completed;
+    std::string Divergence;
     int Signal = 0;          ///< Crashed: the signal.
     uint32_t LoopSite = 0;   ///< The last loop probe (BehaviorLayout::Sites).
     uint32_t NativeSite = 0; ///< The binding being called, if any.
@@ -209,9 +213,22 @@ public:
   };
   /// Begins the next cycle and calls the entry; a cycle still running after
   /// `LimitMs` milliseconds (0: no limit) is stopped. Without `WithWorld`
-  /// the world's hooks are not called: the REPL re-runs a cycle of its
-  /// history on the input it logged.
+  /// the world's hooks are not called (a replay sets `input` itself).
+  /// With keepCalls on, what the cycle observed of its calls into
+  /// registered C++ (bsc/JIT/Boundary.h), the world's end hook's among
+  /// them, is kept with the input the entry saw (getLastCalls).
   Outcome runCycle(unsigned LimitMs, bool WithWorld = true);
+  /// Whether runCycle keeps each cycle's calls (the REPL's history and
+  /// recordings do).
+  void keepCalls(bool On) { KeepCalls = On; }
+  bool keepsCalls() const { return KeepCalls; }
+  /// The calls of the last cycle runCycle ran with keepCalls on.
+  const CycleRecord &getLastCalls() const { return LastCalls; }
+  /// Begins the next cycle and calls the entry on the input the caller
+  /// set, taking every call into registered C++ (and the world's end
+  /// hook) from `From` instead of calling it: the REPL's time travel and
+  /// exact replays. A cycle that parts from its record is Diverged.
+  Outcome replayCycle(unsigned LimitMs, const CycleRecord &From);
   /// Calls `Fn(state)` under the same guard, between cycles (a REPL line).
   Outcome runGuarded(void (*Fn)(void *), unsigned LimitMs) {
     return runGuardedBody([&] { Fn(State); }, LimitMs);
@@ -242,6 +259,7 @@ public:
     WorldOutput = Old.WorldOutput;
     TeamUser = Old.TeamUser;
     Robot = Old.Robot;
+    Calls->setCaptureFd(WorldOutput);
     bs_state_set_user(State, WorldUser);
     Old.World = WorldHooks();
   }
@@ -249,6 +267,14 @@ public:
   /// What the world's hooks print to standard output goes to file
   /// descriptor `Fd` (the session does not own it); -1: standard output.
   void setWorldOutput(int Fd);
+  /// Whether the session has a world library attached.
+  bool hasWorld() const { return World.Init || World.TeamBegin || World.TeamEnd; }
+  /// The sizes of the view's blocks: state, input, output.
+  void getViewSizes(size_t Sizes[3]) const {
+    Sizes[0] = Info->state_size;
+    Sizes[1] = InputSpec.Size;
+    Sizes[2] = OutputSpec.Size;
+  }
 
   void *getState() const { return State; }
   void *getInput() const { return Input; }
@@ -268,6 +294,13 @@ private:
   BehaviorJIT::GlobalObject InputSpec, OutputSpec;
   volatile uint32_t *LoopProbe = nullptr, *NativeProbe = nullptr;
   bool Started = false; ///< bs_state_init succeeded.
+  /// The recorder of the calls into registered C++ (Boundary.h).
+  std::unique_ptr<Boundary> Calls;
+  bool KeepCalls = false;
+  CycleRecord LastCalls;
+  /// The entry and the world's end hooks, under Calls: the one cycle body
+  /// of runCycle and replayCycle.
+  void runEntry(bool WithWorld);
   WorldHooks World;
   void *WorldUser = nullptr;
   /// A team world's pointer and this robot's index in the team.

@@ -223,6 +223,14 @@ bool checkCoverageFloor(Compilation &C, const CoverageSummary &S,
 bool reportFailedAssertion(Compilation &C, const LoadedBehavior &L,
                            uint32_t Cycle);
 
+/// The first value where the session's state, input and output differ
+/// from `Live` (the three blocks end to end, as a live run left them):
+/// "'Striker.x' is 3; the live run left 4". Empty if they are the same.
+std::string describeViewDifference(debug::ValueIO &Values,
+                                   const LoadedBehavior &L,
+                                   const BehaviorSession &S,
+                                   llvm::ArrayRef<unsigned char> Live);
+
 /// What ended a cycle early, as a diagnostic (at the loop or the call of
 /// registered C++ the probes name). Returns false after reporting.
 bool reportOutcome(Compilation &C, const LoadedBehavior &L,

@@ -1,0 +1,444 @@
+//===- Boundary.cpp - recording and replaying calls into registered C++ ---===//
+//
+// The encoding of one call in CycleRecord::Calls (all numbers LEB128):
+//   id << 1 | string-result    the site's name (internBoundaryName)
+//   length, bytes              the result (a string's characters)
+//   count, (length, bytes)...  the mutable pointer arguments after the call
+//   count, (gap, length, bytes)...
+//                              the runs of the view the call changed; the
+//                              view is state, input and output end to end,
+//                              and a run starts `gap` bytes after the end
+//                              of the one before (the first: after 0)
+// A call that changed nothing but its result costs 4 to 8 bytes.
+//
+//===----------------------------------------------------------------------===//
+#include "bsc/JIT/Boundary.h"
+#include "llvm/ADT/StringMap.h"
+#include "llvm/Support/LEB128.h"
+#include <cstdio>
+#include <cstring>
+#include <unistd.h>
+
+using namespace bsc;
+
+Boundary *Boundary::Current = nullptr;
+
+const char *const bsc::BoundaryBlockNames[3] = {"state", "input", "output"};
+
+namespace {
+/// Call-site names by id, for the whole process: a record made by one
+/// session (the REPL's history) is read by the same process only.
+struct NameTable {
+  std::vector<std::string> Names;
+  llvm::StringMap<uint32_t> Ids;
+};
+NameTable &getNames() {
+  static NameTable T;
+  return T;
+}
+
+void putULEB(std::vector<unsigned char> &Out, uint64_t V) {
+  unsigned char Buf[16];
+  unsigned N = llvm::encodeULEB128(V, Buf);
+  Out.insert(Out.end(), Buf, Buf + N);
+}
+
+void putBytes(std::vector<unsigned char> &Out, const void *P, size_t N) {
+  putULEB(Out, N);
+  auto *B = static_cast<const unsigned char *>(P);
+  if (N)
+    Out.insert(Out.end(), B, B + N);
+}
+
+/// Reads the encoding above; a read past the end sets Bad and gives 0.
+struct Reader {
+  const unsigned char *P, *End;
+  bool Bad = false;
+  uint64_t uleb() {
+    const char *Error = nullptr;
+    unsigned N = 0;
+    uint64_t V = llvm::decodeULEB128(P, &N, End, &Error);
+    if (Error) {
+      Bad = true;
+      return 0;
+    }
+    P += N;
+    return V;
+  }
+  /// `N` bytes (and moves past them), or null if there are fewer.
+  const unsigned char *bytes(uint64_t N) {
+    if (Bad || uint64_t(End - P) < N) {
+      Bad = true;
+      return nullptr;
+    }
+    const unsigned char *At = P;
+    P += N;
+    return At;
+  }
+};
+} // namespace
+
+llvm::StringRef bsc::getBoundaryName(uint32_t Id) {
+  NameTable &T = getNames();
+  return Id < T.Names.size() ? llvm::StringRef(T.Names[Id]) : "?";
+}
+
+uint32_t bsc::internBoundaryName(llvm::StringRef Name) {
+  NameTable &T = getNames();
+  auto [It, New] = T.Ids.try_emplace(Name, uint32_t(T.Names.size()));
+  if (New)
+    T.Names.push_back(Name.str());
+  return It->second;
+}
+
+Boundary::Boundary(void *State, size_t StateSize, void *Input,
+                   size_t InputSize, void *Output, size_t OutputSize) {
+  Blocks[0] = {static_cast<unsigned char *>(State), StateSize};
+  Blocks[1] = {static_cast<unsigned char *>(Input), InputSize};
+  Blocks[2] = {static_cast<unsigned char *>(Output), OutputSize};
+  ViewSize = StateSize + InputSize + OutputSize;
+}
+
+uint32_t Boundary::internSite(const bs_boundary_site *Site) {
+  auto [It, New] = SiteIds.try_emplace(Site, 0);
+  if (New)
+    It->second = internBoundaryName(Site->name);
+  return It->second;
+}
+
+void Boundary::startRecording(CycleRecord &R) {
+  R.clear();
+  if (Blocks[1].Size)
+    R.EntryInput.assign(Blocks[1].Ptr, Blocks[1].Ptr + Blocks[1].Size);
+  M = Mode::Record;
+  Recording = &R;
+  CallIndex = 0;
+}
+
+void Boundary::startReplay(const CycleRecord &R) {
+  M = Mode::Replay;
+  Replaying = &R;
+  ReadAt = 0;
+  CallIndex = 0;
+  Divergence.clear();
+  Strings.clear();
+}
+
+std::string Boundary::finish() {
+  redirectOutput(false); // A crash in a call left it redirected.
+  if (M == Mode::Replay && Divergence.empty() &&
+      ReadAt < Replaying->Calls.size()) {
+    Reader R{Replaying->Calls.data() + ReadAt,
+             Replaying->Calls.data() + Replaying->Calls.size()};
+    diverge("the cycle ended after " + std::to_string(CallIndex) +
+            " calls into C++; the recorded run went on to call '" +
+            getBoundaryName(uint32_t(R.uleb() >> 1)).str() + "'");
+  }
+  M = Mode::Off;
+  Recording = nullptr;
+  Replaying = nullptr;
+  return std::move(Divergence);
+}
+
+bool Boundary::nextCallIs(llvm::StringRef Name) const {
+  if (M != Mode::Replay || !Divergence.empty() ||
+      ReadAt >= Replaying->Calls.size())
+    return false;
+  Reader R{Replaying->Calls.data() + ReadAt,
+           Replaying->Calls.data() + Replaying->Calls.size()};
+  return getBoundaryName(uint32_t(R.uleb() >> 1)) == Name;
+}
+
+void Boundary::diverge(std::string Why) {
+  if (Divergence.empty())
+    Divergence = std::move(Why);
+}
+
+void Boundary::redirectOutput(bool To) {
+  if (To && CaptureFd >= 0 && SavedStdout < 0) {
+    std::fflush(stdout);
+    SavedStdout = dup(STDOUT_FILENO);
+    dup2(CaptureFd, STDOUT_FILENO);
+  } else if (!To && SavedStdout >= 0) {
+    std::fflush(stdout);
+    dup2(SavedStdout, STDOUT_FILENO);
+    close(SavedStdout);
+    SavedStdout = -1;
+  }
+}
+
+void Boundary::snapshotView() {
+  Before.resize(ViewSize);
+  unsigned char *To = Before.data();
+  for (const Block &B : Blocks) {
+    if (B.Size)
+      std::memcpy(To, B.Ptr, B.Size);
+    To += B.Size;
+  }
+}
+
+void Boundary::recordViewWrites() {
+  // Runs of changed bytes, joined across gaps of fewer than 4 unchanged
+  // bytes (a gap's own length costs about as much).
+  struct Run {
+    size_t Start, End;
+  };
+  llvm::SmallVector<Run, 4> Runs;
+  size_t Base = 0;
+  for (const Block &B : Blocks) {
+    const unsigned char *Old = Before.data() + Base;
+    for (size_t I = 0; I < B.Size;) {
+      if (B.Ptr[I] == Old[I]) {
+        ++I;
+        continue;
+      }
+      size_t At = Base + I;
+      if (!Runs.empty() && At - Runs.back().End < 4 &&
+          Runs.back().End > Base) // Runs do not cross blocks.
+        Runs.back().End = At + 1;
+      else
+        Runs.push_back({At, At + 1});
+      ++I;
+    }
+    Base += B.Size;
+  }
+  std::vector<unsigned char> &Out = Recording->Calls;
+  putULEB(Out, Runs.size());
+  size_t Prev = 0;
+  for (const Run &R : Runs) {
+    putULEB(Out, R.Start - Prev);
+    putULEB(Out, R.End - R.Start);
+    // The bytes now, from the blocks.
+    size_t Off = R.Start;
+    for (const Block &B : Blocks) {
+      if (Off < B.Size) {
+        Out.insert(Out.end(), B.Ptr + Off, B.Ptr + Off + (R.End - R.Start));
+        break;
+      }
+      Off -= B.Size;
+    }
+    Prev = R.End;
+  }
+}
+
+bool Boundary::enter(const bs_boundary_site *Site) {
+  switch (M) {
+  case Mode::Off:
+    if (!(Site->flags & SiteStandard))
+      redirectOutput(true);
+    return false;
+  case Mode::Record:
+    snapshotView();
+    if (!(Site->flags & SiteStandard))
+      redirectOutput(true);
+    return false;
+  case Mode::Replay:
+    break;
+  }
+  uint32_t Id = internSite(Site);
+  ++CallIndex;
+  if (!Divergence.empty())
+    return true;
+  const std::vector<unsigned char> &Calls = Replaying->Calls;
+  if (ReadAt >= Calls.size()) {
+    diverge("call " + std::to_string(CallIndex) + " into C++ is '" +
+            Site->name + "'; the recorded run made " +
+            std::to_string(Replaying->NumCalls) + " in this cycle");
+    return true;
+  }
+  Reader R{Calls.data() + ReadAt, Calls.data() + Calls.size()};
+  uint32_t Recorded = uint32_t(R.uleb() >> 1);
+  if (Recorded != Id)
+    diverge("call " + std::to_string(CallIndex) + " into C++ is '" +
+            Site->name + "'; the recorded run called '" +
+            getBoundaryName(Recorded).str() + "'");
+  return true;
+}
+
+void Boundary::leave(const bs_boundary_site *Site, void *Result,
+                     void *const *Ptrs) {
+  bool IsString = Site->flags & SiteResultIsString;
+  if (M == Mode::Off) {
+    redirectOutput(false);
+    return;
+  }
+  if (M == Mode::Record) {
+    redirectOutput(false);
+    std::vector<unsigned char> &Out = Recording->Calls;
+    putULEB(Out, uint64_t(internSite(Site)) << 1 | (IsString ? 1 : 0));
+    if (IsString) {
+      const char *S = Result ? *static_cast<const char *const *>(Result)
+                             : nullptr;
+      putBytes(Out, S, S ? std::strlen(S) : 0);
+    } else {
+      putBytes(Out, Result, Result ? Site->result_size : 0);
+    }
+    putULEB(Out, Ptrs ? Site->num_ptrs : 0);
+    for (uint32_t I = 0; Ptrs && I < Site->num_ptrs; ++I)
+      putBytes(Out, Ptrs[I], Site->ptr_sizes[I]);
+    recordViewWrites();
+    ++Recording->NumCalls;
+    return;
+  }
+  // Replay: the effects as recorded.
+  if (!Divergence.empty()) {
+    if (Result)
+      std::memset(Result, 0, Site->result_size);
+    return;
+  }
+  const std::vector<unsigned char> &Calls = Replaying->Calls;
+  Reader R{Calls.data() + ReadAt, Calls.data() + Calls.size()};
+  R.uleb(); // The id, checked by enter.
+  uint64_t Len = R.uleb();
+  const unsigned char *Bytes = R.bytes(Len);
+  if (Result && Bytes) {
+    if (IsString) {
+      Strings.emplace_back(reinterpret_cast<const char *>(Bytes), Len);
+      const char *S = Strings.back().c_str();
+      std::memcpy(Result, &S, sizeof S);
+    } else if (Len == Site->result_size) {
+      std::memcpy(Result, Bytes, Len);
+    } else {
+      R.Bad = true;
+    }
+  }
+  uint64_t NumPtrs = R.uleb();
+  if (!R.Bad && NumPtrs != (Ptrs ? Site->num_ptrs : 0))
+    R.Bad = true;
+  for (uint64_t I = 0; I < NumPtrs && !R.Bad; ++I) {
+    uint64_t N = R.uleb();
+    const unsigned char *P = R.bytes(N);
+    if (P && N == Site->ptr_sizes[I])
+      std::memcpy(Ptrs[I], P, N);
+    else
+      R.Bad = true;
+  }
+  uint64_t NumRuns = R.uleb();
+  size_t At = 0;
+  for (uint64_t I = 0; I < NumRuns && !R.Bad; ++I) {
+    At += R.uleb();
+    uint64_t N = R.uleb();
+    const unsigned char *P = R.bytes(N);
+    if (!P || At + N > ViewSize) {
+      R.Bad = true;
+      break;
+    }
+    size_t Off = At;
+    for (const Block &B : Blocks) {
+      if (Off < B.Size) {
+        if (Off + N > B.Size)
+          R.Bad = true;
+        else
+          std::memcpy(B.Ptr + Off, P, N);
+        break;
+      }
+      Off -= B.Size;
+    }
+    At += N;
+  }
+  if (R.Bad) {
+    diverge("call " + std::to_string(CallIndex) + " into C++ ('" +
+            Site->name + "') does not fit its record (a result or argument "
+            "of another size: the record is of another behavior)");
+    if (Result)
+      std::memset(Result, 0, Site->result_size);
+    return;
+  }
+  ReadAt = R.P - Calls.data();
+}
+
+//===----------------------------------------------------------------------===//
+// Decoding and encoding whole records (recordings)
+//===----------------------------------------------------------------------===//
+
+std::vector<RecordedCall> bsc::decodeCalls(const CycleRecord &Rec,
+                                           const size_t BlockSizes[3]) {
+  std::vector<RecordedCall> Calls;
+  Reader R{Rec.Calls.data(), Rec.Calls.data() + Rec.Calls.size()};
+  while (R.P < R.End && !R.Bad) {
+    RecordedCall C;
+    uint64_t Head = R.uleb();
+    C.Name = getBoundaryName(uint32_t(Head >> 1)).str();
+    C.ResultIsString = Head & 1;
+    uint64_t Len = R.uleb();
+    if (const unsigned char *B = R.bytes(Len))
+      C.Result.assign(B, B + Len);
+    uint64_t NumPtrs = R.uleb();
+    for (uint64_t I = 0; I < NumPtrs && !R.Bad; ++I) {
+      uint64_t N = R.uleb();
+      if (const unsigned char *B = R.bytes(N))
+        C.Ptrs.emplace_back(B, B + N);
+    }
+    uint64_t NumRuns = R.uleb();
+    uint64_t At = 0;
+    for (uint64_t I = 0; I < NumRuns && !R.Bad; ++I) {
+      At += R.uleb();
+      uint64_t N = R.uleb();
+      const unsigned char *B = R.bytes(N);
+      if (!B)
+        break;
+      uint64_t Off = At;
+      unsigned Block = 0;
+      while (Block < 2 && Off >= BlockSizes[Block])
+        Off -= BlockSizes[Block++];
+      C.Writes.push_back({Block, Off, {B, B + N}});
+      At += N;
+    }
+    Calls.push_back(std::move(C));
+  }
+  return Calls;
+}
+
+bool bsc::encodeCalls(llvm::ArrayRef<RecordedCall> Calls,
+                      const size_t BlockSizes[3], CycleRecord &Rec,
+                      std::string &Error) {
+  Rec.Calls.clear();
+  Rec.NumCalls = 0;
+  std::vector<unsigned char> &Out = Rec.Calls;
+  for (const RecordedCall &C : Calls) {
+    putULEB(Out, uint64_t(internBoundaryName(C.Name)) << 1 |
+                     (C.ResultIsString ? 1 : 0));
+    putBytes(Out, C.Result.data(), C.Result.size());
+    putULEB(Out, C.Ptrs.size());
+    for (const std::vector<unsigned char> &P : C.Ptrs)
+      putBytes(Out, P.data(), P.size());
+    putULEB(Out, C.Writes.size());
+    uint64_t Prev = 0;
+    for (const RecordedCall::Write &W : C.Writes) {
+      if (W.Block > 2 || W.Offset + W.Bytes.size() > BlockSizes[W.Block]) {
+        Error = "a write of " + std::to_string(W.Bytes.size()) +
+                " bytes at " + BoundaryBlockNames[std::min(W.Block, 2u)] +
+                "+" + std::to_string(W.Offset) + " is outside the " +
+                (W.Block > 2 ? "view" : BoundaryBlockNames[W.Block]);
+        return false;
+      }
+      uint64_t At = W.Offset;
+      for (unsigned B = 0; B < W.Block; ++B)
+        At += BlockSizes[B];
+      if (At < Prev) {
+        Error = "the writes of a call are not in the order of the view";
+        return false;
+      }
+      putULEB(Out, At - Prev);
+      putBytes(Out, W.Bytes.data(), W.Bytes.size());
+      Prev = At + W.Bytes.size();
+    }
+    ++Rec.NumCalls;
+  }
+  return true;
+}
+
+//===----------------------------------------------------------------------===//
+// What generated code calls
+//===----------------------------------------------------------------------===//
+
+int32_t bs_boundary_enter(const bs_boundary_site *Site) {
+  Boundary *B = Boundary::Current;
+  return B && B->enter(Site) ? 1 : 0;
+}
+
+void bs_boundary_leave(const bs_boundary_site *Site, void *Result,
+                       void *const *Ptrs) {
+  if (Boundary *B = Boundary::Current)
+    B->leave(Site, Result, Ptrs);
+}
