@@ -16,14 +16,15 @@
 
 using namespace bsc;
 
-/// `--world-output` redirects the world's prints: without `--world` it is
-/// a mistake.
+/// `--world-output` redirects what the world library and registered C++
+/// print: without either it is a mistake.
 static bool checkWorldOutputOption(Compilation &C, llvm::StringRef WorldLibrary,
-                                   llvm::StringRef WorldOutput) {
-  if (WorldOutput.empty() || !WorldLibrary.empty())
+                                   llvm::StringRef WorldOutput,
+                                   bool HasBindings) {
+  if (WorldOutput.empty() || !WorldLibrary.empty() || HasBindings)
     return true;
   C.Diags.report(llvm::SMLoc(), diag::err_option_needs_option)
-      << "--world-output" << "--world";
+      << "--world-output" << "--world' or '--bind";
   return false;
 }
 
@@ -71,7 +72,8 @@ static int loadAndRun(Compilation &C, const RunCommandOptions &Opts,
         << "--world" << "--replay";
     return finishCompilation(C);
   }
-  if (!checkWorldOutputOption(C, Opts.WorldLibrary, Opts.WorldOutput))
+  if (!checkWorldOutputOption(C, Opts.WorldLibrary, Opts.WorldOutput,
+                              !LOpts.BindObjects.empty()))
     return finishCompilation(C);
   int WorldOutputFd = -1;
   if (!Opts.WorldOutput.empty() &&
@@ -218,7 +220,8 @@ int bsc::replCommand(Compilation &C, const FrontendOptions &FOpts,
     C.Diags.report(llvm::SMLoc(), diag::err_no_input_files);
     OK = false;
   }
-  OK &= checkWorldOutputOption(C, Opts.WorldLibrary, Opts.WorldOutput);
+  OK &= checkWorldOutputOption(C, Opts.WorldLibrary, Opts.WorldOutput,
+                               !FOpts.BindObjects.empty());
   OK &= parseRobots(C.Diags, Opts.Robots, ROpts.Robots);
   if (!OK)
     return finishCompilation(C);

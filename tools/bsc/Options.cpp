@@ -111,8 +111,8 @@ cl::opt<std::string> WorldLibrary(
     cl::value_desc("lib.so"), BSC_JIT);
 cl::opt<std::string> WorldOutput(
     "world-output",
-    cl::desc("Write what the --world library prints to this file instead of "
-             "standard output"),
+    cl::desc("Write what the --world library and registered C++ print "
+             "during cycles to this file instead of standard output"),
     cl::value_desc("file"), BSC_JIT);
 cl::opt<std::string> RobotsArg(
     "robots",
