@@ -59,6 +59,18 @@ int total(const Buf &B) {
 }
 
 int mix(int A, int B) { return int(std::uint32_t(A) * 31u + std::uint32_t(B)); }
+
+// Calls with effects, which the REPL's time travel and exact replays must
+// take from their record (docs/repl.md "Going back in time"): a counter
+// and a random generator with hidden C++ state, and a write to `input`
+// through the context, as a simulation stepped by the behavior would.
+inline std::uint32_t Ticks = 0, Seed = 7;
+int tick() { return int(++Ticks); }
+int rnd() {
+  Seed = Seed * 1103515245u + 12345u;
+  return int((Seed >> 16) & 0x7fffu);
+}
+
 float nudge(float V) { return V + 0.25f; }
 int cycleOf(bs::Context &C) { return int(C.cycle()); }
 
@@ -70,6 +82,11 @@ struct In {
   Mode mode = Mode::walk;
   bool seen = true;
 };
+/// Adds V to the input's time, wrapping, through the context's pointer.
+void poke(bs::Context &C, int V) {
+  auto *I = static_cast<In *>(const_cast<void *>(C.input()));
+  I->time = int(std::uint32_t(I->time) + std::uint32_t(V));
+}
 
 static void printFloat(float V) {
   if (V != V)
@@ -135,7 +152,10 @@ BS_MODULE(Gen,
     .var<&Buf::pts>("pts")
     .prop<&Buf::getTag, &Buf::setTag>("tag")
     .func<&gen::total>("total");
-  registerFunction<&gen::mix>(module, "mix").defaults(3);
+  registerFunction<&gen::mix>(module, "mix").defaults(3).pure();
+  registerFunction<&gen::tick>(module, "tick");
+  registerFunction<&gen::rnd>(module, "rnd");
+  registerFunction<&gen::poke>(module, "poke");
   registerFunction<&gen::nudge>(module, "nudge");
   registerFunction<&gen::cycleOf>(module, "cycleOf");
   registerConstant(module, "LIMIT", 7);
@@ -153,7 +173,8 @@ BS_MODULE(Gen,
     .var<&gen::Out::head>("head")
     .var<&gen::Out::small>("small")
     .var<&gen::Out::target>("target")
-    .var<&gen::Out::mode>("mode");
+    .var<&gen::Out::mode>("mode")
+    .copyAsBytes(); // Its destructor only prints: the REPL may keep copies.
   registerInput<gen::In>(module);
   registerOutput<gen::Out>(module);
 )

@@ -119,6 +119,10 @@ def required():
         req.add(f"call {kind}")
     for kind in ("func", "task", "native"):
         req.add(f"call {kind} with defaults")
+    # Registered C++ with effects (hidden state, writes to input), which
+    # time travel and exact replays take from their records.
+    for fn in ("tick", "rnd", "poke"):
+        req.add(f"call with effects Gen::{fn}")
     for kind in ("field", "property", "method"):
         req.add(f"member {kind}")
     for kind in ("constant", "clamped", "2-D"):
@@ -311,6 +315,9 @@ def source_features(program):
         if in_state_enum and value in (1, -1):
             found.add(f"named state {value}")
         value += 1
+    for fn in ("tick", "rnd", "poke"):
+        if f"Gen::{fn}(" in program:
+            found.add(f"call with effects Gen::{fn}")
     return found
 
 

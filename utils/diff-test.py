@@ -15,6 +15,16 @@ utils/gen-program.py makes a well-typed program, and this script runs it
   i586-O0  bsc -target i586 -O0 --cycles N P.bs -o prog; utils/run-i586 prog
   i586-O2  bsc -target i586 -O2 --cycles N P.bs -o prog; utils/run-i586 prog
 
+and, for every third seed, the boundary to registered C++ (docs/repl.md,
+"Going back in time" and "Recordings"; the generator's Gen::tick, rnd and
+poke have effects):
+
+  jit-record  bsc run -O0 --cycles N --record R.jsonl P.bs
+  jit-replay  bsc run -O2 --replay R.jsonl P.bs    (exactly: calls from R)
+  jit-travel  bsc repl: :run N, :goto 1, :goto N, :back 1 (every re-run
+              cycle is checked against the live one; no "parted from its
+              record" may appear)
+
 each with `--bind DIR/GenWorld.<host|i586>.o` (the world module `Gen` of
 utils/GenWorld.cpp, which test/CMakeLists.txt builds into
 build/test/bind-objects, the default DIR beside the default bsc), and one
@@ -49,6 +59,7 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 CONFIGS = ["jit-O0", "jit-O2", "host-O0", "host-O2", "i586-O0", "i586-O2"]
+BOUNDARY_CONFIGS = ["jit-record", "jit-replay"]
 
 
 def load_generator():
@@ -87,6 +98,26 @@ def budget_option(seed):
     return ["--cycle-budget=" + str([1, 2, 3, 5, 8][(seed // 4) % 5])]
 
 
+def bind_host(args):
+    return ["--bind", os.path.join(args.bind_objs, "GenWorld.host.o")]
+
+
+def check_travel(args, d, src, bind):
+    """jit-travel: runs the cycles live in the REPL (which has no cycle
+    budget), then goes back and forth; the REPL compares every re-run cycle
+    with the live one."""
+    session = os.path.join(d, "travel.txt")
+    n = args.cycles
+    with open(session, "w") as f:
+        f.write(f":run {n}\n:goto 1\n:goto {n}\n:back 1\n:goto {max(1, n // 2)}\n")
+    st, out, err = run([args.bsc, "repl", "--batch", session] + bind + [src],
+                       args.timeout)
+    text = (out + err).decode(errors="replace")
+    if crashed(st, err) or "parted from its record" in text or "internal error" in text:
+        return ["jit-travel: a re-run differs from the live run or failed:\n" + text[-2000:]]
+    return []
+
+
 def check_seed(seed, args, workdir):
     """Runs one seed; returns (seed, problems, outputs, program)."""
     prog = GEN.Gen(seed).program()
@@ -98,11 +129,21 @@ def check_seed(seed, args, workdir):
     cyc = ["--cycles", str(args.cycles)] + budget_option(seed)
     outputs = {}
     problems = []
-    for cfg in CONFIGS:
+    record = os.path.join(d, "run.jsonl")
+    boundary = seed % 3 == 0
+    for cfg in CONFIGS + (BOUNDARY_CONFIGS if boundary else []):
         kind, opt = cfg.split("-")
         bind = ["--bind", os.path.join(args.bind_objs,
                                        "GenWorld.i586.o" if kind == "i586" else "GenWorld.host.o")]
-        if kind == "jit":
+        if cfg == "jit-record":
+            st, out, err = run([args.bsc, "run", "-O0"] + cyc + bind + ["--record", record, src],
+                               args.timeout)
+        elif cfg == "jit-replay":
+            if not os.path.exists(record):  # The live run broke off.
+                continue
+            st, out, err = run([args.bsc, "run", "-O2", "--replay", record] + budget_option(seed)
+                               + bind + [src], args.timeout)
+        elif kind == "jit":
             # The optimised JIT also counts coverage, which must change
             # nothing the program prints.
             cov = ["--coverage", os.path.join(d, "coverage.info")] if opt == "O2" else []
@@ -128,8 +169,10 @@ def check_seed(seed, args, workdir):
                             + "\n".join(l.decode(errors="replace") for l in out.splitlines()
                                          if b"SELF-CHECK FAILED" in l)[:2000])
         outputs[cfg] = (st, out, err)
+    if boundary:
+        problems += check_travel(args, d, src, bind_host(args))
     ref_st, ref_out, _ = outputs[CONFIGS[0]]
-    for cfg in CONFIGS[1:]:
+    for cfg in [c for c in CONFIGS + BOUNDARY_CONFIGS if c in outputs][1:]:
         st, out, _ = outputs[cfg]
         if (st, out) != (ref_st, ref_out):
             diff = difflib.unified_diff(

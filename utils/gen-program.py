@@ -394,7 +394,9 @@ class Gen:
                 return f"Gen::mix({arg})"
             return f"Gen::mix({arg}, {self.int_expr(ctx, depth + 1)})"
         if k == 3:
-            return r.choice(["Gen::cycleOf()", "input.time", "Gen::LIMIT", "LIMIT"])
+            # tick() and rnd() keep hidden C++ state: calls with effects.
+            return r.choice(["Gen::cycleOf()", "input.time", "Gen::LIMIT", "LIMIT",
+                             "Gen::tick()", "Gen::rnd()"])
         if k == 4:
             return f"{self.vec_expr(ctx, depth + 1)}.quad()"
         if k == 5 and bufs:
@@ -934,7 +936,8 @@ class Gen:
         if k == 17 and self.world:
             # A call as a statement: a const method or a C++ function.
             self.emit(ind, r.choice([f"{self.vec_expr(ctx, 1)}.quad()",
-                                     f"Gen::mix({self.int_expr(ctx, 1)})"]))
+                                     f"Gen::mix({self.int_expr(ctx, 1)})",
+                                     f"Gen::poke({self.int_expr(ctx, 1)})"]))
             return
         self.emit(ind, f'io::prints("{ctx.owner.name}:{self.fresh("s")}")')
 

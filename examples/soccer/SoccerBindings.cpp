@@ -31,6 +31,15 @@ float fabs(float X) { return std::fabs(X); }
 
 using Math::Vector2f;
 
+// The math is pure: the REPL's time travel and exact replays call it again
+// rather than keep its results (docs/bindings.md, "Pure functions").
+// bench/repl.sh also builds it with -DSOCCER_KEEP_MATH to measure both ways.
+#ifdef SOCCER_KEEP_MATH
+#define SOCCER_PURE
+#else
+#define SOCCER_PURE .pure()
+#endif
+
 BS_MODULE(Math,
   registerClass<Vector2f>(module, "Vector2f", "Eigen::Vector2f")
     // Eigen's x()/y() are overloaded (const and non-const) and inherited
@@ -38,22 +47,22 @@ BS_MODULE(Math,
     // and so gives read/write access.
     .prop<bs::mut(&Vector2f::x)>("x")
     .prop<bs::mut(&Vector2f::y)>("y")
-    .func<&Vector2f::norm>("abs", "norm")
+    .func<&Vector2f::norm>("abs", "norm") SOCCER_PURE
     // Eigen's operators return lazy expressions: evaluate them.
-    .func<&bs::op::plus<Vector2f>>("_plus_", "operator+")
-    .func<&bs::op::minus<Vector2f>>("_min_", "operator-")
-    .func<&bs::op::neg<Vector2f>>("_neg_", "operator-")
-    .func<&bs::op::scale<Vector2f>>("_mul_", "operator*")
-    .func<&bs::op::divideBy<Vector2f>>("_div_", "operator/")
-    .func<&bs::op::equals<Vector2f>>("_eq_", "operator==")
-    .func<&bs::op::notEquals<Vector2f>>("_ne_", "operator!=")
+    .func<&bs::op::plus<Vector2f>>("_plus_", "operator+") SOCCER_PURE
+    .func<&bs::op::minus<Vector2f>>("_min_", "operator-") SOCCER_PURE
+    .func<&bs::op::neg<Vector2f>>("_neg_", "operator-") SOCCER_PURE
+    .func<&bs::op::scale<Vector2f>>("_mul_", "operator*") SOCCER_PURE
+    .func<&bs::op::divideBy<Vector2f>>("_div_", "operator/") SOCCER_PURE
+    .func<&bs::op::equals<Vector2f>>("_eq_", "operator==") SOCCER_PURE
+    .func<&bs::op::notEquals<Vector2f>>("_ne_", "operator!=") SOCCER_PURE
     // dot() takes `const MatrixBase<D>&`: wrap it so the parameter is a
     // registered type.
     .func<[](const Vector2f &A, const Vector2f &B) { return A.dot(B); }>(
-        "dot", {"other"}, "dot")
+        "dot", {"other"}, "dot") SOCCER_PURE
     .copyAsBytes();
   // The parameter names show in --dump-bindings and in messages.
-  registerFunction<&Math::fabs>(module, "fabs", {"x"}, "Math::fabs");
+  registerFunction<&Math::fabs>(module, "fabs", {"x"}, "Math::fabs") SOCCER_PURE;
 )
 
 BS_MODULE(World,

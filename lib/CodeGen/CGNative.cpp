@@ -78,6 +78,8 @@ std::string ModuleEmitter::getNativeName(const NativeFunction &NF,
       Standard = NM->Standard;
       return NM->Name + "::" + NF.Name;
     }
+  if (B.World && B.World->findFunction(NF.Name) == &NF)
+    return B.World->Name + "::" + NF.Name;
   return NF.Name;
 }
 

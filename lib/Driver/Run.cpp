@@ -66,12 +66,6 @@ static int loadAndRun(Compilation &C, const RunCommandOptions &Opts,
     return finishWithInternalError(C, Loaded.takeError());
   if (!*Loaded)
     return finishCompilation(C);
-  if (!Opts.WorldLibrary.empty() && !Opts.ReplayPath.empty()) {
-    // A replay feeds the recorded input; the world would overwrite it.
-    C.Diags.report(llvm::SMLoc(), diag::err_conflicting_options)
-        << "--world" << "--replay";
-    return finishCompilation(C);
-  }
   if (!checkWorldOutputOption(C, Opts.WorldLibrary, Opts.WorldOutput,
                               !LOpts.BindObjects.empty()))
     return finishCompilation(C);
@@ -123,6 +117,7 @@ int bsc::runCommand(Compilation &C, const FrontendOptions &FOpts,
   ROpts.RecordPath = Opts.RecordPath;
   ROpts.ReplayPath = Opts.ReplayPath;
   ROpts.PrintOutput = Opts.PrintOutput;
+  ROpts.Regression = Opts.Regression;
   unsigned Robots;
   OptionsOK &= parseRobots(C.Diags, Opts.Robots, Robots);
   // Without --robots a replay runs the recording's team.
@@ -184,6 +179,8 @@ int bsc::replayCommand(Compilation &C, const FrontendOptions &FOpts,
   OK &= parseCycleLimit(C.Diags, Opts.CycleLimit, ROpts.CycleLimitMs);
   ROpts.CoveragePath = Opts.Coverage.Path;
   OK &= parseCoverageFloor(C.Diags, Opts.Coverage.Floor, ROpts.CoverageFloor);
+  ROpts.WorldLibrary = Opts.WorldLibrary;
+  ROpts.Regression = Opts.Regression;
   if (Opts.LogsDir.empty()) {
     C.Diags.report(llvm::SMLoc(), diag::err_option_needs_option)
         << "replay" << "--logs";

@@ -177,7 +177,7 @@ void Boundary::snapshotView() {
   }
 }
 
-void Boundary::recordViewWrites() {
+bool Boundary::recordViewWrites() {
   // Runs of changed bytes, joined across gaps of fewer than 4 unchanged
   // bytes (a gap's own length costs about as much).
   struct Run {
@@ -219,18 +219,19 @@ void Boundary::recordViewWrites() {
     }
     Prev = R.End;
   }
+  return !Runs.empty();
 }
 
 bool Boundary::enter(const bs_boundary_site *Site) {
+  if (Site->flags & SiteStandard) // Prints only: never kept.
+    return M == Mode::Replay && !ReplayCallsStandard;
   switch (M) {
   case Mode::Off:
-    if (!(Site->flags & SiteStandard))
-      redirectOutput(true);
+    redirectOutput(true);
     return false;
   case Mode::Record:
     snapshotView();
-    if (!(Site->flags & SiteStandard))
-      redirectOutput(true);
+    redirectOutput(true);
     return false;
   case Mode::Replay:
     break;
@@ -258,6 +259,8 @@ bool Boundary::enter(const bs_boundary_site *Site) {
 void Boundary::leave(const bs_boundary_site *Site, void *Result,
                      void *const *Ptrs) {
   bool IsString = Site->flags & SiteResultIsString;
+  if (Site->flags & SiteStandard)
+    return;
   if (M == Mode::Off) {
     redirectOutput(false);
     return;
@@ -265,6 +268,7 @@ void Boundary::leave(const bs_boundary_site *Site, void *Result,
   if (M == Mode::Record) {
     redirectOutput(false);
     std::vector<unsigned char> &Out = Recording->Calls;
+    size_t Start = Out.size();
     putULEB(Out, uint64_t(internSite(Site)) << 1 | (IsString ? 1 : 0));
     if (IsString) {
       const char *S = Result ? *static_cast<const char *const *>(Result)
@@ -276,7 +280,10 @@ void Boundary::leave(const bs_boundary_site *Site, void *Result,
     putULEB(Out, Ptrs ? Site->num_ptrs : 0);
     for (uint32_t I = 0; Ptrs && I < Site->num_ptrs; ++I)
       putBytes(Out, Ptrs[I], Site->ptr_sizes[I]);
-    recordViewWrites();
+    if (!recordViewWrites() && (Site->flags & SitePseudo)) {
+      Out.resize(Start); // A hook that wrote nothing: nothing to replay.
+      return;
+    }
     ++Recording->NumCalls;
     return;
   }

@@ -432,9 +432,10 @@ uint32_t BehaviorSession::getCycle() const {
 
 /// The world's end hooks as calls of the boundary: a re-run takes what
 /// they wrote to `output` from the record.
-static const bs_boundary_site WorldEndSite = {"bs_world_end", 0, 0, 0,
-                                              nullptr};
-static const bs_boundary_site TeamEndSite = {"bs_team_end", 0, 0, 0, nullptr};
+static const bs_boundary_site WorldEndSite = {"bs_world_end", SitePseudo, 0,
+                                              0, nullptr};
+static const bs_boundary_site TeamEndSite = {"bs_team_end", SitePseudo, 0, 0,
+                                             nullptr};
 
 void BehaviorSession::runEntry(bool WithWorld) {
   Entry(State);
@@ -483,13 +484,23 @@ BehaviorSession::Outcome BehaviorSession::runCycle(unsigned LimitMs,
 }
 
 BehaviorSession::Outcome
-BehaviorSession::replayCycle(unsigned LimitMs, const CycleRecord &From) {
+BehaviorSession::replayCycle(unsigned LimitMs, const CycleRecord &From,
+                             bool PrintAgain) {
   bs_begin_cycle(State, Input, Output);
+  std::vector<unsigned char> EntryInput;
+  if (KeepCalls && InputSpec.Size)
+    EntryInput.assign(static_cast<unsigned char *>(Input),
+                      static_cast<unsigned char *>(Input) + InputSpec.Size);
   Boundary::Current = Calls.get();
+  Calls->setReplayCallsStandard(PrintAgain);
   Calls->startReplay(From);
   Outcome O = runGuardedBody([&] { runEntry(/*WithWorld=*/false); }, LimitMs);
   std::string Why = Calls->finish();
   Boundary::Current = nullptr;
+  if (KeepCalls) { // A recording of a replay keeps the replayed calls.
+    LastCalls = From;
+    LastCalls.EntryInput = EntryInput;
+  }
   if (O.K == Outcome::Completed && !Why.empty()) {
     O.K = Outcome::Diverged;
     O.Divergence = std::move(Why);

@@ -244,7 +244,17 @@ void Repl::cmdRecord(llvm::StringRef Args, llvm::SMLoc Loc) {
     C->Diags.report(Loc, diag::err_cannot_write_output) << Args << EC.message();
     return;
   }
+  // A new file starts with the header that names the behavior; cycles
+  // appended to an old one follow its header.
+  uint64_t Size = 0;
+  if (llvm::sys::fs::file_size(Args, Size) || Size == 0) {
+    debug::printJSON(*F, recordHeader(*L));
+    *F << "\n";
+  }
   Recording = std::move(F);
+  // The calls into C++ go into the recording too.
+  for (unsigned K = 0; K < Robots->size(); ++K)
+    (*Robots)[K].keepCalls(true);
   OS << "recording cycles to " << Args << "\n";
 }
 

@@ -39,9 +39,10 @@ static constexpr unsigned MaxHistoryLines = 200;
 /// copy is put back where it was taken, so only a class that frees
 /// something when destroyed (a std::vector inside) cannot: the copy would
 /// point at memory the live value has freed since. Eigen's vectors and
-/// plain structs are fine, whether C++ calls them trivially copyable or not.
+/// plain structs are fine, whether C++ calls them trivially copyable or not,
+/// and so is a class registered `.copyAsBytes()`.
 static std::string whyNotBytes(const NativeClass *NC, const std::string &What) {
-  if (!NC || NC->TriviallyDestructible)
+  if (!NC || NC->TriviallyDestructible || NC->CopiesAsBytes)
     return "";
   return What + " is a '" + NC->QualifiedName +
          "', which has a C++ destructor (a copy of its bytes could point at "

@@ -11,7 +11,9 @@
 #include "bsc/CodeGen/Target.h"
 #include "llvm/ADT/StringSet.h"
 #include "llvm/Demangle/Demangle.h"
+#include "llvm/ADT/StringExtras.h"
 #include "llvm/Support/FileSystem.h"
+#include "llvm/Support/xxhash.h"
 
 using namespace bsc;
 
@@ -112,6 +114,7 @@ bsc::loadBehavior(Compilation &C, const CallableDecl &Entry,
   }
   if (llvm::Error E = JIT.addModule(std::move(M), std::move(Ctx), Opts.OptLevel))
     return E;
+  L->Hash = computeBehaviorHash(C, Entry);
   if (const NativeModule *World = C.Checked.World) {
     L->InputClass = World->Input;
     L->OutputClass = World->Output;
@@ -122,6 +125,21 @@ bsc::loadBehavior(Compilation &C, const CallableDecl &Entry,
                 Class->TriviallyDestructible ? "" : Class->Destroy};
   }
   return L;
+}
+
+std::string bsc::computeBehaviorHash(const Compilation &C,
+                                    const CallableDecl &Entry) {
+  // The sources as read, the binding modules' descriptor hashes and the
+  // entry: what decides the calls a cycle makes.
+  std::string Text = "bsc-behavior-1\n" + Entry.getQualifiedName() + "\n";
+  for (const ModuleAST *M : C.Modules) {
+    Text += M->Name + "\n";
+    Text += C.SM.getMemoryBuffer(M->BufferID)->getBuffer().str();
+    Text += "\n";
+  }
+  for (const NativeModule *NM : C.Checked.NativeModules)
+    Text += NM->Name + " " + llvm::utohexstr(NM->Hash) + "\n";
+  return llvm::utohexstr(llvm::xxh3_64bits(Text), /*LowerCase=*/true, 16);
 }
 
 llvm::Expected<std::unique_ptr<BehaviorSession>>

@@ -18,10 +18,51 @@ bool ReplayReader::open(llvm::StringRef Path) {
   if (!ID)
     return false;
   Rest = C.SM.getMemoryBuffer(ID)->getBuffer();
+  // The header, on the first line that is not blank.
+  for (llvm::StringRef Scan = Rest; !Scan.empty();) {
+    auto [Raw, After] = Scan.split('\n');
+    if (Raw.trim().empty()) {
+      Scan = After;
+      continue;
+    }
+    bool IsHeader = false;
+    if (!readHeader(Raw, IsHeader))
+      return false;
+    if (IsHeader)
+      Rest = After;
+    break;
+  }
   if (Rest.trim().empty()) {
     C.Diags.report(llvm::SMLoc(), diag::err_replay_empty) << Path;
     return false;
   }
+  return true;
+}
+
+bool ReplayReader::readHeader(llvm::StringRef Raw, bool &IsHeader) {
+  std::optional<llvm::StringRef> Text;
+  if (!isJSON(Raw, [&](llvm::StringRef Key, llvm::StringRef Value) {
+        if (Key == "recording")
+          Text = Value;
+      }) ||
+      !Text)
+    return true; // A cycle's line, or damage that next() reports.
+  IsHeader = true;
+  llvm::SMLoc Loc = llvm::SMLoc::getFromPointer(Raw.data());
+  std::optional<llvm::json::Value> V = parseJSONLine(C.Diags, *Text);
+  const llvm::json::Object *O = V ? V->getAsObject() : nullptr;
+  std::optional<int64_t> Format = O ? O->getInteger("format") : std::nullopt;
+  if (!Format || *Format < 2 || *Format > RecordingFormat) {
+    C.Diags.report(Loc, diag::err_recording_format)
+        << (Format ? std::to_string(*Format) : std::string("none"))
+        << RecordingFormat;
+    return false;
+  }
+  Header.Format = unsigned(*Format);
+  if (std::optional<llvm::StringRef> B = O->getString("behavior"))
+    Header.Behavior = B->str();
+  if (std::optional<llvm::StringRef> E = O->getString("entry"))
+    Header.Entry = E->str();
   return true;
 }
 
@@ -74,6 +115,13 @@ bool ReplayReader::read(llvm::StringRef Raw, ReplayLine &Line) {
         OK = false;
       }
       Line.Robot = Robot;
+    } else if (Key == "calls") {
+      Line.Calls = Value;
+    } else if (Key == "recording") {
+      C.Diags.report(Line.Loc, diag::err_replay_value)
+          << "a recording's header ('recording') belongs on its first line "
+             "(were two recordings written to one file?)";
+      OK = false;
     } else if (Key != "cycle" && Key != "tasks") {
       C.Diags.report(Line.Loc, diag::err_replay_unknown_key) << Key;
       OK = false;

@@ -17,6 +17,15 @@ struct ReplayLine {
   llvm::StringRef Input, Output;
   /// A team recording's `robot` (docs/repl.md "A team in one process").
   std::optional<unsigned> Robot;
+  /// The JSON text of its `calls` (recordCycle), empty if it has none.
+  llvm::StringRef Calls;
+};
+
+/// A recording's first line (recordHeader); recordings of format 1 have
+/// none.
+struct RecordingHeader {
+  unsigned Format = 1;
+  std::string Behavior, Entry;
 };
 
 /// Reads a JSONL replay file a line at a time, as its cycles come: the
@@ -28,8 +37,10 @@ class ReplayReader {
 public:
   ReplayReader(Compilation &C, const LoadedBehavior &L) : C(C), L(L) {}
 
-  /// Reads the file; false after reporting (also a file with no line).
+  /// Reads the file and its header line, if any; false after reporting
+  /// (also a file with no line).
   bool open(llvm::StringRef Path);
+  const RecordingHeader &getHeader() const { return Header; }
   /// The next line, checked; false at the end or after reporting it
   /// (failed()).
   bool next(ReplayLine &Line);
@@ -44,11 +55,15 @@ private:
   /// Reports what is wrong with a line the scan could not take apart, by
   /// parsing it whole (`invalid JSON: ...` at the byte, or not an object).
   bool reportDamaged(llvm::StringRef Raw);
+  /// Takes the header line if `Raw` is one; false after reporting a bad
+  /// one. `IsHeader` says whether it was.
+  bool readHeader(llvm::StringRef Raw, bool &IsHeader);
 
   Compilation &C;
   const LoadedBehavior &L;
   llvm::StringRef Rest;
   bool Failed = false;
+  RecordingHeader Header;
 };
 
 } // namespace bsc

@@ -38,7 +38,8 @@ enum ResultTag : uint8_t {
   TagCycles,
   TagSeconds,
   TagReport,
-  TagCoverage
+  TagCoverage,
+  TagExact
 };
 /// What a worker writes into its pipe: a frame kind, the log's index and
 /// the payload's length, then the payload (a result, or nothing).
@@ -63,6 +64,8 @@ std::string bsc::encodeResult(const LogResult &R) {
   uint8_t Passed = R.Passed;
   appendField(Out, TagPassed, &Passed, 1);
   appendField(Out, TagCycles, &R.Cycles, 4);
+  uint8_t Exact = R.Exact;
+  appendField(Out, TagExact, &Exact, 1);
   appendField(Out, TagSeconds, &R.Seconds, 8);
   appendField(Out, TagReport, R.Report.data(), R.Report.size());
   if (!R.Coverage.empty())
@@ -100,6 +103,12 @@ bool bsc::decodeResult(llvm::StringRef Payload, LogResult &R) {
     case TagCycles:
       OK = Fixed(&R.Cycles, 4);
       break;
+    case TagExact: {
+      uint8_t E = 0;
+      OK = Fixed(&E, 1);
+      R.Exact = E;
+      break;
+    }
     case TagSeconds:
       OK = Fixed(&R.Seconds, 8);
       break;

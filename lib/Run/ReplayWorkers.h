@@ -23,6 +23,9 @@ namespace bsc {
 /// older parent skips tags it does not know.
 struct LogResult {
   bool Passed = false;
+  /// Replayed exactly (RunOptions::ReplayedExactly), not in regression
+  /// mode.
+  bool Exact = false;
   uint32_t Cycles = 0;
   double Seconds = 0;
   /// Its diagnostics, as bsc prints them.

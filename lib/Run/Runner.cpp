@@ -130,6 +130,9 @@ private:
   /// A cycle broke off (a crash, a hang, input it could not take): its
   /// recording is not kept.
   bool Broken = false;
+  /// The replay takes every call into C++ from the recording (its
+  /// behavior is this one), rather than calling the C++.
+  bool Exact = false;
 };
 } // namespace
 
@@ -154,6 +157,27 @@ bool CycleRunner::openReplay() {
         << Opts.ReplayPath << Recorded << unsigned(Robots.size());
     return false;
   }
+  // Exact when the recording is of this behavior and has its calls.
+  const RecordingHeader &H = Replay->getHeader();
+  std::string Why;
+  if (H.Format < 2)
+    Why = "the recording is of format 1, without its calls into C++";
+  else if (Opts.Regression)
+    Why = "as '--regression' asks";
+  else if (H.Behavior != L.Hash)
+    Why = "it was recorded with another version of the behavior, its "
+          "bindings or its entry";
+  Exact = Why.empty();
+  if (Opts.ReplayedExactly)
+    *Opts.ReplayedExactly = Exact;
+  if (Opts.AnnounceReplayMode) {
+    if (Exact)
+      C.Diags.report(llvm::SMLoc(), diag::note_replay_exact)
+          << Opts.ReplayPath;
+    else
+      C.Diags.report(llvm::SMLoc(), diag::note_replay_regression)
+          << Opts.ReplayPath << Why;
+  }
   return true;
 }
 
@@ -175,8 +199,15 @@ bool CycleRunner::openRecordings() {
   auto Open = [&](const std::string &File,
                   std::unique_ptr<llvm::ToolOutputFile> &Into) {
     Into = openOutput(C.Diags, File, /*Text=*/true);
-    return Into != nullptr;
+    if (!Into)
+      return false;
+    debug::printJSON(Into->os(), recordHeader(L));
+    Into->os() << "\n";
+    return true;
   };
+  // Each cycle's calls into C++ go into the recording.
+  for (RobotRun &R : Robots)
+    R.S->keepCalls(true);
   if (!Path.contains("%r"))
     return Open(Path.str(), Record);
   for (unsigned K = 0; K < Robots.size(); ++K)
@@ -289,7 +320,24 @@ bool CycleRunner::runCycle(unsigned K, const ReplayLine *Line) {
     Broken = true;
     return false;
   }
-  BehaviorSession::Outcome O = S.runCycle(Opts.CycleLimitMs);
+  BehaviorSession::Outcome O;
+  if (Line && Exact) {
+    CycleRecord Calls;
+    if (!Line->Calls.empty()) {
+      std::optional<llvm::json::Value> V = parseJSONLine(C.Diags, Line->Calls);
+      std::string Error;
+      if (!V || !parseRecordedCalls(*V, S, Calls, Error)) {
+        if (V)
+          C.Diags.report(Line->Loc, diag::err_replay_calls) << Error;
+        Broken = true;
+        return false;
+      }
+    }
+    O = S.replayCycle(Opts.CycleLimitMs, Calls, /*PrintAgain=*/true);
+  } else {
+    // A replay's inputs are the recording's: no world hook feeds them.
+    O = S.runCycle(Opts.CycleLimitMs, /*WithWorld=*/!Line);
+  }
   if (!reportOutcome(C, L, O, Cycle, Opts.CycleLimitMs)) {
     noteRobot(C, K, Robots.size());
     Broken = true;

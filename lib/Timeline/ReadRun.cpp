@@ -57,7 +57,7 @@ public:
       return false;
     }
     if (std::optional<llvm::StringRef> Key =
-            findUnknownKey(*O, {"cycle", "input", "output", "tasks"})) {
+            findUnknownKey(*O, {"cycle", "input", "output", "tasks", "calls"})) {
       if (*Key == "robot") // `--robots N --record FILE`: every robot's lines.
         C.Diags.report(Loc, diag::err_record_team);
       else
@@ -201,6 +201,11 @@ bool timeline::readRecordingBuffer(Compilation &C, unsigned BufferID,
     std::optional<llvm::json::Value> V = parseJSONLine(C.Diags, Raw);
     if (!V)
       return false;
+    // The header names the behavior (docs/repl.md "Recordings"); the page
+    // draws what the cycles recorded, calls into C++ included.
+    if (const llvm::json::Object *O = V->getAsObject();
+        O && !Previous && O->size() == 1 && O->get("recording"))
+      continue;
     uint32_t Cycle = 0;
     std::vector<CycleTask> Tasks;
     if (!LineReader(C, Loc).read(*V, Previous, Cycle, Tasks))

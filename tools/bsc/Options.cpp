@@ -107,8 +107,15 @@ cl::opt<std::string> CycleLimitArg(
 cl::opt<std::string> WorldLibrary(
     "world",
     cl::desc("A shared library that feeds input and reads output around "
-             "every cycle (bs_world_init/begin/end/exit, docs/repl.md)"),
-    cl::value_desc("lib.so"), BSC_JIT);
+             "every cycle (bs_world_init/begin/end/exit, docs/repl.md); "
+             "with a replay only its init and exit run"),
+    cl::value_desc("lib.so"), BSC_JIT, cl::sub(ReplayCmd));
+cl::opt<bool> RegressionFlag(
+    "regression",
+    cl::desc("Replay in regression mode: inputs from the recording, "
+             "registered C++ called for real, even when the recording is "
+             "of this very behavior (docs/repl.md, \"Recordings\")"),
+    BSC_RUN, cl::sub(ReplayCmd));
 cl::opt<std::string> WorldOutput(
     "world-output",
     cl::desc("Write what the --world library and registered C++ print "
@@ -348,6 +355,7 @@ RunCommandOptions getRunOptions() {
   Opts.WorldOutput = WorldOutput;
   Opts.Robots = given(RobotsArg);
   Opts.Coverage = {CoverageFile, CoverageFloor};
+  Opts.Regression = RegressionFlag;
   return Opts;
 }
 
@@ -362,6 +370,8 @@ ReplayCommandOptions getReplayOptions() {
   Opts.DebugInfo = DebugInfo;
   Opts.Coverage = {CoverageFile, CoverageFloor};
   Opts.Jobs = ReplayJobs;
+  Opts.WorldLibrary = WorldLibrary;
+  Opts.Regression = RegressionFlag;
   return Opts;
 }
 

@@ -240,6 +240,7 @@ struct RunCommandOptions {
   std::string WorldLibrary, WorldOutput;
   CoverageArgs Coverage;
   std::optional<std::string> Robots; ///< --robots N, if given.
+  bool Regression = false; ///< --regression.
 };
 
 /// `bsc run`: the behavior in the host JIT, --cycles calls of --entry.
@@ -254,6 +255,8 @@ struct ReplayCommandOptions {
   bool DebugInfo = false;
   CoverageArgs Coverage;
   std::string Jobs; ///< --jobs; empty: one worker per core.
+  std::string WorldLibrary; ///< --world: its init and exit per log.
+  bool Regression = false;  ///< --regression.
 };
 
 /// `bsc replay`: the behavior compiled once into the host JIT, every

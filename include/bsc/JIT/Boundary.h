@@ -62,9 +62,14 @@ enum BoundarySiteFlags : uint32_t {
   /// The result is a `const char *` whose characters are kept, not the
   /// pointer (a re-run gets a pointer to the kept copy).
   SiteResultIsString = 1,
-  /// A thunk of the standard `io` module: what it prints is the behavior's
-  /// own output, not captured with the C++'s (`--world-output`).
+  /// A thunk of the standard `io` module, which only prints: what it prints
+  /// is the behavior's own output, not captured with the C++'s
+  /// (`--world-output`), and it returns and writes nothing, so it is not
+  /// kept; a replay calls it or not (setReplayCallsStandard).
   SiteStandard = 2,
+  /// A call the session makes itself (the world's end hook): kept only if
+  /// it wrote something, so a world that only reads costs nothing.
+  SitePseudo = 4,
 };
 
 /// The calls of one cycle, as kept by the recorder.
@@ -125,6 +130,10 @@ public:
   /// What the running cycle's print-capture redirects C++'s standard
   /// output to (-1: nothing).
   void setCaptureFd(int Fd) { CaptureFd = Fd; }
+  /// Whether a replay calls the standard `io` module for real: a replay of
+  /// a recording prints what the behavior prints, the REPL's re-runs print
+  /// nothing again.
+  void setReplayCallsStandard(bool On) { ReplayCallsStandard = On; }
   /// Ends the cycle's recording or replay. In a replay, returns why the
   /// cycle parted from its record (a call it did not make, or made
   /// differently), or empty if it followed it.
@@ -155,7 +164,8 @@ private:
   enum class Mode { Off, Record, Replay };
   uint32_t internSite(const bs_boundary_site *Site);
   void snapshotView();
-  void recordViewWrites();
+  /// Appends the view's changed runs to the record; false if none.
+  bool recordViewWrites();
   /// In a replay, reports the first way the run parts from the record.
   void diverge(std::string Why);
   void redirectOutput(bool To);
@@ -178,6 +188,7 @@ private:
   /// Replayed strings, kept until the record is done with.
   std::deque<std::string> Strings;
   int CaptureFd = -1, SavedStdout = -1;
+  bool ReplayCallsStandard = false;
 };
 
 /// The name of call-site id `Id` (ids are the same in the whole process).

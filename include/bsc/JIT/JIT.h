@@ -228,7 +228,11 @@ public:
   /// set, taking every call into registered C++ (and the world's end
   /// hook) from `From` instead of calling it: the REPL's time travel and
   /// exact replays. A cycle that parts from its record is Diverged.
-  Outcome replayCycle(unsigned LimitMs, const CycleRecord &From);
+  /// `PrintAgain`: the standard `io` module's calls are made for real (a
+  /// replay of a recording prints what the behavior printed; the REPL's
+  /// re-runs do not).
+  Outcome replayCycle(unsigned LimitMs, const CycleRecord &From,
+                      bool PrintAgain = false);
   /// Calls `Fn(state)` under the same guard, between cycles (a REPL line).
   Outcome runGuarded(void (*Fn)(void *), unsigned LimitMs) {
     return runGuardedBody([&] { Fn(State); }, LimitMs);

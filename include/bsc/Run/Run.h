@@ -64,7 +64,15 @@ struct LoadedBehavior {
   /// The world module's input and output classes (null without them).
   const NativeClass *InputClass = nullptr, *OutputClass = nullptr;
   BehaviorJIT::GlobalObject Input, Output;
+  /// computeBehaviorHash: recordings name the behavior that made them.
+  std::string Hash;
 };
+
+/// 16 hex digits that change with the behavior's sources, its binding
+/// modules (their descriptors) and its entry: a recording whose hash is
+/// the loaded behavior's replays exactly (docs/repl.md "Recordings").
+std::string computeBehaviorHash(const Compilation &C,
+                                const CallableDecl &Entry);
 
 /// Compiles `C.Checked` for the host with debugging probes into a new JIT
 /// and links the standard modules and bindings. Returns null after
@@ -135,6 +143,13 @@ struct RunOptions {
   unsigned CycleLimitMs = 0;
   /// Called after each cycle (the REPL's breakpoints); true stops the run.
   std::function<bool()> StopAfterCycle;
+  /// `--regression`: a replay calls registered C++ for real even when the
+  /// recording is of this very behavior (docs/repl.md "Recordings").
+  bool Regression = false;
+  /// Whether a replay says which way it runs (a note); `bsc replay` counts
+  /// the ways instead, through ReplayedExactly.
+  bool AnnounceReplayMode = true;
+  bool *ReplayedExactly = nullptr;
 };
 
 /// `--world-output FILE`: opens FILE (emptied) for what a world library
@@ -172,6 +187,10 @@ struct ReplayLogsOptions {
   /// --coverage: the lcov tracefile of all logs together; --fail-under.
   std::string CoveragePath;
   std::optional<double> CoverageFloor;
+  /// --world: each log's robots get the library's init and exit (their
+  /// user pointers), not its begin and end hooks.
+  std::string WorldLibrary;
+  bool Regression = false; ///< RunOptions::Regression.
 };
 
 /// `bsc replay`: replays every recording under Opts.LogsDir against the
@@ -183,10 +202,26 @@ llvm::Expected<int> replayLogs(Compilation &C, LoadedBehavior &L,
                                const ReplayLogsOptions &Opts,
                                llvm::raw_ostream &OS);
 
-/// One line of a recording: `{"cycle":N,"input":{...},"output":{...}}` for
-/// the cycle the session just ran.
+/// The version of the recordings this bsc writes (docs/repl.md,
+/// "Recordings"): 2 adds the header line and each cycle's `calls`.
+constexpr unsigned RecordingFormat = 2;
+
+/// The first line of a recording: `{"recording":{"format":2,"behavior":
+/// HASH,"entry":NAME}}`.
+llvm::json::Value recordHeader(const LoadedBehavior &L);
+
+/// One line of a recording: `{"cycle":N,"input":{...},"output":{...},
+/// "tasks":[...]}` for the cycle the session just ran, with its `calls`
+/// into registered C++ if the session keeps them (then `input` is the
+/// input its entry saw).
 llvm::json::Value recordCycle(debug::ValueIO &Values, const LoadedBehavior &L,
                               const BehaviorSession &S);
+
+/// A recording's `calls` (recordCycle) into `Into`, for a session of `S`'s
+/// sizes. False with `Error` set if they are not of that form.
+bool parseRecordedCalls(const llvm::json::Value &Calls,
+                        const BehaviorSession &S, CycleRecord &Into,
+                        std::string &Error);
 
 /// The JIT's coverage counters now (LoadOptions::Coverage; empty without),
 /// one per BehaviorLayout::CoverageSites entry.

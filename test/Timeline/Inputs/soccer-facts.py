@@ -9,7 +9,9 @@ STEPS-IN's @KICK@ and @DONE@ become the cycles."""
 import json
 import sys
 
-cycles = [json.loads(line) for line in open(sys.argv[1]) if line.strip()]
+# The cycles, without the header line (docs/repl.md "Recordings").
+cycles = [c for c in (json.loads(line) for line in open(sys.argv[1])
+                      if line.strip()) if "cycle" in c]
 kick = next(c for c in cycles if c["output"]["motion"] == "kick")
 after = next(c for c in cycles if c["cycle"] == kick["cycle"] + 1)
 done = next(c for c in cycles
