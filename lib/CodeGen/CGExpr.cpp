@@ -285,12 +285,8 @@ llvm::Value *FunctionEmitter::emitNativeCallWithValues(
   // The probe names the binding should it crash (CodeGenOptions::Probes).
   bool Probe = CGM.getOptions().Probes;
   if (Probe) {
-    std::string Name =
-        NF.Owner ? NF.Owner->QualifiedName + "::" + NF.Name : NF.Name;
-    if (!NF.Owner)
-      for (const NativeModule *NM : CGM.getBehavior().NativeModules)
-        if (NM->findFunction(NF.Name) == &NF)
-          Name = NM->Name + "::" + NF.Name;
+    bool Standard;
+    std::string Name = CGM.getNativeName(NF, Standard);
     emitProbe(NativeProbeSymbol,
               CGM.addSite({DebugSite::NativeCall, &D, CurStmtLoc, Name,
                            NF.TakesContext}));

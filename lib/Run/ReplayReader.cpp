@@ -41,7 +41,9 @@ bool ReplayReader::open(llvm::StringRef Path) {
 
 bool ReplayReader::readHeader(llvm::StringRef Raw, bool &IsHeader) {
   std::optional<llvm::StringRef> Text;
+  unsigned Members = 0;
   if (!isJSON(Raw, [&](llvm::StringRef Key, llvm::StringRef Value) {
+        ++Members;
         if (Key == "recording")
           Text = Value;
       }) ||
@@ -50,19 +52,29 @@ bool ReplayReader::readHeader(llvm::StringRef Raw, bool &IsHeader) {
   IsHeader = true;
   llvm::SMLoc Loc = llvm::SMLoc::getFromPointer(Raw.data());
   std::optional<llvm::json::Value> V = parseJSONLine(C.Diags, *Text);
-  const llvm::json::Object *O = V ? V->getAsObject() : nullptr;
+  if (!V)
+    return false;
+  const llvm::json::Object *O = V->getAsObject();
   std::optional<int64_t> Format = O ? O->getInteger("format") : std::nullopt;
-  if (!Format || *Format < 2 || *Format > RecordingFormat) {
+  if (Format && (*Format < 2 || *Format > RecordingFormat)) {
     C.Diags.report(Loc, diag::err_recording_format)
-        << (Format ? std::to_string(*Format) : std::string("none"))
-        << RecordingFormat;
+        << std::to_string(*Format) << RecordingFormat;
+    return false;
+  }
+  std::optional<llvm::StringRef> Behavior, Entry;
+  if (O) {
+    Behavior = O->getString("behavior");
+    Entry = O->getString("entry");
+  }
+  if (Members != 1 || !Format || !Behavior || !Entry || O->size() != 3) {
+    C.Diags.report(Loc, diag::err_replay_value)
+        << "a recording's header is {\"recording\":{\"format\":N,"
+           "\"behavior\":\"HASH\",\"entry\":\"NAME\"}} and nothing else";
     return false;
   }
   Header.Format = unsigned(*Format);
-  if (std::optional<llvm::StringRef> B = O->getString("behavior"))
-    Header.Behavior = B->str();
-  if (std::optional<llvm::StringRef> E = O->getString("entry"))
-    Header.Entry = E->str();
+  Header.Behavior = Behavior->str();
+  Header.Entry = Entry->str();
   return true;
 }
 
