@@ -13,6 +13,11 @@
 #    `:goto 50000` from the end, `:goto 99999`, `:history output.motion`
 #    over all cycles, each less the session without it; peak memory of the
 #    session with the 100,000 cycles against one with 1.
+#  - the boundary to registered C++ (issue 38) both ways: the same with the
+#    soccer bindings' math kept (built with -DSOCCER_KEEP_MATH: every call
+#    of norm, the operators and fabs is recorded) against registered
+#    `.pure()` (the default: only constructors and properties are kept),
+#    and the bytes the history keeps per cycle.
 # (Tracing on the robot, `--instrument`, is counted by bench/run.sh on the
 # shared benchmark's behaviors for i586.)
 #   bench/repl.sh [BUILD_DIR]     (default: build)
@@ -94,3 +99,30 @@ echo "100,000 cycles with a world, less 1: bsc run $live s, the REPL's :run (kee
 echo "  :goto 50000 and :goto 99999 from there, 1,000 times each: $(awk -v a="$goto" -v b="$run100k" 'BEGIN { printf "%.2f", (a - b) * 1000 / 2000 }') ms per :goto"
 echo "  :history output.motion over the 100,000 cycles: $(diff_s "$history" "$run100k") s"
 echo "  peak memory: $(peak_mb "$OUT/run100k.txt" "${W[@]}") MB after 100,000 cycles, $(peak_mb "$OUT/run1.txt" "${W[@]}") MB after 1"
+
+# The boundary both ways: the math registered pure (above) or kept.
+g++ -std=c++20 -O2 -DSOCCER_KEEP_MATH -I../include -I/usr/include/eigen3 \
+  -c ../examples/soccer/SoccerBindings.cpp -o "$OUT/SoccerKeep.o"
+K=(--world "$OUT/world.so" --bind "$OUT/SoccerKeep.o" -I "$PAPER" --entry Behavior::gotoBallAndKick "$PAPER/Behavior.bs")
+one_k=$(seconds "$OUT/run1.txt" "${K[@]}")
+run100k_k=$(seconds "$OUT/run100k.txt" "${K[@]}")
+goto_k=$(seconds "$OUT/goto.txt" "${K[@]}")
+peak1=$(peak_mb "$OUT/run1.txt" "${W[@]}"); peak=$(peak_mb "$OUT/run100k.txt" "${W[@]}")
+peak1_k=$(peak_mb "$OUT/run1.txt" "${K[@]}"); peak_k=$(peak_mb "$OUT/run100k.txt" "${K[@]}")
+per_cycle() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.0f", (a - b) * 1048576 / 100000 }'; }
+echo "the boundary to C++ over 100,000 cycles (:run, :goto, peak memory less 1 cycle's, per cycle):"
+echo "  math pure: :run $(diff_s "$run100k" "$one") s, $(awk -v a="$goto" -v b="$run100k" 'BEGIN { printf "%.2f", (a - b) * 1000 / 2000 }') ms per :goto, $(per_cycle "$peak" "$peak1") bytes per cycle"
+echo "  math kept: :run $(diff_s "$run100k_k" "$one_k") s, $(awk -v a="$goto_k" -v b="$run100k_k" 'BEGIN { printf "%.2f", (a - b) * 1000 / 2000 }') ms per :goto, $(per_cycle "$peak_k" "$peak1_k") bytes per cycle"
+
+# examples/team (one robot, so that the REPL keeps a history): no calls into
+# C++ but the team world's end hook, which the history keeps as a call.
+TEAM=../examples/team
+g++ -std=c++20 -O2 -I../include -c "$TEAM/bindings.cpp" -o "$OUT/team.o"
+g++ -std=c++20 -O2 -fPIC -shared -I../include "$TEAM/world.cpp" -o "$OUT/team.so"
+T=(--bind "$OUT/team.o" --world "$OUT/team.so" --robots 1 --entry Players::play "$TEAM/Players.bs")
+team_live=$(diff_s "$(python3 best_time.py 5 "${PIN[@]}" "$BSC" run --cycles 100000 "${T[@]}")" \
+                   "$(python3 best_time.py 5 "${PIN[@]}" "$BSC" run --cycles 1 "${T[@]}")")
+team_one=$(seconds "$OUT/run1.txt" "${T[@]}")
+team_run=$(seconds "$OUT/run100k.txt" "${T[@]}")
+team_peak1=$(peak_mb "$OUT/run1.txt" "${T[@]}"); team_peak=$(peak_mb "$OUT/run100k.txt" "${T[@]}")
+echo "  examples/team, one robot: bsc run $team_live s, :run $(diff_s "$team_run" "$team_one") s, $(per_cycle "$team_peak" "$team_peak1") bytes per cycle"

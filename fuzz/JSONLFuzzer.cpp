@@ -11,13 +11,17 @@
 //
 // What must hold, beyond not crashing: an error points into its line, an
 // object read back and written again reads back the same (a recording
-// replays bit for bit), and bsc::isJSON agrees with the parser. A
-// violation aborts, which both drivers report.
+// replays bit for bit), and bsc::isJSON agrees with the parser. A line's
+// `calls` (bsc/JIT/Boundary.h) that are accepted spell the same calls
+// when written again, and a replay of them (as bytes, and the line's own
+// bytes taken as an encoded record) into a made-up behavior's memory stays
+// inside it. A violation aborts, which both drivers report.
 //
 //===----------------------------------------------------------------------===//
 #include "bsc/AST/Native.h"
 #include "bsc/Basic/JSON.h"
 #include "bsc/Debug/Values.h"
+#include "bsc/JIT/Boundary.h"
 #include "llvm/ADT/SmallVector.h"
 #include <cstddef>
 #include <cstdint>
@@ -117,11 +121,55 @@ void replayMember(debug::ValueIO &IO, const NativeClass &C, World &Obj,
 }
 } // namespace
 
+/// A record replayed into a made-up view through a site of each shape the
+/// wrappers have: no call may write outside the view, its result slot or
+/// its pointer argument (ASan sees it), whatever the record holds.
+void replayRecord(const CycleRecord &R) {
+  static unsigned char State[64], Input[sizeof(World)], Output[sizeof(World)];
+  Boundary B(State, sizeof State, Input, sizeof Input, Output, sizeof Output);
+  static const uint32_t PtrSizes[] = {8};
+  static const bs_boundary_site Sites[] = {
+      {"f", 0, 4, 0, nullptr},
+      {"g", SiteResultIsString, sizeof(char *), 1, PtrSizes},
+      {"h", 0, 0, 1, PtrSizes}};
+  B.startReplay(R);
+  uint64_t Result = 0;
+  unsigned char Arg[8];
+  void *Ptrs[] = {Arg};
+  for (unsigned I = 0; I < R.NumCalls + 2; ++I) {
+    const bs_boundary_site &S = Sites[I % 3];
+    B.enter(&S);
+    B.leave(&S, S.result_size ? &Result : nullptr,
+            S.num_ptrs ? Ptrs : nullptr);
+  }
+  B.finish();
+}
+
+/// A line's `calls`: if accepted, written again they read the same.
+void checkCalls(const llvm::json::Value &Calls) {
+  static const size_t Sizes[3] = {64, sizeof(World), sizeof(World)};
+  CycleRecord R;
+  std::string Error;
+  if (!callsFromJSON(Calls, Sizes, R, Error))
+    return;
+  CycleRecord Again;
+  if (!callsFromJSON(callsToJSON(R, Sizes), Sizes, Again, Error) ||
+      Again.Calls != R.Calls || Again.NumCalls != R.NumCalls)
+    std::abort();
+  replayRecord(R);
+}
+
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *Data, size_t Size) {
   static const Model M;
   llvm::StringRef Text(reinterpret_cast<const char *>(Data), Size);
   debug::ValueIO IO([](llvm::StringRef) -> void * { return nullptr; });
   World Obj = {};
+  // The bytes themselves as an encoded record: its reader must not trust
+  // them either.
+  CycleRecord Raw;
+  Raw.Calls.assign(Data, Data + Size);
+  Raw.NumCalls = unsigned(Size % 7);
+  replayRecord(Raw);
   llvm::SmallVector<llvm::StringRef, 0> Lines;
   Text.split(Lines, '\n');
   for (llvm::StringRef Line : Lines) {
@@ -139,6 +187,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *Data, size_t Size) {
     const llvm::json::Object *O = V->getAsObject();
     if (!O)
       continue;
+    if (const llvm::json::Value *Calls = O->get("calls"))
+      checkCalls(*Calls);
     for (llvm::StringRef Key : {"input", "output"})
       if (const llvm::json::Value *Member = O->get(Key))
         replayMember(IO, M.WorldClass, Obj, *Member);

@@ -13,6 +13,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "bsc/JIT/Boundary.h"
+#include "llvm/ADT/StringExtras.h"
 #include "llvm/ADT/StringMap.h"
 #include "llvm/Support/LEB128.h"
 #include <cstdio>
@@ -432,6 +433,132 @@ bool bsc::encodeCalls(llvm::ArrayRef<RecordedCall> Calls,
     }
     ++Rec.NumCalls;
   }
+  return true;
+}
+
+//===----------------------------------------------------------------------===//
+// Records as recordings spell them (docs/repl.md "Recordings")
+//===----------------------------------------------------------------------===//
+
+static std::string toHex(llvm::ArrayRef<unsigned char> Bytes) {
+  return llvm::toHex(Bytes, /*LowerCase=*/true);
+}
+
+llvm::json::Value bsc::callsToJSON(const CycleRecord &Record,
+                                   const size_t Sizes[3]) {
+  llvm::json::Array Calls;
+  for (const RecordedCall &C : decodeCalls(Record, Sizes)) {
+    llvm::json::Object Call{{"fn", C.Name}};
+    llvm::StringRef Text(reinterpret_cast<const char *>(C.Result.data()),
+                         C.Result.size());
+    if (C.ResultIsString && llvm::json::isUTF8(Text)) {
+      Call["text"] = Text.str();
+    } else if (C.ResultIsString) {
+      Call["string"] = toHex(C.Result);
+    } else if (!C.Result.empty()) {
+      Call["result"] = toHex(C.Result);
+    }
+    if (!C.Ptrs.empty()) {
+      llvm::json::Array Args;
+      for (const std::vector<unsigned char> &P : C.Ptrs)
+        Args.push_back(toHex(P));
+      Call["args"] = std::move(Args);
+    }
+    if (!C.Writes.empty()) {
+      llvm::json::Array Writes;
+      for (const RecordedCall::Write &W : C.Writes)
+        Writes.push_back(llvm::json::Array{BoundaryBlockNames[W.Block],
+                                           int64_t(W.Offset),
+                                           toHex(W.Bytes)});
+      Call["writes"] = std::move(Writes);
+    }
+    Calls.push_back(std::move(Call));
+  }
+  return Calls;
+}
+
+/// Bytes from hex text; false if it is not.
+static bool fromHex(llvm::StringRef Hex, std::vector<unsigned char> &Into) {
+  std::string Bytes;
+  if (Hex.size() % 2 || !llvm::tryGetFromHex(Hex, Bytes))
+    return false;
+  Into.assign(Bytes.begin(), Bytes.end());
+  return true;
+}
+
+bool bsc::callsFromJSON(const llvm::json::Value &Value,
+                        const size_t Sizes[3], CycleRecord &Into,
+                        std::string &Error) {
+  const llvm::json::Array *Array = Value.getAsArray();
+  if (!Array) {
+    Error = "'calls' must be an array of calls";
+    return false;
+  }
+  std::vector<RecordedCall> Calls;
+  for (const llvm::json::Value &V : *Array) {
+    std::string Where = "call " + std::to_string(Calls.size() + 1);
+    const llvm::json::Object *O = V.getAsObject();
+    std::optional<llvm::StringRef> Fn = O ? O->getString("fn") : std::nullopt;
+    if (!Fn) {
+      Error = Where + " must be an object with the function's name in 'fn'";
+      return false;
+    }
+    RecordedCall C;
+    C.Name = Fn->str();
+    Where += " ('" + C.Name + "')";
+    for (const auto &[Key, Member] : *O) {
+      std::optional<llvm::StringRef> Hex = Member.getAsString();
+      if (Key == "fn") {
+        continue;
+      } else if (Key == "text" && Hex) {
+        C.ResultIsString = true;
+        C.Result.assign(Hex->begin(), Hex->end());
+      } else if ((Key == "result" || Key == "string") && Hex &&
+                 fromHex(*Hex, C.Result)) {
+        C.ResultIsString = Key == "string";
+      } else if (Key == "args" && Member.getAsArray()) {
+        for (const llvm::json::Value &A : *Member.getAsArray()) {
+          C.Ptrs.emplace_back();
+          std::optional<llvm::StringRef> H = A.getAsString();
+          if (!H || !fromHex(*H, C.Ptrs.back())) {
+            Error = Where + ": 'args' must hold hex strings";
+            return false;
+          }
+        }
+      } else if (Key == "writes" && Member.getAsArray()) {
+        for (const llvm::json::Value &W : *Member.getAsArray()) {
+          const llvm::json::Array *Triple = W.getAsArray();
+          std::optional<llvm::StringRef> Block =
+              Triple && Triple->size() == 3 ? (*Triple)[0].getAsString()
+                                            : std::nullopt;
+          std::optional<int64_t> Offset =
+              Block ? (*Triple)[1].getAsInteger() : std::nullopt;
+          std::optional<llvm::StringRef> Bytes =
+              Offset ? (*Triple)[2].getAsString() : std::nullopt;
+          RecordedCall::Write Write{3, 0, {}};
+          for (unsigned B = 0; Block && B < 3; ++B)
+            if (*Block == BoundaryBlockNames[B])
+              Write.Block = B;
+          if (!Bytes || Write.Block > 2 || *Offset < 0 ||
+              !fromHex(*Bytes, Write.Bytes)) {
+            Error = Where + ": each of 'writes' must be [\"state\", \"input\" "
+                            "or \"output\", an offset, hex bytes]";
+            return false;
+          }
+          Write.Offset = uint64_t(*Offset);
+          C.Writes.push_back(std::move(Write));
+        }
+      } else {
+        Error = Where + ": unknown or malformed member '" + Key.str() +
+                "'; a call has 'fn', 'result' or 'text', 'args' and "
+                "'writes'";
+        return false;
+      }
+    }
+    Calls.push_back(std::move(C));
+  }
+  if (!encodeCalls(Calls, Sizes, Into, Error))
+    return false;
   return true;
 }
 

@@ -133,9 +133,15 @@ TEST_F(RunTest, AReplayStopsAtItsFirstBadLine) {
   RunOptions Opts;
   Opts.ReplayPath = Replay.Path;
   Opts.Trace = debug::TraceMode::EveryCycle;
-  EXPECT_EQ(run(Opts), "failed: unknown key 'speed' in a replay line; "
-                       "expected 'cycle', 'robot', 'input', 'output' or "
-                       "'tasks'\n");
+  // A recording without a header (format 1) replays in regression mode,
+  // and says so first.
+  EXPECT_EQ(run(Opts), "failed: replaying '" + Replay.Path +
+                           "' in regression mode (the recording is of format "
+                           "1, without its calls into C++): its inputs feed "
+                           "the behavior and registered C++ is called for "
+                           "real\nunknown key 'speed' in a replay line; "
+                           "expected 'cycle', 'robot', 'input', 'output', "
+                           "'tasks' or 'calls'\n");
   EXPECT_EQ(Session->getCycle(), 1u);
 }
 
@@ -158,6 +164,8 @@ TEST_F(RunTest, ARecordingHasALinePerCycleWithItsTasks) {
   auto Buf = llvm::MemoryBuffer::getFile(Out.Path);
   ASSERT_TRUE(bool(Buf));
   EXPECT_EQ((*Buf)->getBuffer().str(),
+            "{\"recording\":{\"behavior\":\"" + Loaded->Hash +
+                "\",\"entry\":\"Behavior::step\",\"format\":2}}\n"
             "{\"cycle\":1,\"tasks\":[{\"at\":\"Behavior.bs:2\",\"parent\":-1,"
             "\"state\":\"running\",\"task\":\"Behavior::step\"}]}\n"
             "{\"cycle\":2,\"tasks\":[{\"at\":\"Behavior.bs:3\",\"parent\":-1,"

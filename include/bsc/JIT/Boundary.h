@@ -32,6 +32,7 @@
 #include "llvm/ADT/ArrayRef.h"
 #include "llvm/ADT/DenseMap.h"
 #include "llvm/ADT/StringRef.h"
+#include "llvm/Support/JSON.h"
 #include <cstdint>
 #include <deque>
 #include <string>
@@ -115,6 +116,16 @@ std::vector<RecordedCall> decodeCalls(const CycleRecord &R,
 bool encodeCalls(llvm::ArrayRef<RecordedCall> Calls,
                  const size_t BlockSizes[3], CycleRecord &R,
                  std::string &Error);
+
+/// `R`'s calls as a recording's `calls` (docs/repl.md "Recordings"): per
+/// call `fn`, its result as hex (`result`) or a string's `text`, the
+/// bytes of the arguments it may write (`args`) and the runs of the view
+/// it changed (`writes`: [block, offset, hex]).
+llvm::json::Value callsToJSON(const CycleRecord &R, const size_t BlockSizes[3]);
+/// The inverse, into `Into`'s calls; false with `Error` set for a value
+/// that is not of that form or writes outside the view.
+bool callsFromJSON(const llvm::json::Value &Calls, const size_t BlockSizes[3],
+                   CycleRecord &Into, std::string &Error);
 
 /// The recorder of one session: its view (state, input, output) and what
 /// the cycle running now does with calls.
