@@ -51,7 +51,10 @@ void CycleHistory::reset(uint32_t Cycle, Blocks Now) {
 static uint32_t getWord(const unsigned char *Bytes, size_t Size, uint32_t W) {
   uint32_t V = 0;
   size_t At = size_t(W) * 4;
-  copy(&V, Bytes + At, std::min<size_t>(4, Size - At));
+  if (At + 4 <= Size) // A whole word: one load (the common case).
+    std::memcpy(&V, Bytes + At, 4);
+  else
+    copy(&V, Bytes + At, Size - At);
   return V;
 }
 
@@ -71,7 +74,7 @@ void CycleHistory::recordCycle(const CycleRecord &Cycle, Blocks Now) {
   CallStarts.push_back(Calls.size());
   CallCounts.push_back(Cycle.NumCalls);
   // How the cycle left the view, against how the one before left it.
-  std::vector<unsigned char> View;
+  std::vector<unsigned char> &View = Scratch; // No allocation per cycle.
   copyView(Now, View);
   size_t Size = View.size();
   uint32_t Words = uint32_t((Size + 3) / 4), Next = 0;
@@ -87,7 +90,7 @@ void CycleHistory::recordCycle(const CycleRecord &Cycle, Blocks Now) {
     Next = W + 1;
   }
   ViewStarts.push_back(ViewChanges.size());
-  LastView = std::move(View);
+  std::swap(LastView, Scratch);
   ++Last;
   if ((Last - First) % Every == 0)
     takeSnapshot(Last, /*Edited=*/false, Now);
@@ -198,6 +201,7 @@ void CycleHistory::keepPresent(uint32_t Cycle, Blocks Now) {
 size_t CycleHistory::getMemoryBytes() const {
   size_t Bytes = Changes.capacity() * sizeof(Change) +
                  Starts.capacity() * sizeof(size_t) + LastView.capacity() +
+                 Scratch.capacity() +
                  ViewChanges.capacity() +
                  ViewStarts.capacity() * sizeof(size_t) + Calls.capacity() +
                  CallStarts.capacity() * sizeof(size_t) +

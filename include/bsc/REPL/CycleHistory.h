@@ -105,8 +105,9 @@ private:
   /// Starts[c - First]).
   std::vector<Change> Changes;
   std::vector<size_t> Starts;
-  /// The blocks as cycle Last left them (the base of the next changes).
-  std::vector<unsigned char> LastView;
+  /// The blocks as cycle Last left them (the base of the next changes),
+  /// and recordCycle's copy of the blocks now.
+  std::vector<unsigned char> LastView, Scratch;
   /// Cycle c's changed view words (ULEB128 distance to the word after the
   /// last one, then the word): ViewChanges[ViewStarts[c - First - 1] ..
   /// ViewStarts[c - First]).
