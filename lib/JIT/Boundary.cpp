@@ -14,6 +14,7 @@
 //===----------------------------------------------------------------------===//
 #include "bsc/JIT/Boundary.h"
 #include "llvm/ADT/StringExtras.h"
+#include "llvm/ADT/SmallVector.h"
 #include "llvm/ADT/StringMap.h"
 #include "llvm/Support/LEB128.h"
 #include <cstdio>
@@ -77,6 +78,50 @@ struct Reader {
     return At;
   }
 };
+/// One call of a record as it lies in the bytes (nothing copied).
+struct CallView {
+  uint32_t Id = 0;
+  bool IsString = false;
+  llvm::ArrayRef<unsigned char> Result;
+  llvm::SmallVector<llvm::ArrayRef<unsigned char>, 2> Ptrs;
+  /// Runs of the view: the offset in the view (blocks end to end).
+  struct Run {
+    uint64_t At;
+    llvm::ArrayRef<unsigned char> Bytes;
+  };
+  llvm::SmallVector<Run, 4> Writes;
+};
+
+/// Reads the call at `R` (the encoding above); false if the bytes end or
+/// are not of that form.
+bool readCall(Reader &R, CallView &C) {
+  C = CallView();
+  uint64_t Head = R.uleb();
+  C.Id = uint32_t(Head >> 1);
+  C.IsString = Head & 1;
+  uint64_t Len = R.uleb();
+  if (const unsigned char *B = R.bytes(Len))
+    C.Result = {B, size_t(Len)};
+  uint64_t NumPtrs = R.uleb();
+  for (uint64_t I = 0; I < NumPtrs && !R.Bad; ++I) {
+    uint64_t N = R.uleb();
+    if (const unsigned char *B = R.bytes(N))
+      C.Ptrs.push_back({B, size_t(N)});
+  }
+  uint64_t NumRuns = R.uleb();
+  uint64_t At = 0;
+  for (uint64_t I = 0; I < NumRuns && !R.Bad; ++I) {
+    At += R.uleb();
+    uint64_t N = R.uleb();
+    const unsigned char *B = R.bytes(N);
+    if (!B || At + N < At) // Past the bytes, or a wrapping offset.
+      R.Bad = true;
+    else
+      C.Writes.push_back({At, {B, size_t(N)}});
+    At += N;
+  }
+  return !R.Bad;
+}
 } // namespace
 
 llvm::StringRef bsc::getBoundaryName(uint32_t Id) {
@@ -306,53 +351,44 @@ void Boundary::leave(const bs_boundary_site *Site, void *Result,
   }
   const std::vector<unsigned char> &Calls = Replaying->Calls;
   Reader R{Calls.data() + ReadAt, Calls.data() + Calls.size()};
-  R.uleb(); // The id, checked by enter.
-  uint64_t Len = R.uleb();
-  const unsigned char *Bytes = R.bytes(Len);
-  if (Result && Bytes) {
-    if (IsString) {
-      Strings.emplace_back(reinterpret_cast<const char *>(Bytes), Len);
-      const char *S = Strings.back().c_str();
-      std::memcpy(Result, &S, sizeof S);
-    } else if (Len == Site->result_size) {
-      std::memcpy(Result, Bytes, Len);
-    } else {
-      R.Bad = true;
-    }
-  }
-  uint64_t NumPtrs = R.uleb();
-  if (!R.Bad && NumPtrs != (Ptrs ? Site->num_ptrs : 0))
-    R.Bad = true;
-  for (uint64_t I = 0; I < NumPtrs && !R.Bad; ++I) {
-    uint64_t N = R.uleb();
-    const unsigned char *P = R.bytes(N);
-    if (P && N == Site->ptr_sizes[I])
-      std::memcpy(Ptrs[I], P, N);
-    else
-      R.Bad = true;
-  }
-  uint64_t NumRuns = R.uleb();
-  size_t At = 0;
-  for (uint64_t I = 0; I < NumRuns && !R.Bad; ++I) {
-    At += R.uleb();
-    uint64_t N = R.uleb();
-    const unsigned char *P = R.bytes(N);
-    if (!P || At + N > ViewSize) {
-      R.Bad = true;
-      break;
-    }
-    size_t Off = At;
+  CallView C; // Its id was checked by enter.
+  bool Fits = readCall(R, C) &&
+              (IsString || C.Result.size() == (Result ? Site->result_size
+                                                      : C.Result.size())) &&
+              C.Ptrs.size() == (Ptrs ? Site->num_ptrs : 0);
+  for (size_t I = 0; Fits && I < C.Ptrs.size(); ++I)
+    Fits = C.Ptrs[I].size() == Site->ptr_sizes[I];
+  // Each run lies in one block.
+  llvm::SmallVector<unsigned char *, 4> Into;
+  for (const CallView::Run &W : C.Writes) {
+    uint64_t Off = W.At;
+    unsigned char *To = nullptr;
     for (const Block &B : Blocks) {
       if (Off < B.Size) {
-        if (Off + N > B.Size)
-          R.Bad = true;
-        else
-          std::memcpy(B.Ptr + Off, P, N);
+        To = Off + W.Bytes.size() <= B.Size ? B.Ptr + Off : nullptr;
         break;
       }
       Off -= B.Size;
     }
-    At += N;
+    Fits &= To != nullptr;
+    Into.push_back(To);
+  }
+  R.Bad = !Fits;
+  if (Fits) {
+    if (Result && IsString) {
+      Strings.emplace_back(reinterpret_cast<const char *>(C.Result.data()),
+                           C.Result.size());
+      const char *S = Strings.back().c_str();
+      std::memcpy(Result, &S, sizeof S);
+    } else if (Result && !C.Result.empty()) {
+      std::memcpy(Result, C.Result.data(), C.Result.size());
+    }
+    for (size_t I = 0; I < C.Ptrs.size(); ++I)
+      std::memcpy(Ptrs[I], C.Ptrs[I].data(), C.Ptrs[I].size());
+    for (size_t I = 0; I < C.Writes.size(); ++I)
+      if (!C.Writes[I].Bytes.empty())
+        std::memcpy(Into[I], C.Writes[I].Bytes.data(),
+                    C.Writes[I].Bytes.size());
   }
   if (R.Bad) {
     diverge("call " + std::to_string(CallIndex) + " into C++ ('" +
@@ -373,34 +409,20 @@ std::vector<RecordedCall> bsc::decodeCalls(const CycleRecord &Rec,
                                            const size_t BlockSizes[3]) {
   std::vector<RecordedCall> Calls;
   Reader R{Rec.Calls.data(), Rec.Calls.data() + Rec.Calls.size()};
-  while (R.P < R.End && !R.Bad) {
+  CallView V;
+  while (R.P < R.End && readCall(R, V)) {
     RecordedCall C;
-    uint64_t Head = R.uleb();
-    C.Name = getBoundaryName(uint32_t(Head >> 1)).str();
-    C.ResultIsString = Head & 1;
-    uint64_t Len = R.uleb();
-    if (const unsigned char *B = R.bytes(Len))
-      C.Result.assign(B, B + Len);
-    uint64_t NumPtrs = R.uleb();
-    for (uint64_t I = 0; I < NumPtrs && !R.Bad; ++I) {
-      uint64_t N = R.uleb();
-      if (const unsigned char *B = R.bytes(N))
-        C.Ptrs.emplace_back(B, B + N);
-    }
-    uint64_t NumRuns = R.uleb();
-    uint64_t At = 0;
-    for (uint64_t I = 0; I < NumRuns && !R.Bad; ++I) {
-      At += R.uleb();
-      uint64_t N = R.uleb();
-      const unsigned char *B = R.bytes(N);
-      if (!B)
-        break;
-      uint64_t Off = At;
+    C.Name = getBoundaryName(V.Id).str();
+    C.ResultIsString = V.IsString;
+    C.Result.assign(V.Result.begin(), V.Result.end());
+    for (llvm::ArrayRef<unsigned char> P : V.Ptrs)
+      C.Ptrs.emplace_back(P.begin(), P.end());
+    for (const CallView::Run &W : V.Writes) {
+      uint64_t Off = W.At;
       unsigned Block = 0;
       while (Block < 2 && Off >= BlockSizes[Block])
         Off -= BlockSizes[Block++];
-      C.Writes.push_back({Block, Off, {B, B + N}});
-      At += N;
+      C.Writes.push_back({Block, Off, {W.Bytes.begin(), W.Bytes.end()}});
     }
     Calls.push_back(std::move(C));
   }
