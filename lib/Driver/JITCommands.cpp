@@ -1,10 +1,11 @@
-//===- Run.cpp - `bsc run` and `bsc repl`: behaviors in the host JIT ------===//
+//===- JITCommands.cpp - `bsc run`, `replay`, `repl`: the host JIT ------===//
 //
-// Both check their options, then hand over: `bsc run` (lib/Run) loads
-// the behavior, starts a session and runs its cycles (with a --world
-// library feeding it); `bsc repl` (lib/REPL) lets the REPL load and
-// reload the files itself. Both run on the host whatever -target says
-// (the tool gives them the host's ToolChain).
+// Each checks its options, then hands over: `bsc run` and `bsc replay`
+// (lib/Run) load the behavior, start a session and run its cycles (with a
+// --world library feeding it, or a recording); `bsc repl` (lib/REPL) lets
+// the REPL load and reload the files itself. All run on the host whatever
+// -target says (the tool gives them the host's ToolChain). (Named apart
+// from lib/Run, whose Run.h is the runner's.)
 //
 //===----------------------------------------------------------------------===//
 #include "bsc/Driver/Driver.h"
