@@ -6,6 +6,7 @@
 // (c) setHeadMode()/headMode() keep a blackboard behind the user pointer
 //     (set by world.cpp's bs_world_init);
 // (d) say() prints;
+// (e) phase() returns a string in a buffer it overwrites on every call;
 // and a cheat: level() is registered pure but returns what bump() changed,
 // C++ state outside anything the behavior can see.
 #include "sim.h"
@@ -46,6 +47,13 @@ inline void say(int N) { std::printf("say %d\n", N); }
 inline void bump() { ++Hidden; }
 inline int level() { return Hidden; }
 inline int twice(int X) { return 2 * X; }
+inline char PhaseText[8];
+inline int Phases = 0;
+inline const char *phase() {
+  std::snprintf(PhaseText, sizeof PhaseText, "%s",
+                (++Phases / 5) % 2 ? "odd" : "even");
+  return PhaseText;
+}
 } // namespace sim
 
 BS_MODULE(Sys,
@@ -70,4 +78,5 @@ BS_MODULE(Sys,
   registerFunction<&sim::bump>(module, "bump");
   registerFunction<&sim::level>(module, "level").pure();
   registerFunction<&sim::twice>(module, "twice").pure();
+  registerFunction<&sim::phase>(module, "phase");
 )
