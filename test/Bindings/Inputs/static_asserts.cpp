@@ -73,11 +73,14 @@ BS_MODULE(Cases,
   registerClass<G>(module, "G").ctor<>({"x"});
 #elif CASE == 18 // the same parameter name twice
   registerFunction<&two>(module, "two", {"a", "a"});
+#elif CASE == 19 // .pure() after a field, not a function
+  a.var<&A::v>("v").pure();
 #else
   a.var<&A::v>("v").prop<bs::mut(&A::get)>("get");
   registerClass<G>(module, "G").var<&G::grid>("grid");
   // Names: one (not taken for the C++ name), none for bs::Context &.
   registerFunction<&plain>(module, "plain", {"x"});
   registerFunction<&withContext>(module, "withContext", {"x"}, "withContext");
+  registerFunction<&two>(module, "twoPure").pure(); // .pure() is fine here
 #endif
 )
