@@ -168,6 +168,10 @@ public:
   /// The recorder of the session whose cycle runs now (null outside).
   static Boundary *Current;
 
+  /// What bs_boundary_enter and bs_boundary_leave do with this recorder:
+  /// enter says whether the call is taken from the record (the thunk is
+  /// then not called); leave records the call or applies its recorded
+  /// effects to `Result`, `Ptrs` and the view.
   bool enter(const bs_boundary_site *Site);
   void leave(const bs_boundary_site *Site, void *Result, void *const *Ptrs);
 
