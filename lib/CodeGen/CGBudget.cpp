@@ -34,7 +34,7 @@
 // code as before.
 //
 //===----------------------------------------------------------------------===//
-#include "CodeGenImpl.h"
+#include "FunctionEmitter.h"
 #include "bscript/bscript.h"
 #include "llvm/IR/MDBuilder.h"
 #include <cstddef>

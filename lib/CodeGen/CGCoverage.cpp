@@ -19,7 +19,7 @@
 // the code adds to a placeholder that finishCoverage replaces.
 //
 //===----------------------------------------------------------------------===//
-#include "CodeGenImpl.h"
+#include "FunctionEmitter.h"
 
 using namespace bsc;
 using namespace bsc::codegen;

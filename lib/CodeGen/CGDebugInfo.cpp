@@ -24,7 +24,7 @@
 // therefore goes to the top of the entry block, whatever the scope.
 //
 //===----------------------------------------------------------------------===//
-#include "CodeGenImpl.h"
+#include "FunctionEmitter.h"
 #include "llvm/BinaryFormat/Dwarf.h"
 #include "llvm/IR/InstIterator.h"
 #include "llvm/Support/FileSystem.h"

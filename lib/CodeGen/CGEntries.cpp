@@ -7,7 +7,7 @@
 // and the optional program `main`.
 //
 //===----------------------------------------------------------------------===//
-#include "CodeGenImpl.h"
+#include "ModuleEmitter.h"
 #include "bscript/bscript.h"
 #include "llvm/ADT/DenseSet.h"
 #include "llvm/IR/Constants.h"

@@ -47,7 +47,7 @@
 // keeps them from ever being reordered past what they record.
 //
 //===----------------------------------------------------------------------===//
-#include "CodeGenImpl.h"
+#include "FunctionEmitter.h"
 #include "llvm/IR/Constants.h"
 #include "llvm/Support/Path.h"
 #include "llvm/Support/SourceMgr.h"

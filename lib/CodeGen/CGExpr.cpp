@@ -14,7 +14,7 @@
 // - float % is computed inline, never by fmodf (no libm in the object).
 //
 //===----------------------------------------------------------------------===//
-#include "CodeGenImpl.h"
+#include "FunctionEmitter.h"
 #include "llvm/IR/Constants.h"
 #include "llvm/IR/Intrinsics.h"
 #include "llvm/Support/ErrorHandling.h"

@@ -8,7 +8,7 @@
 // debugger see, all computed from the target's DataLayout.
 //
 //===----------------------------------------------------------------------===//
-#include "CodeGenImpl.h"
+#include "ModuleEmitter.h"
 #include "llvm/IR/DerivedTypes.h"
 
 using namespace bsc;

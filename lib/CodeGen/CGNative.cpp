@@ -6,7 +6,7 @@
 // module so that an object needs no strcmp from a libc.
 //
 //===----------------------------------------------------------------------===//
-#include "CodeGenImpl.h"
+#include "ModuleEmitter.h"
 #include "llvm/IR/Constants.h"
 #include "llvm/IR/DerivedTypes.h"
 #include "llvm/IR/Function.h"

@@ -12,7 +12,7 @@
 // bookkeeping.
 //
 //===----------------------------------------------------------------------===//
-#include "CodeGenImpl.h"
+#include "FunctionEmitter.h"
 #include "llvm/IR/Constants.h"
 #include "llvm/Support/ErrorHandling.h"
 

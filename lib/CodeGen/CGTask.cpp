@@ -97,7 +97,7 @@
 // the cycle counter may wrap.
 //
 //===----------------------------------------------------------------------===//
-#include "CodeGenImpl.h"
+#include "FunctionEmitter.h"
 #include "llvm/IR/Constants.h"
 #include "llvm/IR/IntrinsicInst.h"
 #include <optional>

@@ -7,7 +7,7 @@
 // the zero value every local starts with.
 //
 //===----------------------------------------------------------------------===//
-#include "CodeGenImpl.h"
+#include "ModuleEmitter.h"
 #include "llvm/IR/Constants.h"
 #include "llvm/IR/DerivedTypes.h"
 #include "llvm/Support/ErrorHandling.h"
