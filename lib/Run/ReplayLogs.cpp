@@ -22,7 +22,9 @@
 using namespace bsc;
 
 /// The `.jsonl` files under `Dir`, sorted; false after reporting a folder
-/// that cannot be read.
+/// that cannot be read, has no recording, or holds a file that is not one
+/// (a CI job that lost its corpus, or copied something else into it, must
+/// not pass). Hidden files (`.gitkeep`) are skipped.
 static bool findLogs(Compilation &C, llvm::StringRef Dir,
                      std::vector<std::string> &Logs) {
   if (!llvm::sys::fs::is_directory(Dir)) {
@@ -30,18 +32,30 @@ static bool findLogs(Compilation &C, llvm::StringRef Dir,
     return false;
   }
   std::error_code EC;
+  std::vector<std::string> Others;
   for (llvm::sys::fs::recursive_directory_iterator It(Dir, EC), End;
-       It != End && !EC; It.increment(EC))
-    if (llvm::sys::path::extension(It->path()) == ".jsonl" &&
-        It->type() != llvm::sys::fs::file_type::directory_file)
+       It != End && !EC; It.increment(EC)) {
+    if (It->type() == llvm::sys::fs::file_type::directory_file ||
+        llvm::sys::path::filename(It->path()).starts_with("."))
+      continue;
+    if (llvm::sys::path::extension(It->path()) == ".jsonl")
       Logs.push_back(It->path());
+    else
+      Others.push_back(It->path());
+  }
   if (EC) {
     C.Diags.report(llvm::SMLoc(), diag::err_cannot_open_file)
         << Dir << EC.message();
     return false;
   }
+  llvm::sort(Others);
+  for (const std::string &Other : Others)
+    C.Diags.report(llvm::SMLoc(), diag::err_replay_logs_not_recording)
+        << Other << Dir;
+  if (Logs.empty() && Others.empty())
+    C.Diags.report(llvm::SMLoc(), diag::err_replay_logs_empty) << Dir;
   llvm::sort(Logs);
-  return true;
+  return !Logs.empty() && Others.empty();
 }
 
 namespace {
