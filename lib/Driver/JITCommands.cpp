@@ -44,6 +44,34 @@ static bool parseCoverageFloor(DiagnosticEngine &Diags, llvm::StringRef Arg,
   return true;
 }
 
+/// `--ignore MEMBER` and `--tolerance MEMBER=ABS` (ABS a number >= 0);
+/// false after reporting.
+static bool parseComparison(DiagnosticEngine &Diags, const CompareArgs &Args,
+                            OutputComparison &Into) {
+  bool OK = true;
+  for (const std::string &Member : Args.Ignore) {
+    if (Member.empty()) {
+      Diags.report(llvm::SMLoc(), diag::err_bad_option_value)
+          << Member << "--ignore";
+      OK = false;
+    }
+    Into.Ignore.push_back(Member);
+  }
+  for (const std::string &Arg : Args.Tolerance) {
+    auto [Member, Text] = llvm::StringRef(Arg).split('=');
+    double Abs;
+    if (Member.empty() || Text.empty() || Text.getAsDouble(Abs) ||
+        !(Abs >= 0)) {
+      Diags.report(llvm::SMLoc(), diag::err_bad_option_value)
+          << Arg << "--tolerance";
+      OK = false;
+      continue;
+    }
+    Into.Tolerance.push_back({Member.str(), Abs});
+  }
+  return OK;
+}
+
 /// `bsc run --coverage/--fail-under` after the run: the tracefile and the
 /// floor. False after reporting.
 static bool finishRunCoverage(Compilation &C, const LoadedBehavior &L,
@@ -119,6 +147,13 @@ int bsc::runCommand(Compilation &C, const FrontendOptions &FOpts,
   ROpts.ReplayPath = Opts.ReplayPath;
   ROpts.PrintOutput = Opts.PrintOutput;
   ROpts.Regression = Opts.Regression;
+  OptionsOK &= parseComparison(C.Diags, Opts.Compare, ROpts.Compare);
+  if (!ROpts.Compare.isExact() && Opts.ReplayPath.empty()) {
+    C.Diags.report(llvm::SMLoc(), diag::err_option_needs_option)
+        << (Opts.Compare.Ignore.empty() ? "--tolerance" : "--ignore")
+        << "--replay";
+    OptionsOK = false;
+  }
   unsigned Robots;
   OptionsOK &= parseRobots(C.Diags, Opts.Robots, Robots);
   // Without --robots a replay runs the recording's team.
@@ -182,6 +217,7 @@ int bsc::replayCommand(Compilation &C, const FrontendOptions &FOpts,
   OK &= parseCoverageFloor(C.Diags, Opts.Coverage.Floor, ROpts.CoverageFloor);
   ROpts.WorldLibrary = Opts.WorldLibrary;
   ROpts.Regression = Opts.Regression;
+  OK &= parseComparison(C.Diags, Opts.Compare, ROpts.Compare);
   if (Opts.LogsDir.empty()) {
     C.Diags.report(llvm::SMLoc(), diag::err_option_needs_option)
         << "replay" << "--logs";

@@ -106,6 +106,7 @@ static llvm::Expected<LogResult> replayOne(Compilation &C, LoadedBehavior &L,
     Run.CycleLimitMs = Opts.CycleLimitMs;
     Run.RobotsFromRecording = true; // A team's log replays its team.
     Run.Regression = Opts.Regression;
+    Run.Compare = Opts.Compare;
     Run.AnnounceReplayMode = false; // Counted for the summary instead.
     Run.ReplayedExactly = &R.Exact;
     // --world: the robots' user pointers, as on the robot; the log's

@@ -13,6 +13,7 @@
 #include "bsc/Basic/Output.h"
 #include "llvm/Support/FileSystem.h"
 #include "llvm/Support/ToolOutputFile.h"
+#include <cmath>
 
 using namespace bsc;
 
@@ -38,9 +39,12 @@ static void reportBudgetRanOut(Compilation &C, const LoadedBehavior &L,
 /// reported.
 static bool reportMismatch(Compilation &C, const ReplayLine &Line,
                            uint32_t Cycle, const llvm::json::Value &Recorded,
-                           const llvm::json::Value &Got) {
-  std::vector<debug::Difference> Ds =
-      debug::findDifferences(Recorded, Got, "output");
+                           const llvm::json::Value &Got,
+                           const OutputComparison &Compare) {
+  std::vector<debug::Difference> Ds;
+  for (debug::Difference &D : debug::findDifferences(Recorded, Got, "output"))
+    if (Compare.counts(D))
+      Ds.push_back(std::move(D));
   if (Ds.empty())
     return false;
   C.Diags.report(Line.Loc, diag::err_replay_mismatch) << Cycle << NoSourceLine();
@@ -306,11 +310,13 @@ bool CycleRunner::checkOutput(BehaviorSession &S, const ReplayLine &Line,
   // of another form) builds trees, which name the differences.
   if (Values.matchesClassText(*L.OutputClass, S.getOutput(), Line.Output))
     return true;
+  // (With --ignore or --tolerance a difference may not count.)
   std::optional<llvm::json::Value> Recorded =
       parseJSONLine(C.Diags, Line.Output);
   return Recorded &&
          !reportMismatch(C, Line, Cycle, *Recorded,
-                         Values.readClass(*L.OutputClass, S.getOutput()));
+                         Values.readClass(*L.OutputClass, S.getOutput()),
+                         Opts.Compare);
 }
 
 bool CycleRunner::runCycle(unsigned K, const ReplayLine *Line) {
@@ -420,6 +426,31 @@ void CycleRunner::keepRecordings() {
   for (RobotRun &R : Robots)
     if (R.Record)
       R.Record->keep();
+}
+
+/// Whether `Path` is `Member` or lies under it (`output.a` is under
+/// `output`, not under `output.ab`). A member may leave out `output.`.
+static bool isUnder(llvm::StringRef Path, llvm::StringRef Member) {
+  std::string Full = Member.starts_with("output") ? Member.str()
+                                                  : "output." + Member.str();
+  if (!Path.starts_with(Full))
+    return false;
+  llvm::StringRef Rest = Path.drop_front(Full.size());
+  return Rest.empty() || Rest.front() == '.' || Rest.front() == '[';
+}
+
+bool OutputComparison::counts(const debug::Difference &D) const {
+  for (const std::string &Member : Ignore)
+    if (isUnder(D.Path, Member))
+      return false;
+  double Recorded, Got;
+  if (llvm::StringRef(D.Recorded).getAsDouble(Recorded) ||
+      llvm::StringRef(D.Got).getAsDouble(Got))
+    return true; // Not two numbers.
+  for (const auto &[Member, Abs] : Tolerance)
+    if (isUnder(D.Path, Member) && std::fabs(Recorded - Got) <= Abs)
+      return false;
+  return true;
 }
 
 bool bsc::runBehavior(Compilation &C, LoadedBehavior &L, BehaviorSession &S,

@@ -110,6 +110,16 @@ cl::opt<std::string> WorldLibrary(
              "every cycle (bs_world_init/begin/end/exit, docs/repl.md); "
              "with a replay only its init and exit run"),
     cl::value_desc("lib.so"), BSC_JIT, cl::sub(ReplayCmd));
+cl::list<std::string> IgnoreFields(
+    "ignore",
+    cl::desc("A replay does not compare this output member, or any member "
+             "under it (output.walkTarget, or walkTarget); repeatable"),
+    cl::value_desc("member"), BSC_RUN, cl::sub(ReplayCmd));
+cl::list<std::string> Tolerances(
+    "tolerance",
+    cl::desc("A replay takes this float output member (or any under it) as "
+             "equal when it differs by at most ABS; repeatable"),
+    cl::value_desc("member=abs"), BSC_RUN, cl::sub(ReplayCmd));
 cl::opt<bool> RegressionFlag(
     "regression",
     cl::desc("Replay in regression mode: inputs from the recording, "
@@ -356,6 +366,8 @@ RunCommandOptions getRunOptions() {
   Opts.Robots = given(RobotsArg);
   Opts.Coverage = {CoverageFile, CoverageFloor};
   Opts.Regression = RegressionFlag;
+  Opts.Compare = {{IgnoreFields.begin(), IgnoreFields.end()},
+                  {Tolerances.begin(), Tolerances.end()}};
   return Opts;
 }
 
@@ -372,6 +384,8 @@ ReplayCommandOptions getReplayOptions() {
   Opts.Jobs = ReplayJobs;
   Opts.WorldLibrary = WorldLibrary;
   Opts.Regression = RegressionFlag;
+  Opts.Compare = {{IgnoreFields.begin(), IgnoreFields.end()},
+                  {Tolerances.begin(), Tolerances.end()}};
   return Opts;
 }
 

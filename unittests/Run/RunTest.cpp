@@ -304,3 +304,20 @@ TEST(ReplayWorkersTest, ResultsRoundTrip) {
   EXPECT_FALSE(decodeResult(std::string("\x02\x02\0\0\0ab", 7), Back));
 }
 } // namespace
+
+TEST(OutputComparisonTest, IgnoredAndTolerantMembers) {
+  OutputComparison C;
+  C.Ignore = {"motion", "output.head"};
+  C.Tolerance = {{"walkTarget", 0.5}};
+  auto D = [](const char *Path, const char *Recorded, const char *Got) {
+    return debug::Difference{Path, Recorded, Got};
+  };
+  EXPECT_FALSE(C.counts(D("output.motion", "\"walk\"", "\"kick\"")));
+  EXPECT_FALSE(C.counts(D("output.head[1]", "1", "2")));
+  EXPECT_TRUE(C.counts(D("output.headTarget.y", "5", "0"))); // Not a prefix.
+  EXPECT_FALSE(C.counts(D("output.walkTarget.x", "1", "1.5")));
+  EXPECT_TRUE(C.counts(D("output.walkTarget.x", "1", "1.6")));
+  EXPECT_TRUE(C.counts(D("output.walkTarget.x", "1", "\"far\"")));
+  EXPECT_TRUE(C.counts(D("output.speed", "1", "1.1")));
+  EXPECT_TRUE(OutputComparison().isExact());
+}

@@ -230,6 +230,12 @@ struct CoverageArgs {
   std::string Path, Floor;
 };
 
+/// `--ignore` and `--tolerance` of `bsc run --replay` and `bsc replay`, as
+/// written.
+struct CompareArgs {
+  std::vector<std::string> Ignore, Tolerance;
+};
+
 /// `bsc run` as written on the command line.
 struct RunCommandOptions {
   BackendArgs Backend;
@@ -241,6 +247,7 @@ struct RunCommandOptions {
   CoverageArgs Coverage;
   std::optional<std::string> Robots; ///< --robots N, if given.
   bool Regression = false; ///< --regression.
+  CompareArgs Compare;
 };
 
 /// `bsc run`: the behavior in the host JIT, --cycles calls of --entry.
@@ -257,6 +264,7 @@ struct ReplayCommandOptions {
   std::string Jobs; ///< --jobs; empty: one worker per core.
   std::string WorldLibrary; ///< --world: its init and exit per log.
   bool Regression = false;  ///< --regression.
+  CompareArgs Compare;
 };
 
 /// `bsc replay`: the behavior compiled once into the host JIT, every

@@ -127,6 +127,18 @@ private:
 /// `Robot`: which one it was.
 void noteRobot(Compilation &C, unsigned Robot, unsigned Robots);
 
+/// How a replay compares recorded outputs (`--ignore`, `--tolerance`):
+/// members named by a path of `output` (`output.walkTarget.x`) or any
+/// under it; a difference in an ignored member, or in a float member by
+/// at most its tolerance, is no difference.
+struct OutputComparison {
+  std::vector<std::string> Ignore;
+  std::vector<std::pair<std::string, double>> Tolerance;
+  bool isExact() const { return Ignore.empty() && Tolerance.empty(); }
+  /// Whether `D` counts.
+  bool counts(const debug::Difference &D) const;
+};
+
 /// `bsc run`'s options beyond loading.
 struct RunOptions {
   unsigned Cycles = 1;
@@ -150,6 +162,7 @@ struct RunOptions {
   /// the ways instead, through ReplayedExactly.
   bool AnnounceReplayMode = true;
   bool *ReplayedExactly = nullptr;
+  OutputComparison Compare;
 };
 
 /// `--world-output FILE`: opens FILE (emptied) for what a world library
@@ -191,6 +204,7 @@ struct ReplayLogsOptions {
   /// user pointers), not its begin and end hooks.
   std::string WorldLibrary;
   bool Regression = false; ///< RunOptions::Regression.
+  OutputComparison Compare;
 };
 
 /// `bsc replay`: replays every recording under Opts.LogsDir against the
