@@ -86,6 +86,24 @@ private:
 };
 } // namespace
 
+/// How a log failed, the same for logs that fail alike: each diagnostic's
+/// kind and message with its numbers left out (the cycle, the values), and
+/// for an output that differs, the member only.
+static std::string failureGroup(llvm::ArrayRef<Diagnostic> Diags) {
+  std::string Group;
+  for (const Diagnostic &D : Diags) {
+    llvm::StringRef Message = D.Message;
+    if (D.Kind == diag::note_replay_difference)
+      Message = Message.split(": recorded").first;
+    Group += std::to_string(unsigned(D.Kind)) + ":";
+    for (char Ch : Message)
+      if (!llvm::isDigit(Ch))
+        Group += Ch;
+    Group += "\n";
+  }
+  return Group;
+}
+
 /// Replays one log in a fresh session of `L`; an llvm::Error is internal.
 static llvm::Expected<LogResult> replayOne(Compilation &C, LoadedBehavior &L,
                                            const ReplayLogsOptions &Opts,
@@ -122,6 +140,8 @@ static llvm::Expected<LogResult> replayOne(Compilation &C, LoadedBehavior &L,
                   .count();
   llvm::raw_string_ostream OS(R.Report);
   printDiagnostics(C.SM, C.Diags.getDiagnostics(), OS);
+  if (!R.Passed)
+    R.Group = failureGroup(C.Diags.getDiagnostics());
   C.Diags.clear();
   return R;
 }
@@ -185,21 +205,64 @@ static bool reportCorpusCoverage(Compilation &C, const LoadedBehavior &L,
   return OK;
 }
 
-/// The log's line and, if it failed, its diagnostics.
-static void printResult(llvm::raw_ostream &OS, llvm::StringRef Path,
-                        const LogResult &R) {
-  OS << (R.Passed ? "PASS " : "FAIL ") << Path << " (" << R.Cycles
-     << (R.Cycles == 1 ? " cycle)\n" : " cycles)\n");
-  if (!R.Passed)
-    OS << R.Report;
-  OS.flush();
-}
+namespace {
+/// Failures that happened alike (failureGroup): the first is reported in
+/// full, the others by a line that names it, and the end lists each
+/// group's logs.
+class FailureGroups {
+public:
+  /// The log's line and, if it failed, its diagnostics (or the first log
+  /// that failed alike).
+  void print(llvm::raw_ostream &OS, llvm::StringRef Path, const LogResult &R) {
+    OS << (R.Passed ? "PASS " : "FAIL ") << Path << " (" << R.Cycles
+       << (R.Cycles == 1 ? " cycle)" : " cycles)");
+    if (R.Passed || R.Group.empty()) {
+      OS << "\n" << (R.Passed ? "" : R.Report);
+    } else {
+      auto [It, New] = Groups.try_emplace(R.Group, Order.size());
+      if (New) {
+        Order.push_back({Path.str(), {}});
+        OS << "\n" << R.Report;
+      } else {
+        Order[It->second].Others.push_back(Path.str());
+        OS << ": fails as " << Order[It->second].First << " does\n";
+      }
+    }
+    OS.flush();
+  }
+  /// `a.jsonl and 6 more logs failed alike: ...` for each group of more
+  /// than one.
+  void summarize(llvm::raw_ostream &OS) const {
+    for (const Group &G : Order) {
+      if (G.Others.empty())
+        continue;
+      OS << G.First << " and " << G.Others.size()
+         << (G.Others.size() == 1 ? " more log" : " more logs")
+         << " failed alike: ";
+      for (size_t I = 0; I < G.Others.size() && I < 10; ++I)
+        OS << (I ? ", " : "") << llvm::sys::path::filename(G.Others[I]);
+      if (G.Others.size() > 10)
+        OS << ", ...";
+      OS << "\n";
+    }
+  }
+
+private:
+  struct Group {
+    std::string First;
+    std::vector<std::string> Others;
+  };
+  llvm::StringMap<size_t> Groups;
+  std::vector<Group> Order;
+};
+} // namespace
 
 /// `--jobs N`: the logs in N worker processes; a worker that dies fails
 /// the log it was on with a diagnostic saying how it died.
 static llvm::Expected<std::vector<LogResult>>
 replayForked(Compilation &C, LoadedBehavior &L, const ReplayLogsOptions &Opts,
-             llvm::ArrayRef<std::string> Logs, llvm::raw_ostream &OS) {
+             llvm::ArrayRef<std::string> Logs, llvm::raw_ostream &OS,
+             FailureGroups &Failures) {
   auto Died = [&](llvm::StringRef Fate) {
     LogResult R;
     C.Diags.report(llvm::SMLoc(), diag::err_replay_worker_died) << Fate;
@@ -220,7 +283,7 @@ replayForked(Compilation &C, LoadedBehavior &L, const ReplayLogsOptions &Opts,
   };
   return replayInWorkers(
       Logs.size(), Opts.Jobs, ReplayOne, Died,
-      [&](size_t I, const LogResult &R) { printResult(OS, Logs[I], R); });
+      [&](size_t I, const LogResult &R) { Failures.print(OS, Logs[I], R); });
 }
 
 llvm::Expected<int> bsc::replayLogs(Compilation &C, LoadedBehavior &L,
@@ -232,8 +295,9 @@ llvm::Expected<int> bsc::replayLogs(Compilation &C, LoadedBehavior &L,
   for (size_t I = Opts.Shard - 1; I < All.size(); I += Opts.Shards)
     Logs.push_back(All[I]);
   std::vector<LogResult> Results;
+  FailureGroups Failures;
   if (Opts.Jobs > 1) {
-    auto Forked = replayForked(C, L, Opts, Logs, OS);
+    auto Forked = replayForked(C, L, Opts, Logs, OS, Failures);
     if (!Forked)
       return Forked.takeError();
     Results = std::move(*Forked);
@@ -244,11 +308,12 @@ llvm::Expected<int> bsc::replayLogs(Compilation &C, LoadedBehavior &L,
       if (!One)
         return One.takeError();
       Results.push_back(std::move(*One));
-      printResult(OS, Path, Results.back());
+      Failures.print(OS, Path, Results.back());
     }
   }
   unsigned Failed = llvm::count_if(
       Results, [](const LogResult &R) { return !R.Passed; });
+  Failures.summarize(OS);
   unsigned Exact = llvm::count_if(
       Results, [](const LogResult &R) { return R.Exact; });
   if (!Results.empty())

@@ -39,7 +39,8 @@ enum ResultTag : uint8_t {
   TagSeconds,
   TagReport,
   TagCoverage,
-  TagExact
+  TagExact,
+  TagGroup
 };
 /// What a worker writes into its pipe: a frame kind, the log's index and
 /// the payload's length, then the payload (a result, or nothing).
@@ -68,6 +69,7 @@ std::string bsc::encodeResult(const LogResult &R) {
   appendField(Out, TagExact, &Exact, 1);
   appendField(Out, TagSeconds, &R.Seconds, 8);
   appendField(Out, TagReport, R.Report.data(), R.Report.size());
+  appendField(Out, TagGroup, R.Group.data(), R.Group.size());
   if (!R.Coverage.empty())
     appendField(Out, TagCoverage, R.Coverage.data(), 8 * R.Coverage.size());
   return Out;
@@ -114,6 +116,9 @@ bool bsc::decodeResult(llvm::StringRef Payload, LogResult &R) {
       break;
     case TagReport:
       R.Report = Data.str();
+      break;
+    case TagGroup:
+      R.Group = Data.str();
       break;
     case TagCoverage:
       OK = Size % 8 == 0;

@@ -30,6 +30,9 @@ struct LogResult {
   double Seconds = 0;
   /// Its diagnostics, as bsc prints them.
   std::string Report;
+  /// A failure's way (failureGroup in ReplayLogs.cpp): logs that fail
+  /// alike have the same.
+  std::string Group;
   /// From a worker: the coverage counters the log added (readCoverage's
   /// order); empty in bsc's own process, whose JIT keeps the sum.
   std::vector<uint64_t> Coverage;
