@@ -218,6 +218,7 @@ int bsc::replayCommand(Compilation &C, const FrontendOptions &FOpts,
   ROpts.WorldLibrary = Opts.WorldLibrary;
   ROpts.Regression = Opts.Regression;
   OK &= parseComparison(C.Diags, Opts.Compare, ROpts.Compare);
+  ROpts.Update = Opts.Update;
   if (Opts.LogsDir.empty()) {
     C.Diags.report(llvm::SMLoc(), diag::err_option_needs_option)
         << "replay" << "--logs";

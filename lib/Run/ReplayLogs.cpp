@@ -17,6 +17,7 @@
 #include "llvm/Support/ToolOutputFile.h"
 #include "llvm/Support/raw_ostream.h"
 #include <chrono>
+#include <map>
 #include <fcntl.h>
 
 using namespace bsc;
@@ -125,6 +126,10 @@ static llvm::Expected<LogResult> replayOne(Compilation &C, LoadedBehavior &L,
     Run.RobotsFromRecording = true; // A team's log replays its team.
     Run.Regression = Opts.Regression;
     Run.Compare = Opts.Compare;
+    if (Opts.Update) { // Recorded again beside the log, then over it.
+      Run.RecordPath = Path + ".update";
+      Run.Changed = &R.Changed;
+    }
     Run.AnnounceReplayMode = false; // Counted for the summary instead.
     Run.ReplayedExactly = &R.Exact;
     // --world: the robots' user pointers, as on the robot; the log's
@@ -133,6 +138,15 @@ static llvm::Expected<LogResult> replayOne(Compilation &C, LoadedBehavior &L,
                 (*T)->attachWorld(C, L, Opts.WorldLibrary,
                                   Opts.CycleLimitMs)) &&
                runTeam(C, L, **T, Run, llvm::nulls()) && !C.Diags.hasErrors();
+    if (Opts.Update) {
+      std::error_code EC;
+      if (R.Passed && (EC = llvm::sys::fs::rename(Run.RecordPath, Path)))
+        C.Diags.report(llvm::SMLoc(), diag::err_cannot_write_output)
+            << Path << EC.message();
+      R.Updated = R.Passed && !EC;
+      R.Passed = R.Updated;
+      llvm::sys::fs::remove(Run.RecordPath);
+    }
     R.Cycles = (**T)[0].getCycle();
   }
   R.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() -
@@ -214,7 +228,8 @@ public:
   /// The log's line and, if it failed, its diagnostics (or the first log
   /// that failed alike).
   void print(llvm::raw_ostream &OS, llvm::StringRef Path, const LogResult &R) {
-    OS << (R.Passed ? "PASS " : "FAIL ") << Path << " (" << R.Cycles
+    OS << (R.Updated ? "UPDATED " : R.Passed ? "PASS " : "FAIL ") << Path
+       << " (" << R.Cycles
        << (R.Cycles == 1 ? " cycle)" : " cycles)");
     if (R.Passed || R.Group.empty()) {
       OS << "\n" << (R.Passed ? "" : R.Report);
@@ -256,6 +271,35 @@ private:
   std::vector<Group> Order;
 };
 } // namespace
+
+/// --update's summary: what changed, per output member.
+static void summarizeUpdate(llvm::raw_ostream &OS,
+                            llvm::ArrayRef<LogResult> Results) {
+  std::map<std::string, std::pair<unsigned, unsigned>> Members; // Cycles, logs.
+  unsigned Updated = 0;
+  for (const LogResult &R : Results) {
+    Updated += R.Updated;
+    for (const auto &[Member, Cycles] : R.Changed) {
+      Members[Member].first += Cycles;
+      ++Members[Member].second;
+    }
+  }
+  OS << Updated << (Updated == 1 ? " log" : " logs")
+     << " recorded again with this behavior's outputs on their own inputs "
+        "(open loop: the inputs are as recorded, not as a world would "
+        "answer the new outputs)\n";
+  OS << "changed:";
+  if (Members.empty())
+    OS << " nothing";
+  bool First = true;
+  for (const auto &[Member, CyclesLogs] : Members) {
+    OS << (First ? " " : ", ") << Member << " in " << CyclesLogs.first
+       << (CyclesLogs.first == 1 ? " cycle" : " cycles") << " of "
+       << CyclesLogs.second << (CyclesLogs.second == 1 ? " log" : " logs");
+    First = false;
+  }
+  OS << "\n";
+}
 
 /// `--jobs N`: the logs in N worker processes; a worker that dies fails
 /// the log it was on with a diagnostic saying how it died.
@@ -314,6 +358,8 @@ llvm::Expected<int> bsc::replayLogs(Compilation &C, LoadedBehavior &L,
   unsigned Failed = llvm::count_if(
       Results, [](const LogResult &R) { return !R.Passed; });
   Failures.summarize(OS);
+  if (Opts.Update)
+    summarizeUpdate(OS, Results);
   unsigned Exact = llvm::count_if(
       Results, [](const LogResult &R) { return R.Exact; });
   if (!Results.empty())

@@ -40,7 +40,8 @@ enum ResultTag : uint8_t {
   TagReport,
   TagCoverage,
   TagExact,
-  TagGroup
+  TagGroup,
+  TagChanged ///< --update: "1" or "0", then "member\tcycles\n" lines.
 };
 /// What a worker writes into its pipe: a frame kind, the log's index and
 /// the payload's length, then the payload (a result, or nothing).
@@ -70,6 +71,10 @@ std::string bsc::encodeResult(const LogResult &R) {
   appendField(Out, TagSeconds, &R.Seconds, 8);
   appendField(Out, TagReport, R.Report.data(), R.Report.size());
   appendField(Out, TagGroup, R.Group.data(), R.Group.size());
+  std::string Changed = R.Updated ? "1" : "0";
+  for (const auto &[Member, Cycles] : R.Changed)
+    Changed += Member + "\t" + std::to_string(Cycles) + "\n";
+  appendField(Out, TagChanged, Changed.data(), Changed.size());
   if (!R.Coverage.empty())
     appendField(Out, TagCoverage, R.Coverage.data(), 8 * R.Coverage.size());
   return Out;
@@ -120,6 +125,19 @@ bool bsc::decodeResult(llvm::StringRef Payload, LogResult &R) {
     case TagGroup:
       R.Group = Data.str();
       break;
+    case TagChanged: {
+      R.Updated = Data.starts_with("1");
+      for (llvm::StringRef Rest = Data.drop_front(std::min<size_t>(1, Size));
+           !Rest.empty();) {
+        auto [Line, After] = Rest.split('\n');
+        auto [Member, Count] = Line.split('\t');
+        unsigned N = 0;
+        OK &= !Count.getAsInteger(10, N);
+        R.Changed[Member.str()] = N;
+        Rest = After;
+      }
+      break;
+    }
     case TagCoverage:
       OK = Size % 8 == 0;
       R.Coverage.resize(Size / 8);

@@ -12,6 +12,7 @@
 #define BSC_LIB_RUN_REPLAYWORKERS_H
 
 #include "bsc/Run/Run.h"
+#include <map>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,10 @@ struct LogResult {
   /// A failure's way (failureGroup in ReplayLogs.cpp): logs that fail
   /// alike have the same.
   std::string Group;
+  /// --update: the log was recorded again; the cycles whose recorded
+  /// output differed, per output member.
+  bool Updated = false;
+  std::map<std::string, unsigned> Changed;
   /// From a worker: the coverage counters the log added (readCoverage's
   /// order); empty in bsc's own process, whose JIT keeps the sum.
   std::vector<uint64_t> Coverage;

@@ -313,6 +313,14 @@ bool CycleRunner::checkOutput(BehaviorSession &S, const ReplayLine &Line,
   // (With --ignore or --tolerance a difference may not count.)
   std::optional<llvm::json::Value> Recorded =
       parseJSONLine(C.Diags, Line.Output);
+  if (Recorded && Opts.Changed) { // --update: counted, not reported.
+    for (const debug::Difference &D : debug::findDifferences(
+             *Recorded, Values.readClass(*L.OutputClass, S.getOutput()),
+             "output"))
+      if (Opts.Compare.counts(D))
+        ++(*Opts.Changed)[D.Path];
+    return true;
+  }
   return Recorded &&
          !reportMismatch(C, Line, Cycle, *Recorded,
                          Values.readClass(*L.OutputClass, S.getOutput()),

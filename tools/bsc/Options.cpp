@@ -120,6 +120,11 @@ cl::list<std::string> Tolerances(
     cl::desc("A replay takes this float output member (or any under it) as "
              "equal when it differs by at most ABS; repeatable"),
     cl::value_desc("member=abs"), BSC_RUN, cl::sub(ReplayCmd));
+cl::opt<bool> UpdateFlag(
+    "update",
+    cl::desc("Record each log again with this behavior's outputs on its own "
+             "inputs (open loop), and say what changed"),
+    cl::sub(ReplayCmd));
 cl::opt<bool> RegressionFlag(
     "regression",
     cl::desc("Replay in regression mode: inputs from the recording, "
@@ -386,6 +391,7 @@ ReplayCommandOptions getReplayOptions() {
   Opts.Regression = RegressionFlag;
   Opts.Compare = {{IgnoreFields.begin(), IgnoreFields.end()},
                   {Tolerances.begin(), Tolerances.end()}};
+  Opts.Update = UpdateFlag;
   return Opts;
 }
 

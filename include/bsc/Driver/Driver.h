@@ -265,6 +265,7 @@ struct ReplayCommandOptions {
   std::string WorldLibrary; ///< --world: its init and exit per log.
   bool Regression = false;  ///< --regression.
   CompareArgs Compare;
+  bool Update = false; ///< --update.
 };
 
 /// `bsc replay`: the behavior compiled once into the host JIT, every

@@ -21,6 +21,7 @@
 #include "bsc/Frontend/Frontend.h"
 #include "bsc/JIT/JIT.h"
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -163,6 +164,10 @@ struct RunOptions {
   bool AnnounceReplayMode = true;
   bool *ReplayedExactly = nullptr;
   OutputComparison Compare;
+  /// `bsc replay --update`: recorded outputs are not compared but counted
+  /// here where they differ (cycles per output member); the run is
+  /// recorded again (RecordPath).
+  std::map<std::string, unsigned> *Changed = nullptr;
 };
 
 /// `--world-output FILE`: opens FILE (emptied) for what a world library
@@ -205,6 +210,9 @@ struct ReplayLogsOptions {
   std::string WorldLibrary;
   bool Regression = false; ///< RunOptions::Regression.
   OutputComparison Compare;
+  /// --update: each log is recorded again with the behavior's outputs on
+  /// its inputs (open loop), and what changed is summed up per member.
+  bool Update = false;
 };
 
 /// `bsc replay`: replays every recording under Opts.LogsDir against the
