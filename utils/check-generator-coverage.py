@@ -123,6 +123,7 @@ def required():
     # time travel and exact replays take from their records.
     for fn in ("tick", "rnd", "poke"):
         req.add(f"call with effects Gen::{fn}")
+    req.add("assert reading output")
     for kind in ("field", "property", "method"):
         req.add(f"member {kind}")
     for kind in ("constant", "clamped", "2-D"):
@@ -318,6 +319,8 @@ def source_features(program):
     for fn in ("tick", "rnd", "poke"):
         if f"Gen::{fn}(" in program:
             found.add(f"call with effects Gen::{fn}")
+    if "assert(output." in program:
+        found.add("assert reading output")
     return found
 
 

@@ -947,8 +947,13 @@ class Gen:
         condition still computes values of every kind."""
         r = self.rng
         ctx.pure += 1
-        k = r.randrange(3)
-        if k == 0:
+        k = r.randrange(4 if self.world else 3)
+        if k == 3:
+            # An assertion may read what the cycle wrote to `output`.
+            cond = r.choice(["output.vals[0] == output.vals[0]",
+                             "output.mode == output.mode",
+                             "output.target.x == output.target.x || true"])
+        elif k == 0:
             b = self.bool_expr(ctx, 0)
             cond = f"{b} || !{b}"
         elif k == 1:

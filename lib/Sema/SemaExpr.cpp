@@ -147,7 +147,9 @@ bool Sema::checkIOAccess(NameExpr *E, bool IsInput, Access A,
     diag(E->getLoc(), diag::err_assign_to_input) << E->getRange();
     return false;
   }
-  if (!IsInput && Reads) {
+  // An assertion may read what the cycle wrote so far (docs/language.md,
+  // "Assertions"); SemaAssert keeps it from changing anything.
+  if (!IsInput && Reads && !(InAssertCondition && !Writes)) {
     diag(E->getLoc(), diag::err_read_of_output) << E->getRange();
     return false;
   }

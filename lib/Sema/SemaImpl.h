@@ -262,6 +262,9 @@ public:
   void checkAssertionEffects();
   /// Checking a REPL line (ReplChecker), where `assert` has no use.
   bool InReplLine = false;
+  /// Checking an `assert`'s condition, which may read `output` (what the
+  /// cycle wrote so far): it changes nothing the robot does.
+  bool InAssertCondition = false;
 
   //--- SemaExpr.cpp ---------------------------------------------------------
   /// Checks `E` (for the given use), sets E->Ty and returns it.
@@ -272,8 +275,9 @@ public:
   const Type *checkName(NameExpr *E, Access A);
   const Type *applyLookup(NameExpr *E, const LookupResult &L, Access A);
   const Type *checkIO(NameExpr *E, bool IsInput, Access A);
-  /// The direction rules of `input` (read-only) and `output` (write-only),
-  /// the one place that decides them. `Method` names a non-const method
+  /// The direction rules of `input` (read-only) and `output` (write-only;
+  /// an assertion's condition may read it), the one place that decides
+  /// them. `Method` names a non-const method
   /// for MutatingMethodBase. Returns false after reporting.
   bool checkIOAccess(NameExpr *E, bool IsInput, Access A,
                      llvm::StringRef Method = "");

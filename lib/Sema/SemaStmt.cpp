@@ -58,7 +58,9 @@ void Sema::checkAssert(AssertStmt *S) {
     diag(S->getLoc(), diag::err_repl_assert);
     return;
   }
+  InAssertCondition = true;
   checkCondition(S->Cond);
+  InAssertCondition = false;
   Out.Assertions.push_back({S, CurCallable});
 }
 
