@@ -34,6 +34,11 @@ extern "C" {
 /** Once, after `input` and `output` are constructed; the result becomes
  *  the state's user pointer (bs::Context::user()). Required. */
 void *bs_world_init(void *input, void *output);
+/** Right after bs_world_init: which robot of how many this world is
+ *  (`--robots N`, robots counted from 0; robot 0 of 1 without), so that
+ *  the N robot worlds of a team can differ (a seed, a side of the pitch).
+ *  Optional. */
+void bs_world_robot(void *user, unsigned robot, unsigned robots);
 /** Before each cycle's entry; `cycle` counts from 1. Required. */
 void bs_world_begin(void *user, void *input, void *output, uint32_t cycle);
 /** After each cycle's entry. Optional. */

@@ -509,12 +509,17 @@ BehaviorSession::replayCycle(unsigned LimitMs, const CycleRecord &From,
 }
 
 BehaviorSession::Outcome BehaviorSession::attachWorld(const WorldHooks &Hooks,
-                                                      unsigned LimitMs) {
+                                                      unsigned LimitMs,
+                                                      unsigned Index,
+                                                      unsigned Robots) {
   World = Hooks;
   return runGuardedBody(
       [&] {
         inHook("bs_world_init", [&] { WorldUser = World.Init(Input, Output); });
         bs_state_set_user(State, WorldUser);
+        if (World.Robot)
+          inHook("bs_world_robot",
+                 [&] { World.Robot(WorldUser, Index, Robots); });
       },
       LimitMs);
 }

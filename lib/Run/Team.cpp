@@ -108,6 +108,7 @@ static bool loadWorldHooks(Compilation &C, llvm::StringRef Path,
   OK &= Find("bs_world_begin", H.Begin, true);
   Find("bs_world_end", H.End, false);
   Find("bs_world_exit", H.Exit, false);
+  Find("bs_world_robot", H.Robot, false);
   return OK;
 }
 
@@ -130,7 +131,7 @@ bool Team::attachWorld(Compilation &C, const LoadedBehavior &L,
   for (unsigned K = 0; K < N; ++K) {
     BehaviorSession::Outcome O =
         H.isTeam() ? Robots[K]->attachTeamWorld(H, TeamUser, K, Limit)
-                   : Robots[K]->attachWorld(H, Limit);
+                   : Robots[K]->attachWorld(H, Limit, K, N);
     if (!reportOutcome(C, L, O, 0, Limit)) {
       noteRobot(C, K, N);
       return false;

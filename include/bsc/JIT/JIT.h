@@ -160,6 +160,9 @@ struct WorldHooks {
   void (*End)(void *User, const void *Input, void *Output,
               uint32_t Cycle) = nullptr;
   void (*Exit)(void *User) = nullptr;
+  /// Optional: right after Init, which robot of how many this world is
+  /// (`--robots N`; robot 0 of 1 without), so that N robot worlds differ.
+  void (*Robot)(void *User, unsigned Robot, unsigned Robots) = nullptr;
   /// A team world (bscript/world.h, `--robots N`): one library simulates
   /// every robot. TeamInit's result is the team's pointer, which the other
   /// team hooks get with the robot's index (0 to N-1); TeamRobot, if any,
@@ -242,7 +245,9 @@ public:
   /// Drives the session's input and output from a world library from now
   /// on: calls its Init (under the guard) and attaches the result to the
   /// state as its user pointer.
-  Outcome attachWorld(const WorldHooks &Hooks, unsigned LimitMs);
+  /// `Robot` of `Robots` is told to the world's bs_world_robot, if any.
+  Outcome attachWorld(const WorldHooks &Hooks, unsigned LimitMs,
+                      unsigned Robot = 0, unsigned Robots = 1);
   /// Makes the session robot `Robot` of a team world whose bs_team_init
   /// returned `Team`: its cycles call the team's begin and end hooks with
   /// the index; bs_team_robot (if any, under the guard) gives the state's
