@@ -420,35 +420,47 @@ debug::listActiveTasks(const DebugTables &T,
 }
 
 std::string debug::formatTraceLine(const DebugTables &T,
-                                   llvm::ArrayRef<Activation> Records) {
+                                   llvm::ArrayRef<Activation> Records,
+                                   std::optional<unsigned> Subtree) {
   ActiveTree Tree = buildActiveTree(T, Records);
   std::vector<std::string> Paths;
   std::vector<unsigned> Stack;
+  std::vector<unsigned> Previous; // The path before, for --trace=TASK.
+  auto Part = [&](unsigned S) {
+    const Activation &A = Tree.Nodes[S].Record;
+    return T.Tasks[A.Task].ShortName + " [" + describeActivation(T, A) + "]";
+  };
   // Depth first, children in task-table order: one path per leaf. Every
   // task on it shows its state and line, because a parent moving through
-  // its yields under an unchanged leaf is what a reader looks for.
-  std::function<void(unsigned)> Walk = [&](unsigned N) {
-    Stack.push_back(N);
+  // its yields under an unchanged leaf is what a reader looks for. Under a
+  // subtree's root, a path shows the part it shares with the path before
+  // as `...`, so that a line fits a terminal.
+  std::function<void(unsigned, bool)> Walk = [&](unsigned N, bool In) {
+    In = In || !Subtree || Tree.Nodes[N].Record.Task == *Subtree;
+    if (In)
+      Stack.push_back(N);
     const ActiveTask &Node = Tree.Nodes[N];
-    if (Node.Children.empty()) {
-      std::string P;
-      llvm::ListSeparator Sep(" > ");
-      for (unsigned S : Stack) {
-        const Activation &A = Tree.Nodes[S].Record;
-        P += (llvm::Twine(Sep) + T.Tasks[A.Task].ShortName + " [" +
-              describeActivation(T, A) + "]")
-                 .str();
-      }
+    if (Node.Children.empty() && In) {
+      size_t Shared = 0;
+      if (Subtree)
+        while (Shared + 1 < Stack.size() && Shared < Previous.size() &&
+               Previous[Shared] == Stack[Shared])
+          ++Shared;
+      std::string P = Shared ? "..." : "";
+      for (size_t I = Shared; I < Stack.size(); ++I)
+        P += (P.empty() ? "" : " > ") + Part(Stack[I]);
       Paths.push_back(std::move(P));
+      Previous = Stack;
     }
     for (unsigned C : Node.Children)
-      Walk(C);
-    Stack.pop_back();
+      Walk(C, In);
+    if (In)
+      Stack.pop_back();
   };
   for (unsigned R : Tree.Roots)
-    Walk(R);
+    Walk(R, false);
   if (Paths.empty())
-    return "idle";
+    return Subtree ? "not active" : "idle";
   return llvm::join(Paths, "; ");
 }
 

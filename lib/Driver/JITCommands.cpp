@@ -158,7 +158,8 @@ int bsc::runCommand(Compilation &C, const FrontendOptions &FOpts,
   OptionsOK &= parseRobots(C.Diags, Opts.Robots, Robots);
   // Without --robots a replay runs the recording's team.
   ROpts.RobotsFromRecording = !Opts.Robots;
-  OptionsOK &= parseTraceMode(C.Diags, Opts.Trace, ROpts.Trace);
+  OptionsOK &= parseTraceMode(C.Diags, Opts.Trace, ROpts.Trace,
+                              ROpts.TraceTask);
   OptionsOK &= parseCycleLimit(C.Diags, Opts.CycleLimit, ROpts.CycleLimitMs);
   uint32_t CycleBudget = 0;
   OptionsOK &= parseCycleBudget(C.Diags, Opts.CycleBudget, CycleBudget);

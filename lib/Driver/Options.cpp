@@ -7,6 +7,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "bsc/Driver/Driver.h"
+#include "llvm/ADT/StringExtras.h"
 #include "llvm/ADT/SmallVector.h"
 #include "llvm/Support/FileSystem.h"
 #include "llvm/Support/WithColor.h"
@@ -111,7 +112,7 @@ bool bsc::parseCycleBudget(DiagnosticEngine &Diags,
 
 bool bsc::parseTraceMode(DiagnosticEngine &Diags,
                          const std::optional<std::string> &Arg,
-                         debug::TraceMode &Mode) {
+                         debug::TraceMode &Mode, std::string &Task) {
   Mode = debug::TraceMode::Off;
   if (!Arg)
     return true;
@@ -119,7 +120,14 @@ bool bsc::parseTraceMode(DiagnosticEngine &Diags,
     Mode = debug::TraceMode::EveryCycle;
   else if (*Arg == "changes")
     Mode = debug::TraceMode::Changes;
-  else {
+  else if (llvm::all_of(*Arg, [](char Ch) {
+             return llvm::isAlnum(Ch) || Ch == '_' || Ch == ':';
+           }) && !llvm::isDigit(Arg->front())) {
+    // A task's name: its subtree, on the cycles where it changes; the
+    // runner checks that the behavior has it.
+    Mode = debug::TraceMode::Changes;
+    Task = *Arg;
+  } else {
     Diags.report(llvm::SMLoc(), diag::err_bad_trace_mode) << *Arg;
     return false;
   }

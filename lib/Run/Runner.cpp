@@ -131,6 +131,8 @@ private:
   std::unique_ptr<llvm::ToolOutputFile> Record;
   /// The entry task's place in the task table, whose state tells a failure.
   std::optional<unsigned> EntryIndex;
+  /// `--trace=TASK`'s place in the debug tables.
+  std::optional<unsigned> TraceSubtree;
   /// A cycle broke off (a crash, a hang, input it could not take): its
   /// recording is not kept.
   bool Broken = false;
@@ -229,6 +231,17 @@ bool CycleRunner::open() {
   for (unsigned T = 0; T < L.Layout.Tasks.size(); ++T)
     if (L.Layout.Tasks[T].Decl == EntryTask)
       EntryIndex = T;
+  if (!Opts.TraceTask.empty()) {
+    for (unsigned T = 0; T < L.Tables.Tasks.size(); ++T)
+      if (L.Tables.Tasks[T].Name == Opts.TraceTask ||
+          L.Tables.Tasks[T].ShortName == Opts.TraceTask)
+        TraceSubtree = T;
+    if (!TraceSubtree) {
+      C.Diags.report(llvm::SMLoc(), diag::err_bad_trace_mode)
+          << Opts.TraceTask;
+      return false;
+    }
+  }
   return true;
 }
 
@@ -389,7 +402,8 @@ void CycleRunner::writeCycle(unsigned K, llvm::json::Value Rec,
   std::string Robot = isTeam() ? ", robot " + std::to_string(K) : "";
   if (Opts.Trace != debug::TraceMode::Off) {
     std::string Trace = debug::formatTraceLine(
-        L.Tables, debug::takeSnapshot(R.S->getState(), &R.S->getInfo()));
+        L.Tables, debug::takeSnapshot(R.S->getState(), &R.S->getInfo()),
+        TraceSubtree);
     if (R.Traces.shouldPrint(Trace))
       OS << "cycle " << Cycle << Robot << ": " << Trace << "\n";
   }

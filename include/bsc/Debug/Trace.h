@@ -142,8 +142,12 @@ std::vector<RecordedTask> listActiveTasks(const DebugTables &T,
 /// The hierarchy on one line, each path from a root to a leaf, every task
 /// with its describeActivation: `play [running, Soccer.bs:12] >
 /// executeKick [done]`, paths separated by `; `; `idle` when no task ran.
+/// With `Subtree` (a task's index): only the paths through that task, from
+/// it down, each showing what it shares with the path before as `...`
+/// (`--trace=TASK`); "not active" when the task is not.
 std::string formatTraceLine(const DebugTables &T,
-                            llvm::ArrayRef<Activation> Records);
+                            llvm::ArrayRef<Activation> Records,
+                            std::optional<unsigned> Subtree = std::nullopt);
 
 /// Which cycles a trace prints: every one (`--trace`), or only those whose
 /// line differs from the cycle before's (`--trace=changes`): the line

@@ -95,11 +95,12 @@ bool parseAssertionMode(DiagnosticEngine &Diags,
 bool parseCycleBudget(DiagnosticEngine &Diags,
                       const std::optional<std::string> &Arg, uint32_t &Passes);
 
-/// Checks `--trace[=changes]` (std::nullopt: not given); reports and
-/// returns false if it is bad.
+/// Checks `--trace[=changes|=TASK]` (std::nullopt: not given); a name
+/// goes into `Task` (the runner checks it). Reports and returns false if
+/// it is bad.
 bool parseTraceMode(DiagnosticEngine &Diags,
                     const std::optional<std::string> &Arg,
-                    debug::TraceMode &Mode);
+                    debug::TraceMode &Mode, std::string &Task);
 
 /// `--robots N` into N (1 if not given); false after reporting a value
 /// that is not a number from 1 to MaxRobots.

@@ -152,6 +152,8 @@ struct RunOptions {
   /// match it.
   bool RobotsFromRecording = false;
   debug::TraceMode Trace = debug::TraceMode::Off;
+  /// `--trace=TASK`: only that task's subtree (formatTraceLine).
+  std::string TraceTask;
   bool PrintOutput = false;
   unsigned CycleLimitMs = 0;
   /// Called after each cycle (the REPL's breakpoints); true stops the run.
