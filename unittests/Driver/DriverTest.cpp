@@ -102,13 +102,19 @@ TEST(OptionsTest, CycleBudgetTraceAndLimit) {
   EXPECT_FALSE(parseCycleBudget(Diags, std::string("0"), Passes));
   EXPECT_FALSE(parseCycleBudget(Diags, std::string("4294967296"), Passes));
   debug::TraceMode Mode;
-  EXPECT_TRUE(parseTraceMode(Diags, std::nullopt, Mode));
+  std::string Task;
+  EXPECT_TRUE(parseTraceMode(Diags, std::nullopt, Mode, Task));
   EXPECT_EQ(Mode, debug::TraceMode::Off);
-  EXPECT_TRUE(parseTraceMode(Diags, std::string(""), Mode));
+  EXPECT_TRUE(parseTraceMode(Diags, std::string(""), Mode, Task));
   EXPECT_EQ(Mode, debug::TraceMode::EveryCycle);
-  EXPECT_TRUE(parseTraceMode(Diags, std::string("changes"), Mode));
+  EXPECT_TRUE(parseTraceMode(Diags, std::string("changes"), Mode, Task));
   EXPECT_EQ(Mode, debug::TraceMode::Changes);
-  EXPECT_FALSE(parseTraceMode(Diags, std::string("all"), Mode));
+  EXPECT_TRUE(Task.empty());
+  // A name is a task's subtree (the runner checks the behavior has it).
+  EXPECT_TRUE(parseTraceMode(Diags, std::string("Head::look"), Mode, Task));
+  EXPECT_EQ(Mode, debug::TraceMode::Changes);
+  EXPECT_EQ(Task, "Head::look");
+  EXPECT_FALSE(parseTraceMode(Diags, std::string("no-name"), Mode, Task));
   unsigned Ms;
   EXPECT_TRUE(parseCycleLimit(Diags, "0", Ms));
   EXPECT_TRUE(parseCycleLimit(Diags, std::to_string(MaxCycleLimitMs), Ms));
