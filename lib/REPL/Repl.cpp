@@ -140,6 +140,13 @@ bool Repl::load(std::unique_ptr<Compilation> NewC) {
   C = std::move(NewC);
   makeChecker(FrameTask);
   startHistory();
+  if (Recording && !FirstLoad) {
+    // A recording names one behavior (its header): cycles of the reloaded
+    // one would not replay as recorded.
+    Recording.reset();
+    OS << "recording stopped: it names the behavior as it was; ':record "
+          "FILE' records the reloaded one\n";
+  }
   EntryIndex.reset();
   for (unsigned T = 0; T < L->Layout.Tasks.size(); ++T)
     if (L->Layout.Tasks[T].Decl == L->Entry)
