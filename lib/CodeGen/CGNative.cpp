@@ -59,9 +59,9 @@ llvm::FunctionCallee ModuleEmitter::getNative(const NativeFunction &NF) {
   }
   bool Standard = false;
   std::string Name = getNativeName(NF, Standard);
-  uint32_t Flags = (Standard ? 2 : 0) |
+  uint32_t Flags = (Standard ? SiteStandard : 0) |
                    (!NF.ResultViaOut && NF.Result.TheCode == NativeType::String
-                        ? 1
+                        ? SiteResultIsString
                         : 0);
   return Slot = wrapForBoundary(Thunk, Name, Flags, Writable);
 }
@@ -179,7 +179,7 @@ ModuleEmitter::getNativeSetter(const NativeFunction &NF) {
     Fn->addFnAttr(llvm::Attribute::NoUnwind);
   bool Standard;
   std::string Name = getNativeName(NF, Standard) + " (set)";
-  return wrapForBoundary(F, Name, Standard ? 2 : 0,
+  return wrapForBoundary(F, Name, Standard ? SiteStandard : 0,
                          {{0, NF.Owner ? NF.Owner->Size : 0}});
 }
 
@@ -199,7 +199,7 @@ llvm::FunctionCallee ModuleEmitter::getLifeThunk(const NativeClass *C,
                      : Symbol == C->Assign  ? "assign"
                                             : "destroy";
   return wrapForBoundary(F, C->QualifiedName + " (" + What + ")",
-                         C->Module && C->Module->Standard ? 2 : 0,
+                         C->Module && C->Module->Standard ? SiteStandard : 0,
                          {{0, C->Size}});
 }
 

@@ -30,6 +30,22 @@
 
 namespace bsc {
 
+/// The flags of a boundary wrapper's site (CodeGenOptions::Boundary), as
+/// generated code hands them to the JIT's recorder (bsc/JIT/Boundary.h).
+enum BoundarySiteFlags : uint32_t {
+  /// The result is a `const char *` whose characters are kept, not the
+  /// pointer (a re-run gets a pointer to the kept copy).
+  SiteResultIsString = 1,
+  /// A thunk of the standard `io` module, which only prints: what it prints
+  /// is the behavior's own output, not captured with the C++'s
+  /// (`--world-output`), and it returns and writes nothing, so it is not
+  /// kept; a replay calls it or not (Boundary::setReplayCallsStandard).
+  SiteStandard = 2,
+  /// A call the session makes itself (the world's end hook): kept only if
+  /// it wrote something, so a world that only reads costs nothing.
+  SitePseudo = 4,
+};
+
 struct CodeGenOptions {
   /// Prefix of every exported symbol (`bs_<Name>_info`, `bs_<Name>__M__f`).
   std::string BehaviorName;

@@ -29,6 +29,7 @@
 #ifndef BSC_JIT_BOUNDARY_H
 #define BSC_JIT_BOUNDARY_H
 
+#include "bsc/CodeGen/CodeGen.h"
 #include "llvm/ADT/ArrayRef.h"
 #include "llvm/ADT/DenseMap.h"
 #include "llvm/ADT/StringRef.h"
@@ -59,19 +60,7 @@ void bs_boundary_leave(const bs_boundary_site *Site, void *Result,
 
 namespace bsc {
 
-enum BoundarySiteFlags : uint32_t {
-  /// The result is a `const char *` whose characters are kept, not the
-  /// pointer (a re-run gets a pointer to the kept copy).
-  SiteResultIsString = 1,
-  /// A thunk of the standard `io` module, which only prints: what it prints
-  /// is the behavior's own output, not captured with the C++'s
-  /// (`--world-output`), and it returns and writes nothing, so it is not
-  /// kept; a replay calls it or not (setReplayCallsStandard).
-  SiteStandard = 2,
-  /// A call the session makes itself (the world's end hook): kept only if
-  /// it wrote something, so a world that only reads costs nothing.
-  SitePseudo = 4,
-};
+// The site's flags: BoundarySiteFlags (bsc/CodeGen/CodeGen.h).
 
 /// The calls of one cycle, as kept by the recorder.
 struct CycleRecord {
