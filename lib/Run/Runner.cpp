@@ -33,6 +33,19 @@ static void reportBudgetRanOut(Compilation &C, const LoadedBehavior &L,
     C.Diags.report(Where.Loc, diag::note_budget_ran_out_count) << RanOut;
 }
 
+/// The differences of `Got` from `Recorded` that count (--ignore,
+/// --tolerance).
+static std::vector<debug::Difference>
+countedDifferences(const llvm::json::Value &Recorded,
+                   const llvm::json::Value &Got,
+                   const OutputComparison &Compare) {
+  std::vector<debug::Difference> Ds;
+  for (debug::Difference &D : debug::findDifferences(Recorded, Got, "output"))
+    if (Compare.counts(D))
+      Ds.push_back(std::move(D));
+  return Ds;
+}
+
 /// A replayed cycle whose output differs from the line's: one error, then
 /// a note per field that differs, at the line. Neither echoes it: a
 /// recording fills it with every output member. Returns whether it
@@ -41,10 +54,8 @@ static bool reportMismatch(Compilation &C, const ReplayLine &Line,
                            uint32_t Cycle, const llvm::json::Value &Recorded,
                            const llvm::json::Value &Got,
                            const OutputComparison &Compare) {
-  std::vector<debug::Difference> Ds;
-  for (debug::Difference &D : debug::findDifferences(Recorded, Got, "output"))
-    if (Compare.counts(D))
-      Ds.push_back(std::move(D));
+  std::vector<debug::Difference> Ds =
+      countedDifferences(Recorded, Got, Compare);
   if (Ds.empty())
     return false;
   C.Diags.report(Line.Loc, diag::err_replay_mismatch) << Cycle << NoSourceLine();
@@ -327,11 +338,10 @@ bool CycleRunner::checkOutput(BehaviorSession &S, const ReplayLine &Line,
   std::optional<llvm::json::Value> Recorded =
       parseJSONLine(C.Diags, Line.Output);
   if (Recorded && Opts.Changed) { // --update: counted, not reported.
-    for (const debug::Difference &D : debug::findDifferences(
+    for (const debug::Difference &D : countedDifferences(
              *Recorded, Values.readClass(*L.OutputClass, S.getOutput()),
-             "output"))
-      if (Opts.Compare.counts(D))
-        ++(*Opts.Changed)[D.Path];
+             Opts.Compare))
+      ++(*Opts.Changed)[D.Path];
     return true;
   }
   return Recorded &&
