@@ -63,11 +63,26 @@ bool Team::grow(Compilation &C, LoadedBehavior &L, unsigned N) {
     if (!*S)
       return false;
     Robots.push_back(std::move(*S));
+    // A robot that joins gets the team's world (its user pointer) and its
+    // output, as the first ones did.
+    BehaviorSession &New = *Robots.back();
+    New.setWorldOutput(WorldOutputFd);
+    if (!World.Init && !World.isTeam())
+      continue;
+    unsigned K = Robots.size() - 1;
+    BehaviorSession::Outcome O =
+        World.isTeam() ? New.attachTeamWorld(World, TeamUser, K, LimitMs)
+                       : New.attachWorld(World, LimitMs, K, N);
+    if (!reportOutcome(C, L, O, 0, LimitMs)) {
+      noteRobot(C, K, N);
+      return false;
+    }
   }
   return true;
 }
 
 void Team::setWorldOutput(int Fd) {
+  WorldOutputFd = Fd;
   for (std::unique_ptr<BehaviorSession> &S : Robots)
     S->setWorldOutput(Fd);
 }
@@ -118,6 +133,7 @@ bool Team::attachWorld(Compilation &C, const LoadedBehavior &L,
   if (!loadWorldHooks(C, Path, H))
     return false;
   LimitMs = Limit;
+  World = H;
   unsigned N = size();
   if (H.isTeam()) {
     BehaviorSession &First = *Robots.front();

@@ -103,8 +103,9 @@ public:
   unsigned size() const { return Robots.size(); }
   BehaviorSession &operator[](unsigned Robot) const { return *Robots[Robot]; }
   std::vector<BehaviorSession *> getSessions() const;
-  /// Starts robots until there are `N` (a team recording to replay, which
-  /// needs no world). False after reporting.
+  /// Starts robots until there are `N` (a team recording to replay); each
+  /// gets the team's world and output, told it is robot K of N. False
+  /// after reporting.
   bool grow(Compilation &C, LoadedBehavior &L, unsigned N);
   /// Every robot's world prints to `Fd` (BehaviorSession::setWorldOutput).
   void setWorldOutput(int Fd);
@@ -120,6 +121,10 @@ private:
   std::vector<std::unique_ptr<BehaviorSession>> Robots;
   /// A team world's hooks and bs_team_init's result.
   WorldHooks TeamHooks;
+  /// The world attached (team or one-robot hooks) and the output's
+  /// descriptor, for robots that join (grow).
+  WorldHooks World;
+  int WorldOutputFd = -1;
   void *TeamUser = nullptr;
   unsigned LimitMs = 0;
 };
