@@ -159,6 +159,12 @@ async function startClient() {
   client = started;
   try {
     await started.start();
+    // start() may resolve without a server: when the connection closes
+    // before the answer to `initialize` is read, the client forgets its
+    // start promise and returns nothing (a race the client leaves open).
+    if (!started.isRunning()) {
+      throw new Error('the connection closed during initialize');
+    }
     started.initialized = true;
   } catch (error) {
     if (client === started) {
