@@ -9,7 +9,9 @@
 //
 //===----------------------------------------------------------------------===//
 #include "ModuleEmitter.h"
+#include "llvm/ADT/StringExtras.h"
 #include "llvm/IR/DerivedTypes.h"
+#include "llvm/Support/xxhash.h"
 
 using namespace bsc;
 using namespace bsc::codegen;
@@ -289,4 +291,40 @@ void ModuleEmitter::recordStateLayout() {
     }
     Layout.Tasks.push_back(std::move(Entry));
   }
+}
+
+//===----------------------------------------------------------------------===//
+// The layout of input and output, for logs
+//===----------------------------------------------------------------------===//
+
+/// Appends what decides where class `C`'s bytes lie: its size and
+/// alignment and, per field, its offset, storage, code and extents, with
+/// the layout of a class-typed field's class.
+static void describeLayout(const NativeClass *C, std::string &Text) {
+  if (!C) {
+    Text += "none;";
+    return;
+  }
+  Text += C->QualifiedName + " " + std::to_string(C->Size) + " " +
+          std::to_string(C->Align) + "{";
+  for (const NativeFunction &F : C->Members) {
+    if (F.Kind != NativeFunction::Field || !F.FieldOffset)
+      continue;
+    Text += F.Name + "@" + std::to_string(*F.FieldOffset) + ":" +
+            std::to_string(F.Result.TheCode) + "/" +
+            std::to_string(F.Result.StorageSize);
+    for (uint32_t E : F.Result.Extents)
+      Text += "[" + std::to_string(E) + "]";
+    if (F.Result.TheCode == NativeType::Class && F.Result.TheClass != C)
+      describeLayout(F.Result.TheClass, Text);
+    Text += ";";
+  }
+  Text += "}";
+}
+
+std::string bsc::getIOLayoutHash(const Behavior &B) {
+  std::string Text = "bsc-io-layout-1\n";
+  describeLayout(B.World ? B.World->Input : nullptr, Text);
+  describeLayout(B.World ? B.World->Output : nullptr, Text);
+  return llvm::utohexstr(llvm::xxh3_64bits(Text), /*LowerCase=*/true, 16);
 }

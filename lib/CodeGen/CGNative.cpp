@@ -11,6 +11,7 @@
 #include "llvm/IR/DerivedTypes.h"
 #include "llvm/IR/Function.h"
 #include "llvm/IR/GlobalVariable.h"
+#include "llvm/TargetParser/Triple.h"
 
 using namespace bsc;
 using namespace bsc::codegen;
@@ -37,7 +38,7 @@ llvm::FunctionCallee ModuleEmitter::getNative(const NativeFunction &NF) {
   llvm::FunctionCallee Thunk = M.getOrInsertFunction(NF.Symbol, FTy);
   if (auto *F = llvm::dyn_cast<llvm::Function>(Thunk.getCallee()))
     F->addFnAttr(llvm::Attribute::NoUnwind);
-  if (NF.Pure || !Opts.Boundary)
+  if (NF.Pure || !(Opts.Boundary || Opts.FlightRecorder))
     return Slot = Thunk;
   // What the thunk may write besides the view: a class result's storage,
   // the object of a non-const method, `T&` arguments.
@@ -86,20 +87,26 @@ std::string ModuleEmitter::getNativeName(const NativeFunction &NF,
 llvm::FunctionCallee ModuleEmitter::wrapForBoundary(
     llvm::FunctionCallee Thunk, llvm::StringRef Name, uint32_t Flags,
     llvm::ArrayRef<std::pair<unsigned, uint64_t>> Writable) {
-  if (!Opts.Boundary)
+  if (!Opts.Boundary && !Opts.FlightRecorder)
     return Thunk;
+  // The JIT's recorder may take the call from its record instead of
+  // making it; the robot's recorder only logs it.
+  bool Flight = !Opts.Boundary;
   auto *ThunkFn = llvm::cast<llvm::Function>(Thunk.getCallee());
-  std::string WrapperName = ("bs.boundary." + ThunkFn->getName()).str();
+  std::string WrapperName =
+      ((Flight ? "bs.flight." : "bs.boundary.") + ThunkFn->getName()).str();
   if (llvm::Function *F = M.getFunction(WrapperName))
     return F;
   llvm::FunctionType *FTy = Thunk.getFunctionType();
   llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
   llvm::Type *I32 = llvm::Type::getInt32Ty(Ctx);
+  llvm::Type *Void = llvm::Type::getVoidTy(Ctx);
   const llvm::DataLayout &DL = M.getDataLayout();
   llvm::Type *RetTy = FTy->getReturnType();
   uint64_t ResultSize = RetTy->isVoidTy() ? 0 : DL.getTypeStoreSize(RetTy);
 
-  // The site: struct bs_boundary_site (bsc/JIT/Boundary.h).
+  // The site: struct bs_boundary_site (bsc/JIT/Boundary.h), the same as
+  // bs_flight_site (bscript/flight.h).
   llvm::SmallVector<llvm::Constant *, 4> Sizes;
   for (auto [Index, Size] : Writable)
     Sizes.push_back(llvm::ConstantInt::get(I32, Size));
@@ -112,14 +119,16 @@ llvm::FunctionCallee ModuleEmitter::wrapForBoundary(
         llvm::ConstantArray::get(ArrTy, Sizes), WrapperName + ".sizes");
     SizesPtr = GV;
   }
-  auto *SiteTy = llvm::StructType::get(Ctx, {Ptr, I32, I32, I32, Ptr});
+  auto *SiteTy = llvm::StructType::get(Ctx, {Ptr, I32, I32, I32, Ptr, I32});
   auto *Site = new llvm::GlobalVariable(
       M, SiteTy, true, llvm::GlobalValue::PrivateLinkage,
       llvm::ConstantStruct::get(
           SiteTy, {getString(Name), llvm::ConstantInt::get(I32, Flags),
                    llvm::ConstantInt::get(I32, ResultSize),
-                   llvm::ConstantInt::get(I32, Writable.size()), SizesPtr}),
+                   llvm::ConstantInt::get(I32, Writable.size()), SizesPtr,
+                   llvm::ConstantInt::get(I32, BoundarySites.size())}),
       WrapperName + ".site");
+  BoundarySites.push_back(Site);
 
   auto *F = llvm::Function::Create(FTy, llvm::GlobalValue::InternalLinkage,
                                    WrapperName, M);
@@ -136,13 +145,17 @@ llvm::FunctionCallee ModuleEmitter::wrapForBoundary(
           : IRB.CreateAlloca(llvm::ArrayType::get(Ptr, Writable.size()),
                              nullptr, "ptrs");
   llvm::FunctionCallee Enter = M.getOrInsertFunction(
-      "bs_boundary_enter", llvm::FunctionType::get(I32, {Ptr}, false));
+      Flight ? "bs_flight_enter" : "bs_boundary_enter",
+      llvm::FunctionType::get(Flight ? Void : I32, {Ptr}, false));
   llvm::FunctionCallee LeaveFn = M.getOrInsertFunction(
-      "bs_boundary_leave",
-      llvm::FunctionType::get(llvm::Type::getVoidTy(Ctx), {Ptr, Ptr, Ptr},
-                              false));
-  llvm::Value *Take = IRB.CreateCall(Enter, {Site}, "take");
-  IRB.CreateCondBr(IRB.CreateICmpNE(Take, IRB.getInt32(0)), Leave, Live);
+      Flight ? "bs_flight_leave" : "bs_boundary_leave",
+      llvm::FunctionType::get(Void, {Ptr, Ptr, Ptr}, false));
+  llvm::Value *Take = IRB.CreateCall(Enter, {Site});
+  if (Flight)
+    IRB.CreateBr(Live);
+  else
+    IRB.CreateCondBr(IRB.CreateICmpNE(Take, IRB.getInt32(0), "take"), Leave,
+                     Live);
 
   IRB.SetInsertPoint(Live);
   llvm::SmallVector<llvm::Value *, 6> Args;
@@ -167,6 +180,48 @@ llvm::FunctionCallee ModuleEmitter::wrapForBoundary(
   else
     IRB.CreateRetVoid();
   return F;
+}
+
+void ModuleEmitter::emitFlightTable() {
+  // struct bs_flight_table (bscript/flight.h).
+  llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
+  llvm::Type *I32 = llvm::Type::getInt32Ty(Ctx);
+  auto Private = [&](llvm::Constant *Init, const char *Name) {
+    auto *GV = new llvm::GlobalVariable(M, Init->getType(), true,
+                                        llvm::GlobalValue::PrivateLinkage,
+                                        Init, Name);
+    return GV;
+  };
+  auto *SitesTy = llvm::ArrayType::get(Ptr, BoundarySites.size());
+  llvm::SmallVector<llvm::Constant *, 16> SitePtrs(BoundarySites.begin(),
+                                                   BoundarySites.end());
+  auto *EntryTy = llvm::StructType::get(Ctx, {Ptr, Ptr});
+  llvm::SmallVector<llvm::Constant *, 8> Entries;
+  for (const auto &[Name, Hash] : Opts.FlightEntries)
+    Entries.push_back(llvm::ConstantStruct::get(
+        EntryTy, {getString(Name), getString(Hash)}));
+  auto *EntriesTy = llvm::ArrayType::get(EntryTy, Entries.size());
+  const NativeModule *World = B.World;
+  auto SizeOf = [&](const NativeClass *C) {
+    return llvm::ConstantInt::get(I32, C ? C->Size : 0);
+  };
+  auto *TableTy = llvm::StructType::get(
+      Ctx, {I32, I32, Ptr, I32, I32, Ptr, Ptr, I32, Ptr});
+  llvm::Constant *Fields[] = {
+      llvm::ConstantInt::get(I32, 1), // BS_FLIGHT_VERSION
+      llvm::ConstantInt::get(I32, BoundarySites.size()),
+      Private(llvm::ConstantArray::get(SitesTy, SitePtrs), "bs.flight.sites"),
+      SizeOf(World ? World->Input : nullptr),
+      SizeOf(World ? World->Output : nullptr),
+      getString(llvm::Triple(M.getTargetTriple()).getArchName()),
+      getString(getIOLayoutHash(B)),
+      llvm::ConstantInt::get(I32, Entries.size()),
+      Private(llvm::ConstantArray::get(EntriesTy, Entries),
+              "bs.flight.entries")};
+  new llvm::GlobalVariable(M, TableTy, true,
+                           llvm::GlobalValue::ExternalLinkage,
+                           llvm::ConstantStruct::get(TableTy, Fields),
+                           "bs_" + Opts.BehaviorName + "_flight");
 }
 
 llvm::FunctionCallee

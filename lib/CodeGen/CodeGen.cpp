@@ -144,6 +144,8 @@ void ModuleEmitter::run() {
   emitInfo();
   if (Opts.ProgramEntry)
     emitProgramMain();
+  if (Opts.FlightRecorder)
+    emitFlightTable();
   if (llvm::Triple(M.getTargetTriple()).getArch() == llvm::Triple::x86)
     useRegisterCalls();
   // Both probes exist whenever probes are on: the REPL's lines use them too.

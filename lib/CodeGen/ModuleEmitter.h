@@ -66,13 +66,17 @@ public:
   llvm::FunctionCallee getLifeThunk(const NativeClass *C,
                                     llvm::StringRef Symbol, unsigned NumPtrs);
   /// With CodeGenOptions::Boundary, `Thunk` wrapped so that the JIT's
-  /// recorder sees the call (bsc/JIT/Boundary.h): `Name` for messages,
+  /// recorder sees the call (bsc/JIT/Boundary.h), with FlightRecorder so
+  /// that the robot's does (bscript/flight.h): `Name` for messages,
   /// `Flags` (BoundarySiteFlags), and the arguments the thunk may write
   /// through as (argument index, bytes); else `Thunk` itself.
   llvm::FunctionCallee
   wrapForBoundary(llvm::FunctionCallee Thunk, llvm::StringRef Name,
                   uint32_t Flags,
                   llvm::ArrayRef<std::pair<unsigned, uint64_t>> Writable);
+  /// With CodeGenOptions::FlightRecorder, the table `bs_<Name>_flight`
+  /// of the sites wrapForBoundary made (call it last).
+  void emitFlightTable();
   /// `Module::f` or `Class::m`, and whether the module is a standard one.
   std::string getNativeName(const NativeFunction &NF, bool &Standard) const;
   /// The storage of a registered class value in frames and allocas: Size
@@ -290,6 +294,8 @@ private:
   llvm::DenseMap<const CallableDecl *, llvm::Function *> Functions;
   llvm::DenseMap<const NativeFunction *, llvm::FunctionCallee> Natives;
   llvm::StringMap<llvm::Constant *> Strings;
+  /// The sites of wrapForBoundary, by their index.
+  std::vector<llvm::GlobalVariable *> BoundarySites;
   llvm::Function *StringEquals = nullptr;
   llvm::GlobalVariable *Info = nullptr;
   llvm::Function *BehaviorDestroy = nullptr; ///< Null: nothing to destroy.

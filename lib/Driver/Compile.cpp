@@ -201,6 +201,19 @@ bool CompileJob::setUpCodeGen() {
     if (!CGOpts.Exports)
       return false;
   }
+  if (Opts.FlightRecorder) {
+    // A program that bsc links runs its cycles without a robot's log
+    // writer to hand the recorder's blocks to.
+    if (Kind == OutputKind::Program) {
+      C.Diags.report(llvm::SMLoc(), diag::err_flight_recorder_program);
+      return false;
+    }
+    CGOpts.FlightRecorder = true;
+    for (const CallableDecl *D :
+         CGOpts.Exports ? *CGOpts.Exports : findBehaviorRoots(C.Checked))
+      CGOpts.FlightEntries.push_back(
+          {D->getQualifiedName(), computeBehaviorHash(C, *D)});
+  }
   if (Kind == OutputKind::Program) {
     CGOpts.ProgramEntry = findProgramEntry(C, Opts.EntryName);
     if (!CGOpts.ProgramEntry)

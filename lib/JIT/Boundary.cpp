@@ -468,6 +468,60 @@ bool bsc::encodeCalls(llvm::ArrayRef<RecordedCall> Calls,
   return true;
 }
 
+bool bsc::translateCalls(
+    llvm::ArrayRef<unsigned char> In,
+    llvm::function_ref<std::optional<uint32_t>(uint32_t)> MapId,
+    const size_t From[3], const size_t To[3], std::vector<unsigned char> &Out,
+    unsigned &NumCalls, std::string &Error,
+    llvm::function_ref<void(unsigned, uint64_t, llvm::ArrayRef<unsigned char>)>
+        OnWrite) {
+  Reader R{In.data(), In.data() + In.size()};
+  CallView V;
+  while (R.P < R.End) {
+    if (!readCall(R, V)) {
+      Error = "call " + std::to_string(NumCalls + 1) + " is damaged";
+      return false;
+    }
+    std::optional<uint32_t> Id = MapId(V.Id);
+    if (!Id) {
+      Error = "call " + std::to_string(NumCalls + 1) + " is of site " +
+              std::to_string(V.Id) + ", which the log does not name";
+      return false;
+    }
+    putULEB(Out, uint64_t(*Id) << 1 | (V.IsString ? 1 : 0));
+    putBytes(Out, V.Result.data(), V.Result.size());
+    putULEB(Out, V.Ptrs.size());
+    for (llvm::ArrayRef<unsigned char> P : V.Ptrs)
+      putBytes(Out, P.data(), P.size());
+    putULEB(Out, V.Writes.size());
+    uint64_t Prev = 0;
+    for (const CallView::Run &W : V.Writes) {
+      uint64_t Off = W.At;
+      unsigned Block = 0;
+      while (Block < 2 && Off >= From[Block])
+        Off -= From[Block++];
+      if (Off + W.Bytes.size() > From[Block] ||
+          Off + W.Bytes.size() > To[Block]) {
+        Error = "call " + std::to_string(NumCalls + 1) + " writes " +
+                std::to_string(W.Bytes.size()) + " bytes at " +
+                BoundaryBlockNames[Block] + "+" + std::to_string(Off) +
+                ", outside the " + BoundaryBlockNames[Block];
+        return false;
+      }
+      if (OnWrite)
+        OnWrite(Block, Off, W.Bytes);
+      uint64_t At = Off;
+      for (unsigned B = 0; B < Block; ++B)
+        At += To[B];
+      putULEB(Out, At - Prev);
+      putBytes(Out, W.Bytes.data(), W.Bytes.size());
+      Prev = At + W.Bytes.size();
+    }
+    ++NumCalls;
+  }
+  return true;
+}
+
 //===----------------------------------------------------------------------===//
 // Records as recordings spell them (docs/repl.md "Recordings")
 //===----------------------------------------------------------------------===//

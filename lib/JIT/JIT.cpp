@@ -433,9 +433,9 @@ uint32_t BehaviorSession::getCycle() const {
 /// The world's end hooks as calls of the boundary: a re-run takes what
 /// they wrote to `output` from the record.
 static const bs_boundary_site WorldEndSite = {"bs_world_end", SitePseudo, 0,
-                                              0, nullptr};
+                                              0, nullptr, 0};
 static const bs_boundary_site TeamEndSite = {"bs_team_end", SitePseudo, 0, 0,
-                                             nullptr};
+                                             nullptr, 0};
 
 void BehaviorSession::runEntry(bool WithWorld) {
   Entry(State);

@@ -9,6 +9,8 @@
 //
 //===----------------------------------------------------------------------===//
 #include "bsc/Run/Run.h"
+#include "llvm/TargetParser/Host.h"
+#include "llvm/TargetParser/Triple.h"
 
 using namespace bsc;
 
@@ -79,6 +81,42 @@ llvm::json::Value bsc::recordCycle(debug::ValueIO &Values,
     Rec["calls"] = callsToJSON(S.getLastCalls(), Sizes);
   }
   return Rec;
+}
+
+bool bsc::isBinaryLogPath(llvm::StringRef Path) {
+  return Path.ends_with(".bslog");
+}
+
+BinaryLogHeader bsc::logHeader(const Compilation &C, const LoadedBehavior &L,
+                               const BehaviorSession &S, unsigned Robots) {
+  BinaryLogHeader H;
+  H.Behavior = L.Hash;
+  H.Entry = L.Entry->getQualifiedName();
+  H.Target = llvm::Triple(llvm::sys::getProcessTriple()).getArchName().str();
+  H.Layout = getIOLayoutHash(C.Checked);
+  size_t Sizes[3];
+  S.getViewSizes(Sizes);
+  H.StateSize = Sizes[0];
+  H.InputSize = Sizes[1];
+  H.OutputSize = Sizes[2];
+  H.Robots = Robots;
+  return H;
+}
+
+void bsc::logCycle(BinaryLogWriter &Log, unsigned Robot,
+                   const LoadedBehavior &L, const BehaviorSession &S) {
+  auto Bytes = [](const void *P, size_t N) {
+    return llvm::ArrayRef<unsigned char>(static_cast<const unsigned char *>(P),
+                                         P ? N : 0);
+  };
+  llvm::ArrayRef<unsigned char> Input = Bytes(S.getInput(), L.Input.Size);
+  const CycleRecord &Calls = S.getLastCalls();
+  llvm::ArrayRef<unsigned char> Entry =
+      Calls.EntryInput.size() == Input.size()
+          ? llvm::ArrayRef<unsigned char>(Calls.EntryInput)
+          : Input;
+  Log.writeCycle(Robot, S.getCycle(), Entry, Calls, Input,
+                 Bytes(S.getOutput(), L.Output.Size));
 }
 
 bool bsc::parseRecordedCalls(const llvm::json::Value &Value,

@@ -9,6 +9,7 @@
 //===----------------------------------------------------------------------===//
 #include "ReplayReader.h"
 #include "bsc/Basic/JSON.h"
+#include "llvm/TargetParser/Host.h"
 
 using namespace bsc;
 
@@ -18,6 +19,9 @@ bool ReplayReader::open(llvm::StringRef Path) {
   if (!ID)
     return false;
   Rest = C.SM.getMemoryBuffer(ID)->getBuffer();
+  this->Path = Path.str();
+  if (isBinaryLog(Rest))
+    return openLog(Rest);
   // The header, on the first line that is not blank.
   for (llvm::StringRef Scan = Rest; !Scan.empty();) {
     auto [Raw, After] = Scan.split('\n');
@@ -36,6 +40,38 @@ bool ReplayReader::open(llvm::StringRef Path) {
     C.Diags.report(llvm::SMLoc(), diag::err_replay_empty) << Path;
     return false;
   }
+  return true;
+}
+
+bool ReplayReader::openLog(llvm::StringRef Bytes) {
+  Log.emplace();
+  if (!Log->open(Bytes)) {
+    C.Diags.report(llvm::SMLoc(), diag::err_log_damaged)
+        << Path << Log->getError();
+    return false;
+  }
+  const BinaryLogHeader &H = Log->getHeader();
+  Header.Format = RecordingFormat; // With its calls.
+  Header.Behavior = H.Behavior;
+  Header.Entry = H.Entry;
+  Header.Binary = true;
+  // The log's bytes are written into this workstation's objects as they
+  // are: the two must be laid out alike.
+  auto SizeOf = [](const NativeClass *C) { return C ? C->Size : 0; };
+  if (H.Layout != getIOLayoutHash(C.Checked) ||
+      H.InputSize != SizeOf(L.InputClass) ||
+      H.OutputSize != SizeOf(L.OutputClass)) {
+    C.Diags.report(llvm::SMLoc(), diag::err_log_layout)
+        << Path << H.Target << llvm::sys::getProcessTriple();
+    return false;
+  }
+  for (const NativeClass *Class : {L.InputClass, L.OutputClass})
+    if (Class && !Class->CopiesAsBytes) {
+      C.Diags.report(llvm::SMLoc(), diag::err_log_not_bytes)
+          << Path << Class->QualifiedName;
+      return false;
+    }
+  Log->setView(L.Layout.StateSize);
   return true;
 }
 
@@ -79,6 +115,21 @@ bool ReplayReader::readHeader(llvm::StringRef Raw, bool &IsHeader) {
 }
 
 bool ReplayReader::next(ReplayLine &Line) {
+  if (Log) {
+    Line = ReplayLine();
+    if (!Log->next(Logged)) {
+      if (Log->failed()) {
+        C.Diags.report(llvm::SMLoc(), diag::err_log_damaged)
+            << Path << Log->getError();
+        Failed = true;
+      }
+      return false;
+    }
+    if (Log->countRobots() > 1)
+      Line.Robot = Logged.Robot;
+    Line.Logged = &Logged;
+    return true;
+  }
   while (!Rest.empty()) {
     auto [Raw, After] = Rest.split('\n');
     Rest = After;
@@ -154,6 +205,8 @@ static std::optional<unsigned> findRobot(llvm::StringRef Raw) {
 }
 
 unsigned ReplayReader::countRobots() const {
+  if (Log)
+    return Log->countRobots();
   unsigned Robots = 0;
   for (llvm::StringRef Rest = this->Rest; !Rest.empty();) {
     auto [Raw, After] = Rest.split('\n');

@@ -2,6 +2,7 @@
 #ifndef BSC_LIB_RUN_REPLAYREADER_H
 #define BSC_LIB_RUN_REPLAYREADER_H
 
+#include "bsc/Run/BinaryLog.h"
 #include "bsc/Run/Run.h"
 #include <optional>
 
@@ -19,6 +20,9 @@ struct ReplayLine {
   std::optional<unsigned> Robot;
   /// The JSON text of its `calls` (recordCycle), empty if it has none.
   llvm::StringRef Calls;
+  /// A binary log's cycle instead of text: input and output as bytes, the
+  /// calls decoded (valid until the next line).
+  const LoggedCycle *Logged = nullptr;
 };
 
 /// A recording's first line (recordHeader); recordings of format 1 have
@@ -26,6 +30,8 @@ struct ReplayLine {
 struct RecordingHeader {
   unsigned Format = 1;
   std::string Behavior, Entry;
+  /// A binary log (BinaryLog.h), of a robot or a workstation.
+  bool Binary = false;
 };
 
 /// Reads a JSONL replay file a line at a time, as its cycles come: the
@@ -33,6 +39,7 @@ struct RecordingHeader {
 /// of the current line only `input` and `output` are parsed, so a replay
 /// takes the same memory whatever its length and skips the `tasks` a
 /// recording carries. A damaged line stops the replay at its cycle.
+/// A binary log (bsc/Run/BinaryLog.h) is read a cycle at a time likewise.
 class ReplayReader {
 public:
   ReplayReader(Compilation &C, const LoadedBehavior &L) : C(C), L(L) {}
@@ -58,12 +65,18 @@ private:
   /// Takes the header line if `Raw` is one; false after reporting a bad
   /// one. `IsHeader` says whether it was.
   bool readHeader(llvm::StringRef Raw, bool &IsHeader);
+  /// Opens the binary log `Bytes` and checks that its bytes are this
+  /// workstation's; false after reporting.
+  bool openLog(llvm::StringRef Bytes);
 
   Compilation &C;
   const LoadedBehavior &L;
   llvm::StringRef Rest;
   bool Failed = false;
   RecordingHeader Header;
+  std::string Path;
+  std::optional<BinaryLogReader> Log;
+  LoggedCycle Logged;
 };
 
 } // namespace bsc

@@ -72,8 +72,10 @@ struct RobotRun {
       : S(S), Traces(Mode) {}
   BehaviorSession *S;
   debug::TraceFilter Traces;
-  /// `--record` with `%r`: the robot's own file.
+  /// `--record` with `%r`: the robot's own file, and its binary log if
+  /// it is one.
   std::unique_ptr<llvm::ToolOutputFile> Record;
+  std::unique_ptr<BinaryLogWriter> Log;
   bool ReportedFailure = false;
   /// `--cycle-budget`: the first cycle that ran out, and how many did.
   std::optional<std::pair<uint32_t, const bs_loop_info *>> FirstRanOut;
@@ -116,6 +118,10 @@ private:
   /// the differences.
   bool checkOutput(BehaviorSession &S, const ReplayLine &Line,
                    uint32_t Cycle);
+  /// The same for a binary log's cycle: its bytes, and only where they
+  /// differ its members, read as the recording's JSON would be.
+  bool checkLoggedOutput(BehaviorSession &S, const LoggedCycle &Logged,
+                         uint32_t Cycle);
   /// The trace line, the output line and the recording of the cycle robot
   /// `K` just ran, each only if asked for.
   void writeCycle(unsigned K, llvm::json::Value Rec,
@@ -138,8 +144,10 @@ private:
   debug::ValueIO Values;
   std::vector<RobotRun> Robots;
   std::optional<ReplayReader> Replay;
-  /// `--record` without `%r`: every robot's lines.
+  /// `--record` without `%r`: every robot's lines, or cycles of a binary
+  /// log.
   std::unique_ptr<llvm::ToolOutputFile> Record;
+  std::unique_ptr<BinaryLogWriter> Log;
   /// The entry task's place in the task table, whose state tells a failure.
   std::optional<unsigned> EntryIndex;
   /// `--trace=TASK`'s place in the debug tables.
@@ -213,11 +221,19 @@ static std::string robotPath(llvm::StringRef Path, unsigned K) {
 
 bool CycleRunner::openRecordings() {
   llvm::StringRef Path = Opts.RecordPath;
+  bool Binary = isBinaryLogPath(Path);
   auto Open = [&](const std::string &File,
-                  std::unique_ptr<llvm::ToolOutputFile> &Into) {
-    Into = openOutput(C.Diags, File, /*Text=*/true);
+                  std::unique_ptr<llvm::ToolOutputFile> &Into,
+                  std::unique_ptr<BinaryLogWriter> &Log, unsigned Count) {
+    Into = openOutput(C.Diags, File, /*Text=*/!Binary);
     if (!Into)
       return false;
+    if (Binary) {
+      Log = std::make_unique<BinaryLogWriter>(
+          Into->os(), logHeader(C, L, *Robots[0].S, Count),
+          /*Compress=*/true);
+      return true;
+    }
     debug::printJSON(Into->os(), recordHeader(L));
     Into->os() << "\n";
     return true;
@@ -226,9 +242,9 @@ bool CycleRunner::openRecordings() {
   for (RobotRun &R : Robots)
     R.S->keepCalls(true);
   if (!Path.contains("%r"))
-    return Open(Path.str(), Record);
+    return Open(Path.str(), Record, Log, Robots.size());
   for (unsigned K = 0; K < Robots.size(); ++K)
-    if (!Open(robotPath(Path, K), Robots[K].Record))
+    if (!Open(robotPath(Path, K), Robots[K].Record, Robots[K].Log, 1))
       return false;
   return true;
 }
@@ -311,6 +327,12 @@ bool CycleRunner::replay() {
 }
 
 bool CycleRunner::writeInput(BehaviorSession &S, const ReplayLine &Line) {
+  if (Line.Logged) { // Bytes laid out as here (ReplayReader::openLog).
+    llvm::ArrayRef<unsigned char> In = Line.Logged->Input;
+    if (!In.empty())
+      std::memcpy(S.getInput(), In.data(), In.size());
+    return true;
+  }
   // A recording's text is written as it is read; anything else (and any
   // mistake, for its message) goes through a tree. A setter the fast path
   // called before it gave up is then called once more, with the same value.
@@ -330,6 +352,8 @@ bool CycleRunner::writeInput(BehaviorSession &S, const ReplayLine &Line) {
 
 bool CycleRunner::checkOutput(BehaviorSession &S, const ReplayLine &Line,
                               uint32_t Cycle) {
+  if (Line.Logged)
+    return checkLoggedOutput(S, *Line.Logged, Cycle);
   // Compared member by member along the text; only a difference (or text
   // of another form) builds trees, which name the differences.
   if (Values.matchesClassText(*L.OutputClass, S.getOutput(), Line.Output))
@@ -350,17 +374,43 @@ bool CycleRunner::checkOutput(BehaviorSession &S, const ReplayLine &Line,
                          Opts.Compare);
 }
 
+bool CycleRunner::checkLoggedOutput(BehaviorSession &S,
+                                    const LoggedCycle &Logged,
+                                    uint32_t Cycle) {
+  llvm::ArrayRef<unsigned char> Out = Logged.Output;
+  if (Out.empty() ||
+      std::memcmp(S.getOutput(), Out.data(), Out.size()) == 0)
+    return true;
+  // Padding or a float's -0 may differ where the members do not: compare
+  // the members, as a JSON recording's are.
+  std::vector<unsigned char> Copy(Out.begin(), Out.end());
+  llvm::json::Value Recorded = Values.readClass(*L.OutputClass, Copy.data());
+  llvm::json::Value Got = Values.readClass(*L.OutputClass, S.getOutput());
+  if (Opts.Changed) { // --update: counted, not reported.
+    for (const debug::Difference &D :
+         countedDifferences(Recorded, Got, Opts.Compare))
+      ++(*Opts.Changed)[D.Path];
+    return true;
+  }
+  ReplayLine Line;
+  return !reportMismatch(C, Line, Cycle, Recorded, Got, Opts.Compare);
+}
+
 bool CycleRunner::runCycle(unsigned K, const ReplayLine *Line) {
   BehaviorSession &S = *Robots[K].S;
   uint32_t Cycle = S.getCycle() + 1;
-  if (Line && !Line->Input.empty() && !writeInput(S, *Line)) {
+  if (Line && (!Line->Input.empty() || Line->Logged) &&
+      !writeInput(S, *Line)) {
     Broken = true;
     return false;
   }
   BehaviorSession::Outcome O;
   if (Line && Exact) {
     CycleRecord Calls;
-    if (!Line->Calls.empty()) {
+    if (Line->Logged) {
+      Calls.Calls = Line->Logged->Calls;
+      Calls.NumCalls = Line->Logged->NumCalls;
+    } else if (!Line->Calls.empty()) {
       std::optional<llvm::json::Value> V = parseJSONLine(C.Diags, Line->Calls);
       std::string Error;
       if (!V || !parseRecordedCalls(*V, S, Calls, Error)) {
@@ -389,15 +439,22 @@ bool CycleRunner::runCycle(unsigned K, const ReplayLine *Line) {
 
   // The objects are read as JSON only for what asks for them: a plain
   // run of many cycles does no more than the robot would.
-  llvm::json::Value Rec = recording() ? recordCycle(Values, L, S) : nullptr;
+  RobotRun &Run = Robots[K];
+  bool Text = recording() && !Log && !Run.Log;
+  llvm::json::Value Rec = Text ? recordCycle(Values, L, S) : nullptr;
+  if (Log)
+    logCycle(*Log, K, L, S);
+  else if (Run.Log)
+    logCycle(*Run.Log, 0, L, S);
   llvm::json::Value Out = nullptr;
-  if (recording() && L.OutputClass)
+  if (Text && L.OutputClass)
     Out = *Rec.getAsObject()->get("output");
   else if (L.OutputClass && Opts.PrintOutput)
     Out = Values.readClass(*L.OutputClass, S.getOutput());
   writeCycle(K, std::move(Rec), Out);
   checkEntryFailed(K, Cycle);
-  if (Line && !Line->Output.empty() && !checkOutput(S, *Line, Cycle)) {
+  if (Line && (!Line->Output.empty() || Line->Logged) &&
+      !checkOutput(S, *Line, Cycle)) {
     noteRobot(C, K, Robots.size());
     return false;
   }
@@ -425,7 +482,9 @@ void CycleRunner::writeCycle(unsigned K, llvm::json::Value Rec,
     OS << "\n";
   }
   OS.flush();
-  if (R.Record) {
+  if (R.Log || Log) {
+    // Written by runCycle.
+  } else if (R.Record) {
     debug::printJSON(R.Record->os(), Rec);
     R.Record->os() << "\n";
   } else if (Record) {
@@ -453,6 +512,11 @@ void CycleRunner::checkEntryFailed(unsigned K, uint32_t Cycle) {
 void CycleRunner::keepRecordings() {
   if (Broken)
     return;
+  if (Log)
+    Log->finish();
+  for (RobotRun &R : Robots)
+    if (R.Log)
+      R.Log->finish();
   if (Record)
     Record->keep();
   for (RobotRun &R : Robots)

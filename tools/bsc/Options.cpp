@@ -170,6 +170,14 @@ cl::opt<bool> InstrumentFlag(
              "the debugger's tables (task names, yield lines) in the object, "
              "for `bsc trace-decode` of robot trace logs"),
     BSC_TOP);
+cl::opt<bool> FlightRecorderFlag(
+    "flight-recorder",
+    cl::desc("Objects for the robot: log every cycle's input changes and "
+             "the effects of calls into registered C++ into the robot's "
+             "flight recorder (bscript/flight.h), so that `bsc run "
+             "--replay`, the REPL, `bsc replay` and `bsc timeline` replay "
+             "the robot's game exactly"),
+    BSC_TOP);
 cl::opt<std::string> AssertionsArg(
     "assertions",
     cl::desc("What `assert` compiles to in objects and programs: none (the "
@@ -350,6 +358,7 @@ CompileOptions getCompileOptions() {
   Opts.Assertions = given(AssertionsArg);
   Opts.DebugInfo = DebugInfo;
   Opts.Instrument = InstrumentFlag;
+  Opts.FlightRecorder = FlightRecorderFlag;
   Opts.DepFile = {DepFileFlag, DepFilePath};
   return Opts;
 }

@@ -73,6 +73,18 @@ struct CodeGenOptions {
   /// take its effects from a record instead of calling the C++ again.
   /// Values computed do not change; robot objects never have it.
   bool Boundary = false;
+  /// `--flight-recorder` (bscript/flight.h), objects for the robot: every
+  /// call of a thunk that is not registered `pure` goes through a wrapper
+  /// that tells the robot's flight recorder of it (bs_flight_enter and
+  /// bs_flight_leave of the runtime, which log its result and effects), and
+  /// the object exports the table `bs_<Name>_flight` (bs_flight_table)
+  /// that names the call sites, the entries' behavior hashes and the
+  /// layout of `input` and `output`. Values computed do not change;
+  /// without it the code is what it was, byte for byte.
+  bool FlightRecorder = false;
+  /// With FlightRecorder: each exported entry's qualified name and the
+  /// hash a log of it carries (computeBehaviorHash).
+  std::vector<std::pair<std::string, std::string>> FlightEntries;
   /// Explaining conditions for the REPL's `:why` (CGExplain.cpp), JIT only
   /// like Probes: every `if` and `for` condition appends a record to the
   /// log `bs.explain.log` (ExplainLogHeader) with its site
@@ -161,6 +173,13 @@ std::unique_ptr<llvm::Module> emitLLVM(const Behavior &B, llvm::LLVMContext &Ctx
                                        const llvm::DataLayout &DL,
                                        const CodeGenOptions &Opts,
                                        BehaviorLayout &Layout);
+
+/// 16 hex digits that change with the layout of the world's `input` and
+/// `output` classes on the compilation's target (sizes, alignments, each
+/// field's offset and storage): a log's bytes are this workstation's
+/// bytes when the hashes of the two targets agree (docs/repl.md "The
+/// robot's log").
+std::string getIOLayoutHash(const Behavior &B);
 
 /// `bs_<Behavior>__<Module>__<name>`.
 std::string getEntrySymbol(llvm::StringRef BehaviorName, const CallableDecl &D);

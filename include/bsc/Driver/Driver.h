@@ -214,6 +214,8 @@ struct CompileOptions {
   /// --assertions=none|count|trap; std::nullopt: none.
   std::optional<std::string> Assertions;
   bool DebugInfo = false, Instrument = false;
+  /// --flight-recorder (CodeGenOptions::FlightRecorder).
+  bool FlightRecorder = false;
   DepFileOptions DepFile;
 };
 

@@ -32,10 +32,12 @@
 #include "bsc/CodeGen/CodeGen.h"
 #include "llvm/ADT/ArrayRef.h"
 #include "llvm/ADT/DenseMap.h"
+#include "llvm/ADT/STLFunctionalExtras.h"
 #include "llvm/ADT/StringRef.h"
 #include "llvm/Support/JSON.h"
 #include <cstdint>
 #include <deque>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,6 +50,7 @@ struct bs_boundary_site {
   uint32_t result_size;      ///< Bytes of the result slot; 0: void.
   uint32_t num_ptrs;         ///< Mutable pointer arguments.
   const uint32_t *ptr_sizes; ///< Their sizes in bytes.
+  uint32_t index;            ///< In the module's order (flight tables).
 };
 /// Before the thunk: nonzero if the call is to be taken from the record
 /// (the thunk is then not called).
@@ -105,6 +108,23 @@ std::vector<RecordedCall> decodeCalls(const CycleRecord &R,
 bool encodeCalls(llvm::ArrayRef<RecordedCall> Calls,
                  const size_t BlockSizes[3], CycleRecord &R,
                  std::string &Error);
+
+/// Re-encodes the calls `In` (the encoding of CycleRecord::Calls) from one
+/// numbering of call sites and one view to another, for logs that number
+/// their sites themselves (bsc/Run/BinaryLog.h): each call's site through
+/// `MapId` (nullopt: a site the log does not name), each write from the
+/// view of blocks `From` to that of `To` (it must lie in its block in
+/// both), telling `OnWrite` (if given) of each. Appends to `Out` and
+/// counts the calls into `NumCalls`; false
+/// with `Error` set on bytes that are not calls or do not fit.
+bool translateCalls(llvm::ArrayRef<unsigned char> In,
+                    llvm::function_ref<std::optional<uint32_t>(uint32_t)> MapId,
+                    const size_t From[3], const size_t To[3],
+                    std::vector<unsigned char> &Out, unsigned &NumCalls,
+                    std::string &Error,
+                    llvm::function_ref<void(unsigned Block, uint64_t Offset,
+                                            llvm::ArrayRef<unsigned char>)>
+                        OnWrite);
 
 /// `R`'s calls as a recording's `calls` (docs/repl.md "Recordings"): per
 /// call `fn`, its result as hex (`result`) or a string's `text`, the

@@ -20,6 +20,7 @@
 #include "bsc/Debug/Values.h"
 #include "bsc/Frontend/Frontend.h"
 #include "bsc/JIT/JIT.h"
+#include "bsc/Run/BinaryLog.h"
 #include <functional>
 #include <map>
 #include <memory>
@@ -245,6 +246,20 @@ llvm::json::Value recordHeader(const LoadedBehavior &L);
 /// input its entry saw).
 llvm::json::Value recordCycle(debug::ValueIO &Values, const LoadedBehavior &L,
                               const BehaviorSession &S);
+
+/// Whether `--record PATH` writes a binary log (bsc/Run/BinaryLog.h)
+/// rather than JSON lines: PATH ends in `.bslog`.
+bool isBinaryLogPath(llvm::StringRef Path);
+
+/// The header of a binary log that sessions of `L` write on this
+/// workstation, for `Robots` robots.
+BinaryLogHeader logHeader(const Compilation &C, const LoadedBehavior &L,
+                          const BehaviorSession &S, unsigned Robots);
+
+/// Writes the cycle `S` just ran (keeping its calls) into `Log` as robot
+/// `Robot`'s.
+void logCycle(BinaryLogWriter &Log, unsigned Robot, const LoadedBehavior &L,
+              const BehaviorSession &S);
 
 /// A recording's `calls` (recordCycle) into `Into`, for a session of `S`'s
 /// sizes. False with `Error` set if they are not of that form.
