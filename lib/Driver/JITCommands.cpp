@@ -175,6 +175,52 @@ int bsc::runCommand(Compilation &C, const FrontendOptions &FOpts,
   return loadAndRun(C, Opts, LOpts, ROpts, Robots, *Entry, CoverageFloor);
 }
 
+int bsc::timelineCommand(Compilation &C, const FrontendOptions &FOpts,
+                         timeline::TimelineOptions Opts) {
+  if (Opts.BehaviorFiles.empty()) {
+    timeline::writeTimeline(C, Opts, llvm::outs());
+    return finishCompilation(C);
+  }
+  FrontendOptions Behavior = FOpts;
+  Behavior.Inputs = Opts.BehaviorFiles;
+  LoadOptions LOpts;
+  const CallableDecl *Entry =
+      checkForJIT(C, Behavior, /*OptionsOK=*/true, Opts.EntryName,
+                  BackendOptions(), /*DebugInfo=*/false, LOpts);
+  if (!Entry)
+    return finishCompilation(C);
+  auto Loaded = loadBehavior(C, *Entry, LOpts);
+  if (!Loaded)
+    return finishWithInternalError(C, Loaded.takeError());
+  if (!*Loaded)
+    return finishCompilation(C);
+  LoadedBehavior &L = **Loaded;
+  // Each log is replayed by robots of its own, from their first cycle.
+  llvm::Error Internal = llvm::Error::success();
+  Opts.ReplayLog = [&](llvm::StringRef Path,
+                       llvm::function_ref<bool(const llvm::json::Value &)>
+                           Take) {
+    auto Robots = Team::start(C, L, 1);
+    if (!Robots) {
+      Internal = Robots.takeError();
+      return false;
+    }
+    if (!*Robots)
+      return false;
+    RunOptions ROpts;
+    ROpts.ReplayPath = Path.str();
+    ROpts.RobotsFromRecording = true;
+    ROpts.CycleLimitMs = DefaultCycleLimitMs;
+    ROpts.TakeCycle = Take;
+    return runTeam(C, L, **Robots, ROpts, llvm::nulls()) &&
+           !C.Diags.hasErrors();
+  };
+  timeline::writeTimeline(C, Opts, llvm::outs());
+  if (Internal)
+    return finishWithInternalError(C, std::move(Internal));
+  return finishCompilation(C);
+}
+
 /// `--shard K/N` into K and N; false after reporting.
 static bool parseShard(DiagnosticEngine &Diags, llvm::StringRef Arg,
                        unsigned &K, unsigned &N) {

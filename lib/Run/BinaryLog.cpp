@@ -213,7 +213,7 @@ bool BinaryLogReader::readHeaderRecord() {
 
 void BinaryLogReader::setView(uint64_t StateSize) { View[0] = StateSize; }
 
-bool BinaryLogReader::next(LoggedCycle &C) {
+bool BinaryLogReader::next(BinaryLogCycle &C) {
   if (failed())
     return false;
   while (P == End)
@@ -402,7 +402,6 @@ BinaryLogWriter::BinaryLogWriter(llvm::raw_ostream &OS, BinaryLogHeader H,
 void BinaryLogWriter::writeCycle(unsigned RobotIndex, uint32_t Cycle,
                                  llvm::ArrayRef<unsigned char> EntryInput,
                                  const CycleRecord &Calls,
-                                 llvm::ArrayRef<unsigned char> InputAfter,
                                  llvm::ArrayRef<unsigned char> Output,
                                  llvm::ArrayRef<unsigned char> Trace) {
   if (RobotIndex >= Robots.size())
@@ -423,8 +422,16 @@ void BinaryLogWriter::writeCycle(unsigned RobotIndex, uint32_t Cycle,
     }
     return It->second;
   };
+  // The input as the cycle leaves it, which the next cycle's changes are
+  // against: the entry's, with what the calls wrote into it.
+  std::vector<unsigned char> InputAfter(EntryInput.begin(), EntryInput.end());
   translateCalls(Calls.Calls, MapId, View, View, Encoded, NumCalls, Error,
-                 nullptr);
+                 [&](unsigned Block, uint64_t Off,
+                     llvm::ArrayRef<unsigned char> Bytes) {
+                   if (Block == 1 && Off + Bytes.size() <= InputAfter.size())
+                     std::memcpy(InputAfter.data() + Off, Bytes.data(),
+                                 Bytes.size());
+                 });
   if (!NewSites.empty()) {
     Block.push_back(TagSites);
     putULEB(Block, NewSites.size());
@@ -452,7 +459,7 @@ void BinaryLogWriter::writeCycle(unsigned RobotIndex, uint32_t Cycle,
     putULEB(Block, Trace.size());
     putBytes(Block, Trace);
   }
-  R.Input.assign(InputAfter.begin(), InputAfter.end());
+  R.Input = std::move(InputAfter);
   R.Output.assign(Output.begin(), Output.end());
   ++R.Cycles;
   if (Block.size() >= BlockBytes)

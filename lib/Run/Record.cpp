@@ -115,7 +115,7 @@ void bsc::logCycle(BinaryLogWriter &Log, unsigned Robot,
       Calls.EntryInput.size() == Input.size()
           ? llvm::ArrayRef<unsigned char>(Calls.EntryInput)
           : Input;
-  Log.writeCycle(Robot, S.getCycle(), Entry, Calls, Input,
+  Log.writeCycle(Robot, S.getCycle(), Entry, Calls,
                  Bytes(S.getOutput(), L.Output.Size));
 }
 

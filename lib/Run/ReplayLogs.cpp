@@ -22,7 +22,8 @@
 
 using namespace bsc;
 
-/// The `.jsonl` files under `Dir`, sorted; false after reporting a folder
+/// The recordings (`.jsonl`) and binary logs (`.bslog`) under `Dir`,
+/// sorted; false after reporting a folder
 /// that cannot be read, has no recording, or holds a file that is not one
 /// (a CI job that lost its corpus, or copied something else into it, must
 /// not pass). Hidden files (`.gitkeep`) are skipped.
@@ -39,7 +40,8 @@ static bool findLogs(Compilation &C, llvm::StringRef Dir,
     if (It->type() == llvm::sys::fs::file_type::directory_file ||
         llvm::sys::path::filename(It->path()).starts_with("."))
       continue;
-    if (llvm::sys::path::extension(It->path()) == ".jsonl")
+    llvm::StringRef Extension = llvm::sys::path::extension(It->path());
+    if (Extension == ".jsonl" || Extension == ".bslog")
       Logs.push_back(It->path());
     else
       Others.push_back(It->path());

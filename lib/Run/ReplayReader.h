@@ -22,7 +22,7 @@ struct ReplayLine {
   llvm::StringRef Calls;
   /// A binary log's cycle instead of text: input and output as bytes, the
   /// calls decoded (valid until the next line).
-  const LoggedCycle *Logged = nullptr;
+  const BinaryLogCycle *Logged = nullptr;
 };
 
 /// A recording's first line (recordHeader); recordings of format 1 have
@@ -76,7 +76,7 @@ private:
   RecordingHeader Header;
   std::string Path;
   std::optional<BinaryLogReader> Log;
-  LoggedCycle Logged;
+  BinaryLogCycle Logged;
 };
 
 } // namespace bsc

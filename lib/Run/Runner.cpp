@@ -120,8 +120,13 @@ private:
                    uint32_t Cycle);
   /// The same for a binary log's cycle: its bytes, and only where they
   /// differ its members, read as the recording's JSON would be.
-  bool checkLoggedOutput(BehaviorSession &S, const LoggedCycle &Logged,
+  bool checkLoggedOutput(BehaviorSession &S, const BinaryLogCycle &Logged,
                          uint32_t Cycle);
+  /// Whether the tasks `S` left active are those of the robot's trace
+  /// record in `Logged` (a log of an object built with --instrument); if
+  /// not, reports both.
+  bool checkLoggedTasks(BehaviorSession &S, const BinaryLogCycle &Logged,
+                        uint32_t Cycle);
   /// The trace line, the output line and the recording of the cycle robot
   /// `K` just ran, each only if asked for.
   void writeCycle(unsigned K, llvm::json::Value Rec,
@@ -133,7 +138,8 @@ private:
   void keepRecordings();
   bool isTeam() const { return Robots.size() > 1; }
   bool recording() const {
-    return Record || (!Robots.empty() && Robots[0].Record);
+    return Record || (!Robots.empty() && Robots[0].Record) ||
+           Opts.TakeCycle;
   }
 
   Compilation &C;
@@ -252,6 +258,10 @@ bool CycleRunner::openRecordings() {
 bool CycleRunner::open() {
   if (!Opts.ReplayPath.empty() && !openReplay())
     return false;
+  // Lines handed over carry the input the entry saw, as recordings do.
+  if (Opts.TakeCycle)
+    for (RobotRun &R : Robots)
+      R.S->keepCalls(true);
   if (!Opts.RecordPath.empty() && !openRecordings())
     return false;
   const TaskDecl *EntryTask = llvm::dyn_cast<TaskDecl>(L.Entry);
@@ -375,7 +385,7 @@ bool CycleRunner::checkOutput(BehaviorSession &S, const ReplayLine &Line,
 }
 
 bool CycleRunner::checkLoggedOutput(BehaviorSession &S,
-                                    const LoggedCycle &Logged,
+                                    const BinaryLogCycle &Logged,
                                     uint32_t Cycle) {
   llvm::ArrayRef<unsigned char> Out = Logged.Output;
   if (Out.empty() ||
@@ -394,6 +404,24 @@ bool CycleRunner::checkLoggedOutput(BehaviorSession &S,
   }
   ReplayLine Line;
   return !reportMismatch(C, Line, Cycle, Recorded, Got, Opts.Compare);
+}
+
+bool CycleRunner::checkLoggedTasks(BehaviorSession &S,
+                                   const BinaryLogCycle &Logged,
+                                   uint32_t Cycle) {
+  llvm::Expected<std::vector<debug::Activation>> Robot =
+      debug::decodeTraceRecord(L.Tables, Logged.Trace);
+  std::string Want = Robot ? debug::formatTraceLine(L.Tables, *Robot)
+                           : "a record that does not fit the behavior: " +
+                                 llvm::toString(Robot.takeError());
+  std::string Got = debug::formatTraceLine(
+      L.Tables, debug::takeSnapshot(S.getState(), &S.getInfo()));
+  if (Want == Got)
+    return true;
+  C.Diags.report(llvm::SMLoc(), diag::err_replay_tasks_differ) << Cycle;
+  C.Diags.report(llvm::SMLoc(), diag::note_replay_tasks) << "robot" << Want;
+  C.Diags.report(llvm::SMLoc(), diag::note_replay_tasks) << "replay" << Got;
+  return false;
 }
 
 bool CycleRunner::runCycle(unsigned K, const ReplayLine *Line) {
@@ -451,10 +479,28 @@ bool CycleRunner::runCycle(unsigned K, const ReplayLine *Line) {
     Out = *Rec.getAsObject()->get("output");
   else if (L.OutputClass && Opts.PrintOutput)
     Out = Values.readClass(*L.OutputClass, S.getOutput());
+  if (Opts.TakeCycle) {
+    // As the line reads back from a recording: a float's value is then
+    // its shortest decimal, as in every other recording.
+    llvm::Expected<llvm::json::Value> Line =
+        llvm::json::parse(debug::toJSONString(Rec));
+    if (!Line || !Opts.TakeCycle(*Line)) {
+      if (!Line)
+        llvm::consumeError(Line.takeError()); // Printed by bsc: valid.
+      Broken = true;
+      return false;
+    }
+  }
   writeCycle(K, std::move(Rec), Out);
   checkEntryFailed(K, Cycle);
   if (Line && (!Line->Output.empty() || Line->Logged) &&
       !checkOutput(S, *Line, Cycle)) {
+    noteRobot(C, K, Robots.size());
+    return false;
+  }
+  // The robot's tables are this behavior's only in an exact replay.
+  if (Line && Line->Logged && Exact && !Line->Logged->Trace.empty() &&
+      !checkLoggedTasks(S, *Line->Logged, Cycle)) {
     noteRobot(C, K, Robots.size());
     return false;
   }

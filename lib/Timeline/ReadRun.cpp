@@ -222,6 +222,41 @@ bool timeline::readRecordingBuffer(Compilation &C, unsigned BufferID,
   return true;
 }
 
+bool timeline::isBinaryLogFile(llvm::StringRef Path) {
+  auto Head = llvm::MemoryBuffer::getFileSlice(Path, 6, 0);
+  return Head && (*Head)->getBuffer() == llvm::StringRef("BSLOG\x1a", 6);
+}
+
+bool timeline::readReplayedLog(Compilation &C, const TimelineOptions &Opts,
+                               llvm::StringRef Path, Run &R) {
+  if (!Opts.ReplayLog) {
+    C.Diags.report(llvm::SMLoc(), diag::err_timeline_log_needs_behavior)
+        << Path;
+    return false;
+  }
+  R.Name = Path.str();
+  RunBuilder Builder(R);
+  std::optional<uint32_t> Previous;
+  bool OK = Opts.ReplayLog(Path, [&](const llvm::json::Value &Line) {
+    uint32_t Cycle = 0;
+    std::vector<CycleTask> Tasks;
+    if (!LineReader(C, llvm::SMLoc()).read(Line, Previous, Cycle, Tasks))
+      return false;
+    const llvm::json::Object *O = Line.getAsObject();
+    Builder.addCycle(Cycle, O->get("input"), O->get("output"), Tasks);
+    Previous = Cycle;
+    return true;
+  });
+  if (!OK)
+    return false;
+  if (!Previous) {
+    C.Diags.report(llvm::SMLoc(), diag::err_record_empty) << Path;
+    return false;
+  }
+  Builder.finish();
+  return true;
+}
+
 bool timeline::readRobotLog(Compilation &C, const debug::DebugTables &Tables,
                             llvm::StringRef LogPath, Run &R) {
   std::optional<std::vector<debug::LoggedCycle>> Cycles =

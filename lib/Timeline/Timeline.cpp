@@ -37,7 +37,8 @@ bool timeline::writeTimeline(Compilation &C, const TimelineOptions &Opts,
   std::vector<Run> Runs(Opts.Records.size());
   for (size_t I = 0; I < Runs.size(); ++I) {
     llvm::StringRef Path = Opts.Records[I];
-    bool Read = Tables && !isRecording(Path)
+    bool Read = isBinaryLogFile(Path) ? readReplayedLog(C, Opts, Path, Runs[I])
+                : Tables && !isRecording(Path)
                     ? readRobotLog(C, *Tables, Path, Runs[I])
                     : readRecording(C, Path, Runs[I]);
     if (!Read)

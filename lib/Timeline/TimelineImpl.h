@@ -14,6 +14,7 @@
 #ifndef BSC_LIB_TIMELINE_TIMELINEIMPL_H
 #define BSC_LIB_TIMELINE_TIMELINEIMPL_H
 
+#include "bsc/Timeline/Timeline.h"
 #include "llvm/ADT/ArrayRef.h"
 #include "llvm/ADT/StringMap.h"
 #include "llvm/Support/JSON.h"
@@ -129,6 +130,11 @@ bool readRecording(Compilation &C, llvm::StringRef Path, Run &R);
 /// The same for a recording already in C.SM, named `Name`.
 bool readRecordingBuffer(Compilation &C, unsigned BufferID,
                          llvm::StringRef Name, Run &R);
+/// Reads a binary log by replaying it (TimelineOptions::ReplayLog).
+bool readReplayedLog(Compilation &C, const TimelineOptions &Opts,
+                     llvm::StringRef Path, Run &R);
+/// Whether the file starts as a binary log does.
+bool isBinaryLogFile(llvm::StringRef Path);
 /// Reads a robot's trace log with the tables of an instrumented object.
 bool readRobotLog(Compilation &C, const debug::DebugTables &Tables,
                   llvm::StringRef LogPath, Run &R);

@@ -58,12 +58,13 @@ cl::list<std::string> InputFiles(cl::Positional, cl::desc("<file.bs>..."),
                                  BSC_ALL);
 cl::list<std::string>
     IncludeDirs("I", cl::Prefix, cl::desc("Search folder for required modules"),
-                cl::value_desc("dir"), BSC_ALL);
+                cl::value_desc("dir"), BSC_ALL, cl::sub(TimelineCmd));
 cl::opt<std::string>
     EntryName("entry",
               cl::desc("The task or func called once per cycle (default: "
                        "'main' of the first file's module)"),
-              cl::value_desc("Module::name"), cl::init("main"), BSC_ALL);
+              cl::value_desc("Module::name"), cl::init("main"), BSC_ALL,
+              cl::sub(TimelineCmd));
 cl::list<std::string> ExportNames(
     "export",
     cl::desc("Export these funcs and tasks as the object's entries (default: "
@@ -206,6 +207,11 @@ cl::opt<std::string> TimelineObject(
              "tasks of robot trace logs (a record may also be a recording, "
              "to compare the robot's run with the JIT's)"),
     cl::value_desc("file.o"), BSC_TIMELINE);
+cl::list<std::string> TimelineBehavior(
+    "behavior",
+    cl::desc("The behavior's files, to read binary logs (.bslog): they are "
+             "replayed, with --bind and --entry as for `bsc run`"),
+    cl::value_desc("file.bs,..."), cl::CommaSeparated, BSC_TIMELINE);
 cl::opt<std::string> TimelineOutput(
     "o",
     cl::desc("The page to write (default: the first record's name with "
@@ -314,7 +320,7 @@ cl::list<std::string>
                 cl::desc("A binding object, archive or shared library "
                          "registering C++ for the scripts (repeatable; read "
                          "for -target)"),
-                cl::value_desc("obj"), BSC_ALL);
+                cl::value_desc("obj"), BSC_ALL, cl::sub(TimelineCmd));
 cl::opt<bool> DumpBindings("dump-bindings",
                            cl::desc("Print what the standard modules and the "
                                     "--bind objects register, and exit"),
@@ -438,7 +444,10 @@ tool::CommandLine tool::readCommandLine() {
   CL.TraceDecode = {TraceObject, TraceLog, TraceChangesFlag};
   CL.Timeline = {{TimelineRecords.begin(), TimelineRecords.end()},
                  TimelineObject,
-                 TimelineOutput};
+                 TimelineOutput,
+                 {TimelineBehavior.begin(), TimelineBehavior.end()},
+                 EntryName,
+                 {}};
   CL.Replay = getReplayOptions();
   CL.Format = {{FormatFiles.begin(), FormatFiles.end()},
                FormatInPlace,

@@ -45,7 +45,9 @@ void printBscVersion(llvm::raw_ostream &OS) {
 /// The command after the command line is parsed and -W applied.
 int dispatch(Compilation &C, CommandLine &CL, const char *Argv0) {
   // `run` and `repl` are for the host's JIT, whatever -target says.
-  ToolChain TC = getToolChain(RunCmd || ReplCmd || ReplayCmd ? "" : CL.TargetName,
+  ToolChain TC = getToolChain(RunCmd || ReplCmd || ReplayCmd || TimelineCmd
+                                  ? ""
+                                  : CL.TargetName,
                               CL.RuntimeDir, Argv0);
   FrontendOptions &Opts = CL.Frontend;
   Opts.Target = TC.getTriple();
@@ -64,11 +66,10 @@ int dispatch(Compilation &C, CommandLine &CL, const char *Argv0) {
     return checkSubcommandOptions(C.Diags, ReplCmd)
                ? replCommand(C, Opts, CL.Repl)
                : finish(C);
-  if (TimelineCmd) {
-    if (checkSubcommandOptions(C.Diags, TimelineCmd))
-      timeline::writeTimeline(C, CL.Timeline, llvm::outs());
-    return finish(C);
-  }
+  if (TimelineCmd)
+    return checkSubcommandOptions(C.Diags, TimelineCmd)
+               ? timelineCommand(C, Opts, CL.Timeline)
+               : finish(C);
   if (ReplayCmd)
     return checkSubcommandOptions(C.Diags, ReplayCmd)
                ? replayCommand(C, Opts, CL.Replay)

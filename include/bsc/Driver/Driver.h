@@ -31,6 +31,7 @@
 #include "bsc/Debug/Trace.h"
 #include "bsc/Driver/ToolChain.h"
 #include "bsc/Frontend/Frontend.h"
+#include "bsc/Timeline/Timeline.h"
 #include "llvm/Support/Error.h"
 #include "llvm/Support/ToolOutputFile.h"
 #include <memory>
@@ -275,6 +276,12 @@ struct ReplayCommandOptions {
 /// recording under --logs replayed against it. Returns the exit status.
 int replayCommand(Compilation &C, const FrontendOptions &FOpts,
                   const ReplayCommandOptions &Opts);
+
+/// `bsc timeline`: with --behavior, the behavior is loaded into the host
+/// JIT to read binary logs (TimelineOptions::ReplayLog). Returns the exit
+/// status.
+int timelineCommand(Compilation &C, const FrontendOptions &FOpts,
+                    timeline::TimelineOptions Opts);
 
 /// `bsc repl` as written on the command line.
 struct ReplCommandOptions {

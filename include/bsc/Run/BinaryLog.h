@@ -69,7 +69,7 @@ struct BinaryLogHeader {
 };
 
 /// One cycle as a reader gives it; the arrays stay valid until the next.
-struct LoggedCycle {
+struct BinaryLogCycle {
   unsigned Robot = 0;
   uint32_t Cycle = 0;
   /// The byte of the file where its record starts (for messages).
@@ -99,7 +99,7 @@ public:
   /// the log's own unless set. Input and output must be the log's.
   void setView(uint64_t StateSize);
   /// The next cycle; false at the end of the log or on an error.
-  bool next(LoggedCycle &C);
+  bool next(BinaryLogCycle &C);
   bool failed() const { return !Error.empty(); }
   /// "byte N (cycle C of robot R): why".
   const std::string &getError() const { return Error; }
@@ -144,11 +144,10 @@ public:
   ~BinaryLogWriter() { finish(); }
   /// One cycle of robot `Robot`: the input its entry saw, its calls (as
   /// recorded, in this process's site ids, over the header's view), the
-  /// input and output as the cycle left them, and its trace record, if any.
+  /// output the cycle left, and its trace record, if any.
   void writeCycle(unsigned Robot, uint32_t Cycle,
                   llvm::ArrayRef<unsigned char> EntryInput,
                   const CycleRecord &Calls,
-                  llvm::ArrayRef<unsigned char> InputAfter,
                   llvm::ArrayRef<unsigned char> Output,
                   llvm::ArrayRef<unsigned char> Trace = {});
   /// Writes the last block; nothing is written after.

@@ -176,6 +176,10 @@ struct RunOptions {
   /// here where they differ (cycles per output member); the run is
   /// recorded again (RecordPath).
   std::map<std::string, unsigned> *Changed = nullptr;
+  /// Each cycle's recording line (recordCycle, as it reads back from a
+  /// recording) handed over (`bsc timeline` of a binary log); false stops
+  /// the run.
+  std::function<bool(const llvm::json::Value &)> TakeCycle;
 };
 
 /// `--world-output FILE`: opens FILE (emptied) for what a world library

@@ -15,12 +15,18 @@
 #ifndef BSC_TIMELINE_TIMELINE_H
 #define BSC_TIMELINE_TIMELINE_H
 
+#include "llvm/ADT/STLFunctionalExtras.h"
+#include "llvm/ADT/StringRef.h"
+#include <functional>
 #include <string>
 #include <vector>
 
 namespace llvm {
 class raw_ostream;
+namespace json {
+class Value;
 }
+} // namespace llvm
 
 namespace bsc {
 struct Compilation;
@@ -35,6 +41,19 @@ struct TimelineOptions {
   std::string ObjectPath;
   /// -o; empty: the first record's name with `.html`.
   std::string OutputPath;
+  /// --behavior: the behavior's files, which a binary log (a robot's
+  /// flight log, a `.bslog` recording) needs to be read: its bytes are laid
+  /// out as the behavior's `input` and `output`, and its tasks are what a
+  /// replay computes.
+  std::vector<std::string> BehaviorFiles;
+  /// --entry, with BehaviorFiles.
+  std::string EntryName;
+  /// Set by the driver when BehaviorFiles are given: replays the binary
+  /// log at the path and hands each cycle to `Take` as a recording's line
+  /// (`cycle`, `input`, `output`, `tasks`); false after reporting.
+  std::function<bool(llvm::StringRef Path,
+                     llvm::function_ref<bool(const llvm::json::Value &)> Take)>
+      ReplayLog;
 };
 
 /// Writes the page. With two records, prints their first difference (or
