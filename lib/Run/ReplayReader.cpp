@@ -22,6 +22,16 @@ bool ReplayReader::open(llvm::StringRef Path) {
   this->Path = Path.str();
   if (isBinaryLog(Rest))
     return openLog(Rest);
+  // A file whose first line is not text, and does not start as JSON
+  // within its first bytes, is neither: not worth a line of garbage under
+  // a JSON error. (A recording damaged anywhere, even with bytes before its
+  // first `{`, is reported at its line, after the cycles before it.)
+  llvm::StringRef First = Rest.ltrim().split('\n').first;
+  if ((First.contains('\0') || !llvm::json::isUTF8(First)) &&
+      !First.take_front(16).contains('{')) {
+    C.Diags.report(llvm::SMLoc(), diag::err_replay_not_log) << Path;
+    return false;
+  }
   // The header, on the first line that is not blank.
   for (llvm::StringRef Scan = Rest; !Scan.empty();) {
     auto [Raw, After] = Scan.split('\n');

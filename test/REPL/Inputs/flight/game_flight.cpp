@@ -5,7 +5,8 @@
 // go to LOG through the callback, or with `pull` wait in a ring of two
 // small blocks that the loop pulls after each cycle (so that records move
 // to the next block). With TRACE_LOG (an object built with --instrument)
-// it also writes the classic trace log for `bsc trace-decode`.
+// it also writes the classic trace log for `bsc trace-decode`. The entry
+// the recorder is told of is Game::game, or $FLIGHT_ENTRY.
 #include "game.h"
 #include "sim.h"
 #include <bscript/flight.h>
@@ -50,7 +51,9 @@ int main(int argc, char **argv) {
   if (bs_game_init(&State) != BS_INIT_OK)
     return 2;
   bs_flight_recorder Recorder;
-  bs_flight_config Config = {&bs_game_flight, &bs_game_info, "Game::game",
+  const char *Entry = std::getenv("FLIGHT_ENTRY");
+  bs_flight_config Config = {&bs_game_flight, &bs_game_info,
+                             Entry ? Entry : "Game::game",
                              Memory, sizeof Memory,
                              Pull ? 1024u : 4096u, Pull ? 2u : 4u,
                              Pull ? 7u : 0u,
