@@ -30,8 +30,10 @@
  *     bs_flight_end(&recorder, state);
  *   at the end: bs_flight_flush(&recorder);
  *
- * One cycle is recorded at a time per thread: calls into C++ find the
- * recorder that bs_flight_begin made current on the thread.
+ * One recorded cycle runs at a time in a process: calls into C++ find the
+ * recorder that bs_flight_begin made current (the runtime needs no
+ * thread-local storage). Robots stepped one after the other in one process
+ * each have a recorder of their own.
  *===----------------------------------------------------------------------===*/
 #ifndef BSCRIPT_FLIGHT_H
 #define BSCRIPT_FLIGHT_H

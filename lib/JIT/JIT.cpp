@@ -35,6 +35,8 @@
 #include <cstdio>
 #include <cstring>
 #include <iterator>
+#include <ctime>
+#include <stdio_ext.h>
 #include <sys/time.h>
 #include <unistd.h>
 
@@ -284,7 +286,65 @@ unsigned Sessions = 0;
 /// still reaches it.
 alignas(16) char AltStack[64 * 1024];
 
+/// The cycle limit costs a clock read per cycle, not two system calls: one
+/// ITIMER_REAL stays armed across cycles. A cycle notes when it started and
+/// its limit; when the timer fires, it stops a cycle past its limit,
+/// re-arms for the rest of one that is not, and stays off when no cycle
+/// runs (a REPL waiting at its prompt gets one signal, whose reads restart).
+volatile sig_atomic_t TimerArmed = 0;
+/// When the armed timer fires, and the running cycle's start and limit
+/// (CLOCK_MONOTONIC nanoseconds; a limit of 0: none).
+volatile uint64_t TimerDueNs = 0, CycleStartNs = 0, CycleLimitNs = 0;
+
+uint64_t nowNs() {
+  struct timespec T;
+  clock_gettime(CLOCK_MONOTONIC, &T);
+  return uint64_t(T.tv_sec) * 1000000000u + uint64_t(T.tv_nsec);
+}
+
+/// Arms the timer to fire in `Ns` (0: disarms it). Async-signal-safe.
+void armTimer(uint64_t Ns) {
+  struct itimerval T = {};
+  T.it_value.tv_sec = time_t(Ns / 1000000000u);
+  T.it_value.tv_usec = suseconds_t(Ns % 1000000000u / 1000u);
+  if (Ns && !T.it_value.tv_sec && !T.it_value.tv_usec)
+    T.it_value.tv_usec = 1;
+  setitimer(ITIMER_REAL, &T, nullptr);
+  TimerArmed = Ns != 0;
+  TimerDueNs = Ns ? nowNs() + Ns : 0;
+}
+
+/// Starts the clock of a cycle limited to `LimitMs` (0: none).
+void startCycleClock(unsigned LimitMs) {
+  uint64_t Now = nowNs();
+  CycleStartNs = Now;
+  CycleLimitNs = uint64_t(LimitMs) * 1000000u;
+  // Armed already, to fire no later than this cycle's limit: nothing to do.
+  if (LimitMs && (!TimerArmed || TimerDueNs > Now + CycleLimitNs))
+    armTimer(CycleLimitNs);
+}
+
+/// Whether SIGALRM stopped a cycle's clock rather than ended its limit:
+/// then the timer is re-armed or left off, and the signal is done with.
+bool timerOnly(int Sig) {
+  if (Sig != SIGALRM || !TimerArmed)
+    return false;
+  if (!InCycle || !CycleLimitNs) {
+    TimerArmed = 0;
+    return true;
+  }
+  uint64_t Now = nowNs(), Deadline = CycleStartNs + CycleLimitNs;
+  if (Now >= Deadline) {
+    TimerArmed = 0; // It fired: the next cycle arms it again.
+    return false;
+  }
+  armTimer(Deadline - Now);
+  return true;
+}
+
 void onGuardedSignal(int Sig) {
+  if (timerOnly(Sig))
+    return;
   if (!InCycle) {
     // Not ours: what would have happened without the guard.
     for (size_t I = 0; I < std::size(GuardedSignals); ++I)
@@ -307,7 +367,10 @@ void installGuard() {
   sigaltstack(&SS, nullptr);
   struct sigaction SA = {};
   SA.sa_handler = onGuardedSignal;
-  SA.sa_flags = SA_ONSTACK | SA_NODEFER;
+  // No signal is blocked in the handler (SA_NODEFER, an empty mask), so
+  // jumping out of it leaves the mask as it was: sigsetjmp need not save
+  // it (a system call per cycle).
+  SA.sa_flags = SA_ONSTACK | SA_NODEFER | SA_RESTART;
   sigemptyset(&SA.sa_mask);
   for (size_t I = 0; I < std::size(GuardedSignals); ++I)
     sigaction(GuardedSignals[I], &SA, &PreviousActions[I]);
@@ -316,15 +379,9 @@ void installGuard() {
 void removeGuard() {
   if (--Sessions)
     return;
+  armTimer(0); // No SIGALRM of ours after the guard is gone.
   for (size_t I = 0; I < std::size(GuardedSignals); ++I)
     sigaction(GuardedSignals[I], &PreviousActions[I], nullptr);
-}
-
-void setTimer(unsigned Ms) {
-  struct itimerval T = {};
-  T.it_value.tv_sec = Ms / 1000;
-  T.it_value.tv_usec = (Ms % 1000) * 1000;
-  setitimer(ITIMER_REAL, &T, nullptr);
 }
 
 /// An aligned, zeroed heap block.
@@ -550,16 +607,12 @@ BehaviorSession::runGuardedBody(llvm::function_ref<void()> Body,
     *LoopProbe = 0;
   if (NativeProbe)
     *NativeProbe = 0;
-  if (sigsetjmp(CycleJump, 1) == 0) {
+  if (sigsetjmp(CycleJump, 0) == 0) {
+    startCycleClock(LimitMs);
     InCycle = 1;
-    if (LimitMs)
-      setTimer(LimitMs);
     Body();
     InCycle = 0;
-    if (LimitMs)
-      setTimer(0);
   } else {
-    setTimer(0);
     Result.K = CaughtSignal == SIGALRM ? Outcome::TimedOut : Outcome::Crashed;
     Result.Signal = CaughtSignal;
   }
@@ -569,7 +622,8 @@ BehaviorSession::runGuardedBody(llvm::function_ref<void()> Body,
   Result.NullUser = !bs_state_user(State);
   CurrentHook = nullptr;
   redirectStdout(false); // A hook that crashed did not put it back.
-  std::fflush(stdout);
+  if (__fpending(stdout)) // What the behavior printed, before bsc's lines.
+    std::fflush(stdout);
   return Result;
 }
 

@@ -87,6 +87,10 @@ bool bsc::isBinaryLogPath(llvm::StringRef Path) {
   return Path.ends_with(".bslog");
 }
 
+bool bsc::canLogAsBytes(const NativeClass *C) {
+  return !C || C->CopiesAsBytes || C->TriviallyDestructible;
+}
+
 BinaryLogHeader bsc::logHeader(const Compilation &C, const LoadedBehavior &L,
                                const BehaviorSession &S, unsigned Robots) {
   BinaryLogHeader H;

@@ -76,7 +76,7 @@ bool ReplayReader::openLog(llvm::StringRef Bytes) {
     return false;
   }
   for (const NativeClass *Class : {L.InputClass, L.OutputClass})
-    if (Class && !Class->CopiesAsBytes) {
+    if (!canLogAsBytes(Class)) {
       C.Diags.report(llvm::SMLoc(), diag::err_log_not_bytes)
           << Path << Class->QualifiedName;
       return false;

@@ -20,7 +20,11 @@
 /* What a cycle record holds besides its runs: tag, numbers, counts. */
 #define RECORD_SLACK 48u
 
-static _Thread_local bs_flight_recorder *bs_flight_current;
+/* The recorder whose cycle runs now, which calls into C++ report to: a
+ * plain static, as the runtime needs nothing from libc (no TLS). One
+ * recorded cycle runs at a time in a process; a cycle recorded inside
+ * another's (a second behavior called from C++) restores the outer one. */
+static bs_flight_recorder *bs_flight_current;
 
 static uint32_t align8(uint32_t n) { return (n + 7u) & ~7u; }
 

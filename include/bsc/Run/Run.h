@@ -255,6 +255,11 @@ llvm::json::Value recordCycle(debug::ValueIO &Values, const LoadedBehavior &L,
 /// rather than JSON lines: PATH ends in `.bslog`.
 bool isBinaryLogPath(llvm::StringRef Path);
 
+/// Whether a binary log can hold the world's class `C` as its bytes: a
+/// class that owns nothing (trivially destructible, like Eigen's fixed
+/// vectors) reads back from them; one that owns memory does not.
+bool canLogAsBytes(const NativeClass *C);
+
 /// The header of a binary log that sessions of `L` write on this
 /// workstation, for `Robots` robots.
 BinaryLogHeader logHeader(const Compilation &C, const LoadedBehavior &L,
