@@ -19,6 +19,9 @@
 #    --cycle-budget (a charge per loop pass; never running out here).
 # 5. Assertions: soccer.bs's four `assert`s (which hold) compiled with
 #    --assertions=count and trap, against the default (left out).
+# 6. The flight recorder: the -O2 programs with the behavior compiled with
+#    --flight-recorder and each cycle recorded, with the log's bytes per
+#    cycle.
 #
 #   bench/run.sh [BUILD_DIR]        (default: build)
 #   BENCH_CYCLES=N                  cycles per callgrind run (default 100000)
@@ -109,6 +112,24 @@ for b in soccer wide; do
   traced=$(per_cycle "$OUT/trace-$b/$b" "$b")
   logged=$(per_cycle "$OUT/log-$b/$b" "$b")
   echo "$b: $plain -> $traced instructions per cycle with the record ($(pct "$plain" "$traced"); issue 10's budget: +10%), $logged with a copy of it into a log ring ($(pct "$plain" "$logged")); state bytes $(field state_bytes "$got")"
+done
+
+echo "== the flight recorder (-O2, --flight-recorder: each cycle's input changes and output changes into 16 KiB blocks; docs/repl.md \"The robot's log\")"
+for t in i586 x86_64; do
+  for b in soccer wide; do
+    shared/build.sh "$BUILD" "$SHARED" "$t" "$b" -O2 "$OUT/flight-$t-$b" -DBENCH_FLIGHT
+    ref=$(field checksum "$("$OUT/proto-$t" "$b" verify)")
+    got=$("$OUT/flight-$t-$b/$b" "$b" verify 2>/dev/null)
+    if [[ $(field checksum "$got") != "$ref" ]]; then
+      echo "bench: $b $t with --flight-recorder: checksum $(field checksum "$got"), protothreads $ref" >&2
+      status=1
+    fi
+    plain=$(per_cycle "$OUT/bsc-$t-$b-O2" "$b")
+    flight=$(per_cycle "$OUT/flight-$t-$b/$b" "$b")
+    bytes=$("$OUT/flight-$t-$b/$b" "$b" count "$CYCLES" 2>&1 >/dev/null |
+      awk '/^flight:/ { printf "%.1f", $2 / $5 }')
+    echo "$b $t: $plain -> $flight instructions per cycle (+$(awk -v a="$plain" -v b="$flight" 'BEGIN { printf "%.0f", b - a }'), $(pct "$plain" "$flight")), $bytes log bytes per cycle"
+  done
 done
 
 echo "== the cycle budget (-O2, --cycle-budget=1000000: a load, compare and store per loop pass)"

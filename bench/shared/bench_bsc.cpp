@@ -9,7 +9,11 @@
 // (bs_bench_trace_begin, docs/repl.md), which the behavior's task calls
 // write; with BENCH_TRACE_LOG as well, the record is then copied into a log
 // ring in memory, as a robot that logs its trace does: the two costs of
-// tracing on the robot.
+// tracing on the robot. With BENCH_FLIGHT (a behavior compiled with
+// --flight-recorder) each cycle is recorded by the flight recorder
+// (bscript/flight.h) into blocks of 16 KiB, whose bytes a callback counts
+// (a robot's would queue them for its log writer); the program prints
+// them per cycle on stderr when it ends.
 //
 //===----------------------------------------------------------------------===//
 #define BSC_MAIN
@@ -46,6 +50,49 @@ static void logTrace() {
 static void logTrace() {}
 #endif
 
+#ifdef BENCH_FLIGHT
+#include <bscript/flight.h>
+extern "C" const bs_flight_table bs_bench_flight;
+alignas(8) static unsigned char FlightMemory[1 << 17];
+static bs_flight_recorder Recorder;
+static unsigned long long FlightBytes, FlightCycles;
+static void countBlock(void *, const void *, uint32_t Size) {
+  FlightBytes += Size;
+}
+static void flightBegin() { bs_flight_begin(&Recorder, &State); }
+static void flightEnd() {
+  bs_flight_end(&Recorder, &State);
+  ++FlightCycles;
+}
+static void flightReport() {
+  bs_flight_flush(&Recorder);
+  std::fprintf(stderr, "flight: %llu bytes in %llu cycles, %u lost\n",
+               FlightBytes, FlightCycles, bs_flight_lost(&Recorder));
+}
+static void flightStart() {
+  static bool Reporting = false;
+  if (!Reporting)
+    std::atexit(flightReport);
+  Reporting = true;
+#ifdef BENCH_WIDE
+  const char *Entry = "wide::cycle";
+#else
+  const char *Entry = "soccer::cycle";
+#endif
+  bs_flight_config Config = {&bs_bench_flight, &bs_bench_info, Entry,
+                             FlightMemory, sizeof FlightMemory, 16384, 4, 0,
+                             countBlock, nullptr};
+  if (int Code = bs_flight_start(&Recorder, &Config)) {
+    std::fprintf(stderr, "bench: bs_flight_start: %d\n", Code);
+    std::exit(2);
+  }
+}
+#else
+static void flightBegin() {}
+static void flightEnd() {}
+static void flightStart() {}
+#endif
+
 static void wrongBehavior() {
   std::fprintf(stderr, "bench: this program holds the %s behavior\n",
                bsc_impl);
@@ -58,7 +105,9 @@ extern "C" __attribute__((noinline)) void bsc_cycle_soccer() {
 #else
   bs_bench_begin_cycle(&State, &g_in, &g_out);
   startTrace();
+  flightBegin();
   BENCH_ENTRY(&State);
+  flightEnd();
   logTrace();
 #endif
 }
@@ -67,7 +116,9 @@ extern "C" __attribute__((noinline)) void bsc_cycle_wide() {
 #ifdef BENCH_WIDE
   bs_bench_begin_cycle(&State, &g_in, &g_out);
   startTrace();
+  flightBegin();
   BENCH_ENTRY(&State);
+  flightEnd();
   logTrace();
 #else
   wrongBehavior();
@@ -78,6 +129,7 @@ void bsc_reset() {
   bs_bench_destroy(&State);
   if (int Code = bs_bench_init(&State))
     std::exit(bs_report_init_failure(&bs_bench_info, Code));
+  flightStart();
 }
 
 size_t bsc_state_bytes(bool) { return sizeof State; }

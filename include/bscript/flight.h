@@ -123,7 +123,8 @@ typedef struct bs_flight_recorder {
   void *user;
   const unsigned char *input;
   unsigned char *output;
-  uint32_t filling;      /**< The block being written. */
+  uint32_t filling;      /**< The block being written... */
+  unsigned char *records; /**< ...and where its records start. */
   uint32_t used;         /**< Its bytes so far, after its header. */
   uint32_t cycle_at;     /**< Where the running cycle's record starts. */
   uint32_t calls_at;     /**< Where its calls' bytes start. */

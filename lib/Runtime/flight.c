@@ -26,11 +26,18 @@
  * another's (a second behavior called from C++) restores the outer one. */
 static bs_flight_recorder *bs_flight_current;
 
+/* A word that may lie anywhere and alias anything: copies and comparisons
+ * go four bytes at a time, and compile to plain loads on x86. */
+typedef uint32_t bs_word __attribute__((may_alias, aligned(1)));
+
 static uint32_t align8(uint32_t n) { return (n + 7u) & ~7u; }
 
 static void copy_bytes(unsigned char *to, const unsigned char *from,
                        uint32_t n) {
-  for (uint32_t i = 0; i < n; ++i)
+  uint32_t i = 0;
+  for (; i + 4 <= n; i += 4)
+    *(bs_word *)(to + i) = *(const bs_word *)(from + i);
+  for (; i < n; ++i)
     to[i] = from[i];
 }
 
@@ -63,9 +70,6 @@ static unsigned char *slot_of(bs_flight_recorder *r, uint32_t slot) {
   return r->ring + slot * align8(MAGIC_ROOM + r->block_bytes);
 }
 
-static unsigned char *records(bs_flight_recorder *r) {
-  return slot_of(r, r->filling) + MAGIC_ROOM + BLOCK_HEADER;
-}
 
 static uint32_t capacity(const bs_flight_recorder *r) {
   return r->block_bytes - BLOCK_HEADER;
@@ -75,94 +79,94 @@ static uint32_t room(const bs_flight_recorder *r) {
   return r->used == NO_BLOCK ? 0 : capacity(r) - r->used;
 }
 
-static void put_byte(bs_flight_recorder *r, unsigned char b) {
-  records(r)[r->used++] = b;
+/* Writing goes through a cursor `p` into the block being filled, which
+ * the callers keep in a local and store back into `used` when done: the
+ * stores of bytes then cannot make the compiler reload the recorder. */
+static unsigned char *cursor(bs_flight_recorder *r) {
+  return r->records + r->used;
+}
+static void settle(bs_flight_recorder *r, const unsigned char *p) {
+  r->used = (uint32_t)(p - r->records);
 }
 
-static void put_uleb(bs_flight_recorder *r, uint32_t v) {
-  do {
-    unsigned char b = v & 0x7fu;
+static unsigned char *put_uleb(unsigned char *p, uint32_t v) {
+  while (v >= 0x80u) {
+    *p++ = (unsigned char)(v | 0x80u);
     v >>= 7;
-    put_byte(r, v ? (unsigned char)(b | 0x80u) : b);
-  } while (v);
+  }
+  *p++ = (unsigned char)v;
+  return p;
 }
 
-/* A number written later: three bytes of LEB128 (up to 2^21 - 1). */
-static uint32_t reserve_uleb(bs_flight_recorder *r) {
-  uint32_t at = r->used;
-  put_byte(r, 0x80);
-  put_byte(r, 0x80);
-  put_byte(r, 0x00);
-  return at;
+/* A number written later (patch_uleb): three bytes of LEB128, up to
+ * 2^21 - 1. */
+static unsigned char *reserve_uleb(unsigned char *p) {
+  p[0] = 0x80;
+  p[1] = 0x80;
+  p[2] = 0x00;
+  return p + 3;
 }
 
-static void patch_uleb(bs_flight_recorder *r, uint32_t at, uint32_t v) {
-  unsigned char *p = records(r) + at;
+static void patch_uleb(unsigned char *p, uint32_t v) {
   p[0] = (unsigned char)((v & 0x7fu) | 0x80u);
   p[1] = (unsigned char)(((v >> 7) & 0x7fu) | 0x80u);
   p[2] = (unsigned char)((v >> 14) & 0x7fu);
 }
 
-static void put_bytes(bs_flight_recorder *r, const void *bytes, uint32_t n) {
-  copy_bytes(records(r) + r->used, (const unsigned char *)bytes, n);
-  r->used += n;
+static unsigned char *put_bytes(unsigned char *p, const void *bytes,
+                                uint32_t n) {
+  copy_bytes(p, (const unsigned char *)bytes, n);
+  return p + n;
 }
 
-static void put_text(bs_flight_recorder *r, const char *s) {
+static unsigned char *put_text(unsigned char *p, const char *s) {
   uint32_t n = text_length(s);
-  put_uleb(r, n);
-  put_bytes(r, s, n);
+  return put_bytes(put_uleb(p, n), s, n);
 }
 
 /* The runs where `now` differs from `seen` (n bytes, at `base` in the
- * view), joined across fewer than 4 equal bytes; `seen` becomes `now`.
- * Continues the run list whose previous run ended at *prev; returns how
- * many runs it wrote. */
-static uint32_t put_runs(bs_flight_recorder *r, const unsigned char *now,
-                         unsigned char *seen, uint32_t n, uint32_t base,
-                         uint32_t *prev) {
-  uint32_t runs = 0, i = 0;
+ * view): whole words of four bytes (a tail of fewer, byte by byte), not
+ * joined across equal words (a gap costs less than the word). `seen`
+ * becomes `now`. Continues the run list whose previous run ended at
+ * *prev, adding to *runs. */
+static unsigned char *put_runs(unsigned char *p, const unsigned char *now,
+                               unsigned char *seen, uint32_t n, uint32_t base,
+                               uint32_t *prev, uint32_t *runs) {
+  uint32_t i = 0, words = n & ~3u;
   while (i < n) {
-    /* Four equal bytes at a time: few change. */
-    if (i + 4 <= n) {
-      uint32_t a, b;
-      __builtin_memcpy(&a, now + i, 4);
-      __builtin_memcpy(&b, seen + i, 4);
-      if (a == b) {
+    while (i < words &&
+           *(const bs_word *)(now + i) == *(const bs_word *)(seen + i))
+      i += 4;
+    if (i >= words)
+      while (i < n && now[i] == seen[i])
+        ++i;
+    if (i >= n)
+      break;
+    uint32_t start = i;
+    if (i < words) {
+      do {
+        *(bs_word *)(seen + i) = *(const bs_word *)(now + i);
         i += 4;
-        continue;
-      }
+      } while (i < words &&
+               *(const bs_word *)(now + i) != *(const bs_word *)(seen + i));
+    } else {
+      do {
+        seen[i] = now[i];
+        ++i;
+      } while (i < n && now[i] != seen[i]);
     }
-    if (now[i] == seen[i]) {
-      ++i;
-      continue;
-    }
-    uint32_t start = i, end = i + 1;
-    for (uint32_t j = end; j < n && j < end + 4; ++j)
-      if (now[j] != seen[j])
-        end = j + 1;
-    while (end < n) {
-      uint32_t next = end;
-      while (next < n && next < end + 4 && now[next] == seen[next])
-        ++next;
-      if (next >= n || next >= end + 4)
-        break;
-      end = next + 1;
-    }
-    put_uleb(r, base + start - *prev);
-    put_uleb(r, end - start);
-    put_bytes(r, now + start, end - start);
-    copy_bytes(seen + start, now + start, end - start);
-    *prev = base + end;
-    ++runs;
-    i = end;
+    p = put_uleb(p, base + start - *prev);
+    p = put_uleb(p, i - start);
+    p = put_bytes(p, seen + start, i - start);
+    *prev = base + i;
+    ++*runs;
   }
-  return runs;
+  return p;
 }
 
-/* The worst a run list over n bytes takes: a run every 5 bytes at most
- * (1 byte, a gap of 4), each of up to 3 + 3 + 1 bytes. */
-static uint32_t runs_bound(uint32_t n) { return 2u * n + 8u; }
+/* The worst a run list over n bytes takes: a run every other word (or
+ * byte, in the tail), each with a gap and a length of up to 3 bytes. */
+static uint32_t runs_bound(uint32_t n) { return 4u * n + 8u; }
 
 /*--- Blocks ------------------------------------------------------------------*/
 
@@ -202,6 +206,7 @@ static int open_block(bs_flight_recorder *r) {
   if (waiting >= r->num_blocks)
     return 0;
   r->filling = r->ready % r->num_blocks;
+  r->records = slot_of(r, r->filling) + MAGIC_ROOM + BLOCK_HEADER;
   r->used = 0;
   return 1;
 }
@@ -233,7 +238,7 @@ static int make_room(bs_flight_recorder *r, uint32_t more) {
     lose_cycle(r);
     return 0;
   }
-  const unsigned char *from = records(r) + r->cycle_at;
+  const unsigned char *from = r->records + r->cycle_at;
   uint32_t moved = r->cycle_at;
   r->used = r->cycle_at;
   hand_over(r); /* Its bytes stay in the slot until the ring comes round. */
@@ -242,7 +247,7 @@ static int make_room(bs_flight_recorder *r, uint32_t more) {
     lose_cycle(r);
     return 0;
   }
-  copy_bytes(records(r), from, length);
+  copy_bytes(r->records, from, length);
   r->used = length;
   r->cycle_at = 0;
   r->calls_at -= moved;
@@ -295,18 +300,20 @@ int bs_flight_start(bs_flight_recorder *r, const bs_flight_config *c) {
   r->first_block = 1;
   r->used = NO_BLOCK;
   open_block(r);
-  put_byte(r, 'H');
-  put_text(r, hash);
-  put_text(r, c->entry);
-  put_text(r, t->target);
-  put_text(r, t->layout);
-  put_uleb(r, 0); /* no state in the view */
-  put_uleb(r, t->input_size);
-  put_uleb(r, t->output_size);
-  put_uleb(r, 1); /* one robot */
-  put_uleb(r, t->num_sites);
+  unsigned char *p = cursor(r);
+  *p++ = 'H';
+  p = put_text(p, hash);
+  p = put_text(p, c->entry);
+  p = put_text(p, t->target);
+  p = put_text(p, t->layout);
+  p = put_uleb(p, 0); /* no state in the view */
+  p = put_uleb(p, t->input_size);
+  p = put_uleb(p, t->output_size);
+  p = put_uleb(p, 1); /* one robot */
+  p = put_uleb(p, t->num_sites);
   for (uint32_t i = 0; i < t->num_sites; ++i)
-    put_text(r, t->sites[i]->name);
+    p = put_text(p, t->sites[i]->name);
+  settle(r, p);
   return BS_FLIGHT_OK;
 }
 
@@ -329,33 +336,37 @@ void bs_flight_begin(bs_flight_recorder *r, const void *state) {
     lose_cycle(r);
     return;
   }
+  unsigned char *p = cursor(r);
   if (r->lost) {
     /* Say what was lost before the next cycle that is kept. */
-    put_byte(r, 'G');
-    put_uleb(r, 0);
-    put_uleb(r, r->lost_from);
-    put_uleb(r, r->lost);
+    *p++ = 'G';
+    p = put_uleb(p, 0);
+    p = put_uleb(p, r->lost_from);
+    p = put_uleb(p, r->lost);
     r->lost = 0;
   }
   r->recording = 1;
-  r->cycle_at = r->used;
+  r->cycle_at = (uint32_t)(p - r->records);
   int key = r->cycles % r->key_every == 0;
   int trace = r->info && r->info->trace.record_size;
-  put_byte(r, 'C');
-  put_uleb(r, 0);
-  put_uleb(r, r->cycle);
-  put_byte(r, (unsigned char)((key ? 1 : 0) | (trace ? 2 : 0)));
+  *p++ = 'C';
+  p = put_uleb(p, 0);
+  p = put_uleb(p, r->cycle);
+  *p++ = (unsigned char)((key ? 1 : 0) | (trace ? 2 : 0));
   if (key) {
-    put_bytes(r, r->input, t->input_size);
+    p = put_bytes(p, r->input, t->input_size);
     copy_bytes(r->input_seen, r->input, t->input_size);
   } else {
-    uint32_t count_at = reserve_uleb(r), prev = 0;
-    patch_uleb(r, count_at,
-               put_runs(r, r->input, r->input_seen, t->input_size, 0, &prev));
+    unsigned char *count = p;
+    uint32_t prev = 0, runs = 0;
+    p = put_runs(reserve_uleb(p), r->input, r->input_seen, t->input_size, 0,
+                 &prev, &runs);
+    patch_uleb(count, runs);
   }
   /* The number of calls and their bytes' length, filled in at the end. */
-  reserve_uleb(r);
-  r->calls_at = reserve_uleb(r) + 3;
+  p = reserve_uleb(reserve_uleb(p));
+  settle(r, p);
+  r->calls_at = r->used;
 }
 
 void bs_flight_enter(const bs_flight_site *site) {
@@ -384,28 +395,32 @@ void bs_flight_leave(const bs_flight_site *site, void *result,
     need += 4 + site->ptr_sizes[i];
   if (!make_room(r, need))
     return;
-  put_uleb(r, site->index << 1 | ((site->flags & BS_FLIGHT_SITE_STRING) ? 1 : 0));
-  put_uleb(r, result_bytes);
+  unsigned char *p = cursor(r);
+  p = put_uleb(p, site->index << 1 |
+                      ((site->flags & BS_FLIGHT_SITE_STRING) ? 1 : 0));
+  p = put_uleb(p, result_bytes);
   if (text)
-    put_bytes(r, text, result_bytes);
+    p = put_bytes(p, text, result_bytes);
   else if (result && result_bytes)
-    put_bytes(r, result, result_bytes);
-  put_uleb(r, ptrs ? site->num_ptrs : 0);
+    p = put_bytes(p, result, result_bytes);
+  p = put_uleb(p, ptrs ? site->num_ptrs : 0);
   for (uint32_t i = 0; ptrs && i < site->num_ptrs; ++i) {
-    put_uleb(r, site->ptr_sizes[i]);
-    put_bytes(r, ptrs[i], site->ptr_sizes[i]);
+    p = put_uleb(p, site->ptr_sizes[i]);
+    p = put_bytes(p, ptrs[i], site->ptr_sizes[i]);
   }
   /* The runs of the view (input, then output) the call changed. */
-  uint32_t count_at = reserve_uleb(r), prev = 0;
-  uint32_t runs = put_runs(r, r->input, r->input_seen, t->input_size, 0, &prev);
-  runs += put_runs(r, r->output, r->output_before, t->output_size,
-                   t->input_size, &prev);
-  patch_uleb(r, count_at, runs);
+  unsigned char *count = p;
+  uint32_t prev = 0, runs = 0;
+  p = put_runs(reserve_uleb(p), r->input, r->input_seen, t->input_size, 0,
+               &prev, &runs);
+  p = put_runs(p, r->output, r->output_before, t->output_size, t->input_size,
+               &prev, &runs);
+  patch_uleb(count, runs);
+  settle(r, p);
   ++r->num_calls;
 }
 
 void bs_flight_end(bs_flight_recorder *r, const void *state) {
-  (void)state;
   bs_flight_current = (bs_flight_recorder *)r->previous;
   if (!r->recording)
     return; /* Lost. */
@@ -413,21 +428,24 @@ void bs_flight_end(bs_flight_recorder *r, const void *state) {
   uint32_t trace = r->info ? r->info->trace.record_size : 0;
   if (!make_room(r, RECORD_SLACK + runs_bound(t->output_size) + trace))
     return;
-  patch_uleb(r, r->calls_at - 6, r->num_calls);
-  patch_uleb(r, r->calls_at - 3, r->used - r->calls_at);
-  int key = r->cycles % r->key_every == 0;
-  if (key) {
-    put_bytes(r, r->output, t->output_size);
+  patch_uleb(r->records + r->calls_at - 6, r->num_calls);
+  patch_uleb(r->records + r->calls_at - 3, r->used - r->calls_at);
+  unsigned char *p = cursor(r);
+  if (r->cycles % r->key_every == 0) {
+    p = put_bytes(p, r->output, t->output_size);
     copy_bytes(r->output_seen, r->output, t->output_size);
   } else {
-    uint32_t count_at = reserve_uleb(r), prev = 0;
-    patch_uleb(r, count_at, put_runs(r, r->output, r->output_seen,
-                                     t->output_size, 0, &prev));
+    unsigned char *count = p;
+    uint32_t prev = 0, runs = 0;
+    p = put_runs(reserve_uleb(p), r->output, r->output_seen, t->output_size,
+                 0, &prev, &runs);
+    patch_uleb(count, runs);
   }
   if (trace) {
-    put_uleb(r, trace);
-    put_bytes(r, bs_trace_record(state, r->info), trace);
+    p = put_uleb(p, trace);
+    p = put_bytes(p, bs_trace_record(state, r->info), trace);
   }
+  settle(r, p);
   r->recording = 0;
   ++r->cycles;
 }
