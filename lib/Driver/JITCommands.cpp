@@ -221,6 +221,41 @@ int bsc::timelineCommand(Compilation &C, const FrontendOptions &FOpts,
   return finishCompilation(C);
 }
 
+int bsc::convertCommand(Compilation &C, const FrontendOptions &FOpts,
+                        const ConvertCommandOptions &Opts) {
+  for (const auto &[Given, Option] :
+       {std::pair(&Opts.From, "a recording or log to convert"),
+        std::pair(&Opts.To, "-o FILE")})
+    if (Given->empty()) {
+      C.Diags.report(llvm::SMLoc(), diag::err_convert_needs) << Option;
+      return finishCompilation(C);
+    }
+  if (Opts.BehaviorFiles.empty()) {
+    C.Diags.report(llvm::SMLoc(), diag::err_convert_needs)
+        << "--behavior FILE.bs (the layout of input and output)";
+    return finishCompilation(C);
+  }
+  FrontendOptions Behavior = FOpts;
+  Behavior.Inputs = Opts.BehaviorFiles;
+  LoadOptions LOpts;
+  const CallableDecl *Entry =
+      checkForJIT(C, Behavior, /*OptionsOK=*/true, Opts.EntryName,
+                  BackendOptions(), /*DebugInfo=*/false, LOpts);
+  if (!Entry)
+    return finishCompilation(C);
+  auto Loaded = loadBehavior(C, *Entry, LOpts);
+  if (!Loaded)
+    return finishWithInternalError(C, Loaded.takeError());
+  if (!*Loaded)
+    return finishCompilation(C);
+  auto S = startSession(C, **Loaded);
+  if (!S)
+    return finishWithInternalError(C, S.takeError());
+  if (*S)
+    convertRecording(C, **Loaded, **S, Opts.From, Opts.To);
+  return finishCompilation(C);
+}
+
 /// `--shard K/N` into K and N; false after reporting.
 static bool parseShard(DiagnosticEngine &Diags, llvm::StringRef Arg,
                        unsigned &K, unsigned &N) {

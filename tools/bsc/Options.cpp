@@ -29,6 +29,9 @@ cl::SubCommand tool::TimelineCmd(
 cl::SubCommand tool::ReplayCmd(
     "replay", "Replay every recording under a folder against a behavior, "
               "compiled once; a log passes when every recorded output matches");
+cl::SubCommand tool::ConvertCmd(
+    "convert", "Write a recording (JSON lines) as a binary log (.bslog), or a "
+               "binary log as JSON lines, with the behavior's layout");
 cl::SubCommand tool::LspCmd(
     "lsp", "Serve editors: a Language Server Protocol server on standard "
            "input and output (docs/editors.md)");
@@ -58,13 +61,14 @@ cl::list<std::string> InputFiles(cl::Positional, cl::desc("<file.bs>..."),
                                  BSC_ALL);
 cl::list<std::string>
     IncludeDirs("I", cl::Prefix, cl::desc("Search folder for required modules"),
-                cl::value_desc("dir"), BSC_ALL, cl::sub(TimelineCmd));
+                cl::value_desc("dir"), BSC_ALL, cl::sub(TimelineCmd),
+                cl::sub(ConvertCmd));
 cl::opt<std::string>
     EntryName("entry",
               cl::desc("The task or func called once per cycle (default: "
                        "'main' of the first file's module)"),
               cl::value_desc("Module::name"), cl::init("main"), BSC_ALL,
-              cl::sub(TimelineCmd));
+              cl::sub(TimelineCmd), cl::sub(ConvertCmd));
 cl::list<std::string> ExportNames(
     "export",
     cl::desc("Export these funcs and tasks as the object's entries (default: "
@@ -207,11 +211,20 @@ cl::opt<std::string> TimelineObject(
              "tasks of robot trace logs (a record may also be a recording, "
              "to compare the robot's run with the JIT's)"),
     cl::value_desc("file.o"), BSC_TIMELINE);
-cl::list<std::string> TimelineBehavior(
+cl::list<std::string> BehaviorFiles(
     "behavior",
-    cl::desc("The behavior's files, to read binary logs (.bslog): they are "
-             "replayed, with --bind and --entry as for `bsc run`"),
-    cl::value_desc("file.bs,..."), cl::CommaSeparated, BSC_TIMELINE);
+    cl::desc("The behavior's files, whose layout of input and output binary "
+             "logs (.bslog) are read with (the timeline replays them), with "
+             "--bind and --entry as for `bsc run`"),
+    cl::value_desc("file.bs,..."), cl::CommaSeparated, BSC_TIMELINE,
+    cl::sub(ConvertCmd));
+cl::opt<std::string> ConvertInput(cl::Positional,
+                                  cl::desc("<recording.jsonl|log.bslog>"),
+                                  cl::sub(ConvertCmd), cl::cat(BscCategory));
+cl::opt<std::string> ConvertOutput(
+    "o", cl::desc("The file to write: a binary log if it ends in '.bslog', "
+                  "else JSON lines"),
+    cl::value_desc("file"), cl::sub(ConvertCmd), cl::cat(BscCategory));
 cl::opt<std::string> TimelineOutput(
     "o",
     cl::desc("The page to write (default: the first record's name with "
@@ -320,7 +333,8 @@ cl::list<std::string>
                 cl::desc("A binding object, archive or shared library "
                          "registering C++ for the scripts (repeatable; read "
                          "for -target)"),
-                cl::value_desc("obj"), BSC_ALL, cl::sub(TimelineCmd));
+                cl::value_desc("obj"), BSC_ALL, cl::sub(TimelineCmd),
+                cl::sub(ConvertCmd));
 cl::opt<bool> DumpBindings("dump-bindings",
                            cl::desc("Print what the standard modules and the "
                                     "--bind objects register, and exit"),
@@ -445,10 +459,12 @@ tool::CommandLine tool::readCommandLine() {
   CL.Timeline = {{TimelineRecords.begin(), TimelineRecords.end()},
                  TimelineObject,
                  TimelineOutput,
-                 {TimelineBehavior.begin(), TimelineBehavior.end()},
+                 {BehaviorFiles.begin(), BehaviorFiles.end()},
                  EntryName,
                  {}};
   CL.Replay = getReplayOptions();
+  CL.Convert = {ConvertInput, ConvertOutput,
+                {BehaviorFiles.begin(), BehaviorFiles.end()}, EntryName};
   CL.Format = {{FormatFiles.begin(), FormatFiles.end()},
                FormatInPlace,
                FormatCheck};

@@ -20,7 +20,7 @@ namespace bsc::tool {
 /// bsc's own options (those of LLVM's libraries are hidden).
 extern llvm::cl::OptionCategory BscCategory;
 extern llvm::cl::SubCommand RunCmd, ReplCmd, TraceDecodeCmd, TimelineCmd,
-    FormatCmd, LspCmd, ReplayCmd;
+    FormatCmd, LspCmd, ReplayCmd, ConvertCmd;
 
 /// The command line after parsing.
 struct CommandLine {
@@ -36,6 +36,7 @@ struct CommandLine {
   timeline::TimelineOptions Timeline;
   FormatCommandOptions Format;
   ReplayCommandOptions Replay;
+  ConvertCommandOptions Convert;
 };
 
 CommandLine readCommandLine();

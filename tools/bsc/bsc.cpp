@@ -45,7 +45,8 @@ void printBscVersion(llvm::raw_ostream &OS) {
 /// The command after the command line is parsed and -W applied.
 int dispatch(Compilation &C, CommandLine &CL, const char *Argv0) {
   // `run` and `repl` are for the host's JIT, whatever -target says.
-  ToolChain TC = getToolChain(RunCmd || ReplCmd || ReplayCmd || TimelineCmd
+  ToolChain TC = getToolChain(RunCmd || ReplCmd || ReplayCmd || TimelineCmd ||
+                                      ConvertCmd
                                   ? ""
                                   : CL.TargetName,
                               CL.RuntimeDir, Argv0);
@@ -74,6 +75,10 @@ int dispatch(Compilation &C, CommandLine &CL, const char *Argv0) {
     return checkSubcommandOptions(C.Diags, ReplayCmd)
                ? replayCommand(C, Opts, CL.Replay)
                : finish(C);
+  if (ConvertCmd)
+    return checkSubcommandOptions(C.Diags, ConvertCmd)
+               ? convertCommand(C, Opts, CL.Convert)
+               : finish(C);
   if (LspCmd)
     return checkSubcommandOptions(C.Diags, LspCmd)
                ? lspCommand(CL.RuntimeDir, Argv0)
@@ -94,7 +99,7 @@ int main(int argc, char **argv) {
   llvm::InitLLVM X(argc, argv);
   for (cl::SubCommand *Sub :
        {&cl::SubCommand::getTopLevel(), &RunCmd, &TraceDecodeCmd, &ReplCmd,
-        &TimelineCmd, &FormatCmd, &LspCmd, &ReplayCmd})
+        &TimelineCmd, &FormatCmd, &LspCmd, &ReplayCmd, &ConvertCmd})
     cl::HideUnrelatedOptions(BscCategory, *Sub);
   Argv0ForVersion = argv[0];
   cl::SetVersionPrinter(printBscVersion);

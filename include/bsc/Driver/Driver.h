@@ -283,6 +283,18 @@ int replayCommand(Compilation &C, const FrontendOptions &FOpts,
 int timelineCommand(Compilation &C, const FrontendOptions &FOpts,
                     timeline::TimelineOptions Opts);
 
+/// `bsc convert` as written on the command line.
+struct ConvertCommandOptions {
+  std::string From, To;
+  std::vector<std::string> BehaviorFiles; ///< --behavior
+  std::string EntryName;
+};
+
+/// `bsc convert`: a recording as a binary log or back (convertRecording),
+/// with the behavior loaded for its layout. Returns the exit status.
+int convertCommand(Compilation &C, const FrontendOptions &FOpts,
+                   const ConvertCommandOptions &Opts);
+
 /// `bsc repl` as written on the command line.
 struct ReplCommandOptions {
   BackendArgs Backend;

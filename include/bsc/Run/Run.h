@@ -270,6 +270,13 @@ BinaryLogHeader logHeader(const Compilation &C, const LoadedBehavior &L,
 void logCycle(BinaryLogWriter &Log, unsigned Robot, const LoadedBehavior &L,
               const BehaviorSession &S);
 
+/// `bsc convert`: the recording or binary log `From` written to `To` in
+/// the other format (a binary log if `To` ends in `.bslog`), cycle by
+/// cycle, without running a cycle; `S` (a session of `L`) lends its
+/// objects. False after reporting.
+bool convertRecording(Compilation &C, LoadedBehavior &L, BehaviorSession &S,
+                      llvm::StringRef From, llvm::StringRef To);
+
 /// A recording's `calls` (recordCycle) into `Into`, for a session of `S`'s
 /// sizes. False with `Error` set if they are not of that form.
 bool parseRecordedCalls(const llvm::json::Value &Calls,

@@ -9,6 +9,12 @@ apart from bsc's, for flight-recorder.test:
   bslog.py cut LOG OUT BYTES      the first BYTES bytes of LOG
   bslog.py relayout LOG OUT       LOG with another layout in its header, as
                                   a target with other offsets would write
+  bslog.py same A.jsonl B.jsonl   whether two recordings hold the same
+                                  lines but for `tasks` (which only a
+                                  replay computes), where A's calls may
+                                  write more bytes than B's (the robot's
+                                  recorder writes whole words) but every
+                                  byte B's write, the same
 """
 import struct
 import sys
@@ -142,6 +148,34 @@ def damage(path, out, cycle, what):
     open(out, "wb").write(data)
 
 
+def written_bytes(call):
+    """{(block, offset): byte} of a call's `writes`."""
+    out = {}
+    for block, offset, hex_bytes in call.pop("writes", []):
+        for i, b in enumerate(bytes.fromhex(hex_bytes)):
+            out[(block, offset + i)] = b
+    return out
+
+
+def same(path_a, path_b):
+    import json
+    a, b = ([json.loads(l) for l in open(p) if l.strip()]
+            for p in (path_a, path_b))
+    if len(a) != len(b):
+        raise SystemExit("%d lines against %d" % (len(a), len(b)))
+    for n, (x, y) in enumerate(zip(a, b)):
+        x.pop("tasks", None)
+        y.pop("tasks", None)
+        for cx, cy in zip(x.get("calls", []), y.get("calls", [])):
+            wx, wy = written_bytes(cx), written_bytes(cy)
+            if any(wx.get(k) != v for k, v in wy.items()):
+                raise SystemExit("line %d: call %s writes otherwise" % (
+                    n + 1, cx["fn"]))
+        if x != y:
+            raise SystemExit("line %d differs:\n%s\n%s" % (n + 1, x, y))
+    print("the same %d lines" % len(a))
+
+
 if __name__ == "__main__":
     command = sys.argv[1]
     if command == "summary":
@@ -155,6 +189,8 @@ if __name__ == "__main__":
         at = data.index(header["layout"].encode())
         data[at] = ord("0") if data[at] != ord("0") else ord("1")
         open(sys.argv[3], "wb").write(data)
+    elif command == "same":
+        same(sys.argv[2], sys.argv[3])
     elif command == "cut":
         data = open(sys.argv[2], "rb").read()
         open(sys.argv[3], "wb").write(data[:int(sys.argv[4])])
