@@ -11,6 +11,8 @@
 # For each:
 #  - `bsc timeline` of the recording: best of 3 wall times (goal < 2 s),
 #    against the recording run itself (`bsc run --record`, best of 3);
+#  - `bsc timeline --behavior` of the same run recorded as a binary log
+#    (.bslog), which it replays: best of 3 (goal < 2 s);
 #  - the page's size per 1,000 cycles, against the recording's;
 #  - the page's first contentful paint and first full render in headless
 #    Chromium (utils/browser.py --first-paint, median of 5 loads; goal
@@ -63,6 +65,14 @@ measure() {
   echo "$name: $tasks tasks, $CYCLES cycles"
   echo "  bsc timeline: $timeline s (goal < 2 s); recording the run: $record s (ratio $(awk -v a="$timeline" -v b="$record" 'BEGIN { printf "%.2f", a / b }'))"
   echo "  page: $(per_1000 "$OUT/$name.html") KiB per 1,000 cycles; the recording: $(per_1000 "$OUT/$name.jsonl") KiB per 1,000 cycles"
+  # The same run as a binary log (docs/repl.md "The robot's log"), which
+  # the timeline replays with the behavior.
+  "$BSC" run --bind "$SOCCER_O" -I "$PAPER" -I "$OUT" --entry "$entry" \
+    --world "$OUT/world.so" --world-output /dev/null --cycles $CYCLES \
+    --record "$OUT/$name.bslog" "$file"
+  binary=$(best "$BSC" timeline --behavior "$file" --bind "$SOCCER_O" -I "$PAPER" -I "$OUT" \
+    --entry "$entry" "$OUT/$name.bslog" -o "$OUT/$name-bslog.html")
+  echo "  bsc timeline of the binary log: $binary s (goal < 2 s); the log: $(per_1000 "$OUT/$name.bslog") KiB per 1,000 cycles"
   echo "  first paint (goal < 1 s):"
   python3 ../utils/browser.py --first-paint "$OUT/$name.html" | sed 's/^/    /'
   rm -f "$OUT/$name.jsonl"
