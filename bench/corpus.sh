@@ -9,7 +9,9 @@
 # core, plus one compile) and the peak resident memory of one process
 # (GNU time's maximum: the parent or the largest worker), also for a tenth
 # of the logs, which must be the same: a replay's memory does not grow
-# with the corpus.
+# with the corpus. Then the same corpus as binary logs (.bslog), replayed
+# by one process: cycles per second against the native program's (goal:
+# a quarter of them).
 #
 #   bench/corpus.sh [BUILD_DIR] [LOGS] [CYCLES] [JOBS]
 #       default: build 200 1000 (all cores); the full size: build 1000 1000
@@ -53,6 +55,17 @@ for ((i = 0; i < (LOGS + 9) / 10; i++)); do
   cp "$OUT/corpus/log$(printf %05d "$i").jsonl" "$OUT/tenth/"
 done
 size_mb=$(du -sm "$OUT/corpus" | cut -f1)
+# The same corpus as binary logs (docs/repl.md "The robot's log"),
+# converted without running the behavior.
+mkdir -p "$OUT/binary"
+for ((r = 0; r < RUNS; r++)); do
+  "$BSC" convert --behavior "$PAPER/Behavior.bs" --bind "$SOCCER_O" -I "$PAPER" \
+    --entry Behavior::gotoBallAndKick "$OUT/run$r.jsonl" -o "$OUT/run$r.bslog"
+done
+for ((i = 0; i < LOGS; i++)); do
+  cp "$OUT/run$((i % RUNS)).bslog" "$OUT/binary/log$(printf %05d "$i").bslog"
+done
+binary_kb=$(du -sk "$OUT/binary" | cut -f1)
 
 # timed CMD...: "SECONDS MIB" of one run: wall time and maximum resident set.
 timed() {
@@ -65,6 +78,7 @@ read -r compile_s _ < <(timed "${RUN[@]}" --cycles 1)
 read -r replay_s replay_mb < <(timed "${REPLAY[@]}" --jobs "$JOBS" --logs "$OUT/corpus" "$PAPER/Behavior.bs")
 read -r one_s one_mb < <(timed "${REPLAY[@]}" --jobs 1 --logs "$OUT/corpus" "$PAPER/Behavior.bs")
 read -r tenth_s tenth_mb < <(timed "${REPLAY[@]}" --jobs 1 --logs "$OUT/tenth" "$PAPER/Behavior.bs")
+read -r binary_s binary_mb < <(timed "${REPLAY[@]}" --jobs 1 --logs "$OUT/binary" "$PAPER/Behavior.bs")
 RUN_CYCLES=$((TOTAL / JOBS))
 read -r run_s run_mb < <(timed "${RUN[@]}" --cycles "$RUN_CYCLES")
 read -r native_s _ < <("$OUT/native" 1000000)
@@ -72,13 +86,16 @@ read -r native_s _ < <("$OUT/native" 1000000)
 echo "corpus: $LOGS logs x $CYCLES cycles = $TOTAL cycles, $size_mb MiB; $JOBS jobs; compile $compile_s s"
 awk -v total="$TOTAL" -v jobs="$JOBS" -v c="$compile_s" \
     -v rs="$replay_s" -v os="$one_s" -v us="$run_s" -v ucycles="$RUN_CYCLES" -v ns="$native_s" \
-    -v rm="$replay_mb" -v om="$one_mb" -v tm="$tenth_mb" -v um="$run_mb" -v logs="$LOGS" '
+    -v rm="$replay_mb" -v om="$one_mb" -v tm="$tenth_mb" -v um="$run_mb" -v logs="$LOGS" \
+    -v bs="$binary_s" -v bm="$binary_mb" -v bk="$binary_kb" '
 function rate(cycles, s) { return cycles / (s > c ? s - c : 1e-9) }
 BEGIN {
   replay = rate(total / jobs, rs); one = rate(total, os); run = rate(ucycles, us)
   native = 1000000 / ns
   printf "bsc replay --jobs %d   %7.2f s  %9.0f cycles/s/core  %4d MiB peak (one process)\n", jobs, rs, replay, rm
   printf "bsc replay --jobs 1    %7.2f s  %9.0f cycles/s       %4d MiB peak; a tenth of the logs: %d MiB\n", os, one, om, tm
+  binary = rate(total, bs)
+  printf "binary logs, --jobs 1  %7.2f s  %9.0f cycles/s       %4d MiB peak; the logs: %d KiB (%.1fx the JSON replay, 1/%.1f of native; goal: 1/4)\n", bs, binary, bm, bk, binary / one, native / binary
   printf "bsc run --world        %7.2f s  %9.0f cycles/s       %4d MiB peak (%d cycles, one core)\n", us, run, um, ucycles
   printf "native x86-64          %7.3f s  %9.0f cycles/s       (1,000,000 cycles)\n", ns, native
   printf "replay / run: %.2fx time per cycle (goal 2x); replay / native: %.1fx\n", run / one, native / replay

@@ -143,7 +143,7 @@ bool Repl::load(std::unique_ptr<Compilation> NewC) {
   if (Recording && !FirstLoad) {
     // A recording names one behavior (its header): cycles of the reloaded
     // one would not replay as recorded.
-    Recording.reset();
+    stopRecording();
     OS << "recording stopped: it names the behavior as it was; ':record "
           "FILE' records the reloaded one\n";
   }

@@ -142,7 +142,11 @@ StepEnd Repl::step(unsigned N, bool Report, Probe *Until) {
       End = StepEnd::Broken;
       break;
     }
-    for (unsigned K = 0; K < RobotCount && Recording && !FromHistory; ++K) {
+    for (unsigned K = 0; K < RobotCount && RecordingLog && !FromHistory; ++K)
+      logCycle(*RecordingLog, K, *L, (*Robots)[K]);
+    for (unsigned K = 0; K < RobotCount && Recording && !RecordingLog &&
+                         !FromHistory;
+         ++K) {
       llvm::json::Value Rec = recordCycle(*Values, *L, (*Robots)[K]);
       if (RobotCount > 1) // One file with every robot, as `bsc run --record`.
         (*Rec.getAsObject())["robot"] = int64_t(K);
@@ -232,22 +236,39 @@ void Repl::cmdRecord(llvm::StringRef Args, llvm::SMLoc Loc) {
         << "record" << "a file name or 'off'";
     return;
   }
-  Recording.reset();
+  stopRecording();
   if (Args == "off") {
     OS << "recording stopped\n";
     return;
   }
+  // A new file starts with the header that names the behavior; cycles
+  // appended to an old one follow its header. A binary log is written
+  // whole (its cycles are changes against those before).
+  bool Binary = isBinaryLogPath(Args);
+  uint64_t Size = 0;
+  bool New = llvm::sys::fs::file_size(Args, Size) || Size == 0;
+  if (Binary && !New) {
+    C->Diags.report(Loc, diag::err_repl_log_exists) << Args;
+    return;
+  }
+  for (const NativeClass *Class : {L->InputClass, L->OutputClass})
+    if (Binary && !canLogAsBytes(Class)) {
+      C->Diags.report(Loc, diag::err_log_not_bytes)
+          << Args << Class->QualifiedName;
+      return;
+    }
   std::error_code EC;
-  auto F = std::make_unique<llvm::raw_fd_ostream>(Args, EC,
-                                                  llvm::sys::fs::OF_Append);
+  auto F = std::make_unique<llvm::raw_fd_ostream>(
+      Args, EC, Binary ? llvm::sys::fs::OF_None : llvm::sys::fs::OF_Append);
   if (EC) {
     C->Diags.report(Loc, diag::err_cannot_write_output) << Args << EC.message();
     return;
   }
-  // A new file starts with the header that names the behavior; cycles
-  // appended to an old one follow its header.
-  uint64_t Size = 0;
-  if (llvm::sys::fs::file_size(Args, Size) || Size == 0) {
+  if (Binary) {
+    RecordingLog = std::make_unique<BinaryLogWriter>(
+        *F, logHeader(*C, *L, (*Robots)[0], Robots->size()),
+        /*Compress=*/true);
+  } else if (New) {
     debug::printJSON(*F, recordHeader(*L));
     *F << "\n";
   }

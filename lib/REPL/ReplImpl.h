@@ -242,6 +242,14 @@ private:
   unsigned NextBreakpoint = 1;
   unsigned LineNo = 0;
   std::unique_ptr<llvm::raw_fd_ostream> Recording;
+  /// `:record FILE.bslog`: the binary log written into Recording (reset
+  /// before it, by stopRecording).
+  std::unique_ptr<BinaryLogWriter> RecordingLog;
+  /// Ends `:record`: the last block of a binary log, then the file.
+  void stopRecording() {
+    RecordingLog.reset();
+    Recording.reset();
+  }
   /// The entry's index in the task table, if the entry is a task (its
   /// failure stops `:run`).
   std::optional<unsigned> EntryIndex;
