@@ -52,7 +52,6 @@ static void logTrace() {}
 
 #ifdef BENCH_FLIGHT
 #include <bscript/flight.h>
-extern "C" const bs_flight_table bs_bench_flight;
 alignas(8) static unsigned char FlightMemory[1 << 17];
 static bs_flight_recorder Recorder;
 static unsigned long long FlightBytes, FlightCycles;

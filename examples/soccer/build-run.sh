@@ -55,9 +55,14 @@ else
   # The paper's files, unchanged.
   bsc_args=("${bscflags[@]}" --bind "$out/SoccerBindings.o" -I "$paper"
             --behavior-name soccer "$paper/$module.bs")
-  "$bsc" -O2 -c "${bsc_args[@]}" -o "$out/behavior.o"
-  "$bsc" --emit-header "${bsc_args[@]}" -o "$out/behavior.h"
-  "$cxx" "${cxxflags[@]}" -I "$out" -DSOCCER_MODULE="$module" \
+  # $SOCCER_FLIGHT_LOG: the robot's flight log goes there (host.cpp).
+  flight=() hostflags=()
+  if [ -n "${SOCCER_FLIGHT_LOG:-}" ]; then
+    flight=(--flight-recorder) hostflags=(-DSOCCER_FLIGHT)
+  fi
+  "$bsc" -O2 -c "${flight[@]}" "${bsc_args[@]}" -o "$out/behavior.o"
+  "$bsc" --emit-header "${flight[@]}" "${bsc_args[@]}" -o "$out/behavior.h"
+  "$cxx" "${cxxflags[@]}" "${hostflags[@]}" -I "$out" -DSOCCER_MODULE="$module" \
     -c "$here/host.cpp" -o "$out/host.o"
   "$cxx" "${cflags[@]}" "$out/host.o" "$out/SoccerWorld.o" \
     "$out/behavior.o" "$out/SoccerBindings.o" "$rt" -o "$out/soccer"

@@ -15,11 +15,22 @@
 // build it; stub/behavior.h stands in for the compiled behavior to test the
 // world and this file without the compiler.
 //
+// Built with SOCCER_FLIGHT (build-run.sh does with $SOCCER_FLIGHT_LOG, and
+// compiles the behavior with --flight-recorder), it writes the robot's
+// flight log to $SOCCER_FLIGHT_LOG: every cycle the entry runs, what the
+// behavior observed, for `bsc run --replay` and the REPL at the desk
+// (docs/repl.md, "The robot's log").
+//
 //===----------------------------------------------------------------------===//
 #include "SoccerSim.h"
 #include "behavior.h"
 
 #include <cstdio>
+#include <cstdlib>
+
+#ifdef SOCCER_FLIGHT
+#include <bscript/flight.h>
+#endif
 
 #ifndef SOCCER_MODULE
 #define SOCCER_MODULE Behavior
@@ -40,6 +51,48 @@ constexpr int ReportEvery = 10; ///< cycles between "walking" lines
 
 // The state storage the robot owns: size and alignment from the header.
 bs_soccer_state State;
+
+#ifdef SOCCER_FLIGHT
+// The flight recorder's memory and the log file its full blocks go to (a
+// robot would queue them for a writer thread; fwrite will do here).
+alignas(8) unsigned char FlightMemory[1 << 16];
+bs_flight_recorder Flight;
+FILE *FlightLog;
+
+void writeBlock(void *, const void *Bytes, uint32_t Size) {
+  std::fwrite(Bytes, 1, Size, FlightLog);
+}
+
+bool startFlightLog() {
+  const char *Path = std::getenv("SOCCER_FLIGHT_LOG");
+  FlightLog = Path ? std::fopen(Path, "wb") : nullptr;
+  if (!FlightLog) {
+    std::printf("cannot write the flight log '%s'\n", Path ? Path : "");
+    return false;
+  }
+  bs_flight_config Config = {
+      &bs_soccer_flight, &bs_soccer_info,
+      SOCCER_XSTR(SOCCER_MODULE) "::gotoBallAndKick", FlightMemory,
+      sizeof FlightMemory, 16384, 3, 0, writeBlock, nullptr};
+  if (int Code = bs_flight_start(&Flight, &Config)) {
+    std::printf("bs_flight_start failed: %d\n", Code);
+    return false;
+  }
+  return true;
+}
+
+void flightBegin() { bs_flight_begin(&Flight, &State); }
+void flightEnd() { bs_flight_end(&Flight, &State); }
+void endFlightLog() {
+  bs_flight_flush(&Flight);
+  std::fclose(FlightLog);
+}
+#else
+bool startFlightLog() { return true; }
+void flightBegin() {}
+void flightEnd() {}
+void endFlightLog() {}
+#endif
 
 const char *name(MotionType M) {
   switch (M) {
@@ -68,6 +121,7 @@ const char *headName(const BehaviorInput &In, const BehaviorOutput &Out) {
 /// Ends the run with `Status`: the behavior's class values (locals of
 /// tasks still running) are destroyed before the state goes away.
 int finish(int Status) {
+  endFlightLog();
   bs_soccer_destroy(&State);
   return Status;
 }
@@ -82,6 +136,8 @@ int main() {
     std::printf("bs_soccer_init failed\n");
     return 2;
   }
+  if (!startFlightLog())
+    return 2;
 
   // The ball 1000 mm away (a 3-4-5 triangle: every walking step is exactly
   // (8, 6) mm), the opponent goal 4500 mm straight ahead.
@@ -107,7 +163,11 @@ int main() {
     int D = W.ballDistance();
     int32_t TaskState = BS_TASK_DONE;
     if (!Done) {
+      // The log holds the cycles the entry runs: once it is done, the
+      // robot stops calling it (and the log ends).
+      flightBegin();
       SOCCER_CALL(&State);
+      flightEnd();
       TaskState = SOCCER_STATE_OF(&State);
 
       if (First || Out.motion != LastRequest) {

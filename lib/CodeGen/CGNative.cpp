@@ -218,10 +218,11 @@ void ModuleEmitter::emitFlightTable() {
       llvm::ConstantInt::get(I32, Entries.size()),
       Private(llvm::ConstantArray::get(EntriesTy, Entries),
               "bs.flight.entries")};
+  Layout.FlightTableSymbol = "bs_" + Opts.BehaviorName + "_flight";
   new llvm::GlobalVariable(M, TableTy, true,
                            llvm::GlobalValue::ExternalLinkage,
                            llvm::ConstantStruct::get(TableTy, Fields),
-                           "bs_" + Opts.BehaviorName + "_flight");
+                           Layout.FlightTableSymbol);
 }
 
 llvm::FunctionCallee

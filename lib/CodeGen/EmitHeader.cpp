@@ -76,6 +76,7 @@ private:
        << " * those of this target: regenerate the header for another one. */\n"
        << "#ifndef " << Guard << "\n#define " << Guard << "\n\n"
        << "#include \"bscript/bscript.h\"\n"
+       << (L.FlightTableSymbol.empty() ? "" : "#include \"bscript/flight.h\"\n")
        << "#ifndef __cplusplus\n#include <stdbool.h>\n#endif\n\n"
        << "#define " << M << "_STATE_SIZE " << L.StateSize << "u\n"
        << "#define " << M << "_STATE_ALIGN " << L.StateAlign << "u\n"
@@ -97,6 +98,10 @@ private:
        << M << "_STATIC_ASSERT(sizeof(" << P << "_state) == " << M
        << "_STATE_SIZE, \"state size\");\n\n"
        << "extern const bs_behavior_info " << L.InfoSymbol << ";\n\n";
+    if (!L.FlightTableSymbol.empty())
+      OS << "/** `--flight-recorder`: what bs_flight_start records with "
+            "(bscript/flight.h). */\n"
+         << "extern const bs_flight_table " << L.FlightTableSymbol << ";\n\n";
   }
 
   static const Type *resultOf(const CallableDecl &D) {

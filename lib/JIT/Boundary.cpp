@@ -156,6 +156,8 @@ void Boundary::startRecording(CycleRecord &R) {
   R.clear();
   if (Blocks[1].Size)
     R.EntryInput.assign(Blocks[1].Ptr, Blocks[1].Ptr + Blocks[1].Size);
+  if (Blocks[2].Size)
+    R.EntryOutput.assign(Blocks[2].Ptr, Blocks[2].Ptr + Blocks[2].Size);
   M = Mode::Record;
   Recording = &R;
   CallIndex = 0;

@@ -544,10 +544,13 @@ BehaviorSession::Outcome
 BehaviorSession::replayCycle(unsigned LimitMs, const CycleRecord &From,
                              bool PrintAgain) {
   bs_begin_cycle(State, Input, Output);
-  std::vector<unsigned char> EntryInput;
+  std::vector<unsigned char> EntryInput, EntryOutput;
   if (KeepCalls && InputSpec.Size)
     EntryInput.assign(static_cast<unsigned char *>(Input),
                       static_cast<unsigned char *>(Input) + InputSpec.Size);
+  if (KeepCalls && OutputSpec.Size)
+    EntryOutput.assign(static_cast<unsigned char *>(Output),
+                       static_cast<unsigned char *>(Output) + OutputSpec.Size);
   Boundary::Current = Calls.get();
   Calls->setReplayCallsStandard(PrintAgain);
   Calls->startReplay(From);
@@ -556,7 +559,8 @@ BehaviorSession::replayCycle(unsigned LimitMs, const CycleRecord &From,
   Boundary::Current = nullptr;
   if (KeepCalls) { // A recording of a replay keeps the replayed calls.
     LastCalls = From;
-    LastCalls.EntryInput = EntryInput;
+    LastCalls.EntryInput = std::move(EntryInput);
+    LastCalls.EntryOutput = std::move(EntryOutput);
   }
   if (O.K == Outcome::Completed && !Why.empty()) {
     O.K = Outcome::Diverged;

@@ -3,14 +3,16 @@
 // The format (BinaryLog.h, docs/repl.md "The robot's log"). A cycle record:
 //   'C', robot, cycle, flags (one byte),
 //   input:  whole (input size bytes) in a key cycle, else changes,
+//   entry output: the output the entry found, likewise,
 //   calls:  their number, their bytes' length, their bytes,
 //   output: whole in a key cycle, else changes,
 //   trace:  (with CycleHasTrace) a length and the record.
 // Changes are runs: their number, then per run the gap after the end of
 // the run before (the first: after 0), its length and its bytes. The input
 // changes are against the input as the robot's previous cycle left it
-// (calls may write it), the output changes against the previous cycle's
-// output. A robot's first cycle is a key cycle.
+// (calls may write it), the entry output's against the output the previous
+// cycle left, the output's against the entry output. A robot's first cycle
+// is a key cycle.
 //
 //===----------------------------------------------------------------------===//
 #include "bsc/Run/BinaryLog.h"
@@ -274,6 +276,15 @@ bool BinaryLogReader::next(BinaryLogCycle &C) {
   }
   // The entry's input, before the calls write into it.
   std::vector<unsigned char> EntryInput = Rb.Input;
+  if (Flags & CycleKey) {
+    llvm::ArrayRef<unsigned char> Out = R.bytes(Header.OutputSize);
+    if (R.Bad)
+      return Damaged("entry output");
+    std::memcpy(Rb.Output.data(), Out.data(), Out.size());
+  } else if (!R.runs(Rb.Output)) {
+    return Damaged("entry output");
+  }
+  std::vector<unsigned char> EntryOutput = Rb.Output;
   uint64_t NumCalls = R.uleb();
   llvm::ArrayRef<unsigned char> CallBytes = R.bytes(R.uleb());
   if (R.Bad)
@@ -316,10 +327,12 @@ bool BinaryLogReader::next(BinaryLogCycle &C) {
   LastCycle = uint32_t(Cycle);
   LastRobot = unsigned(RobotIndex);
   Rb.EntryInput = std::move(EntryInput);
+  Rb.EntryOutput = std::move(EntryOutput);
   C.Robot = unsigned(RobotIndex);
   C.Cycle = uint32_t(Cycle);
   C.Offset = RecordAt;
   C.Input = Rb.EntryInput;
+  C.EntryOutput = Rb.EntryOutput;
   C.Output = Rb.Output;
   return true;
 }
@@ -401,6 +414,7 @@ BinaryLogWriter::BinaryLogWriter(llvm::raw_ostream &OS, BinaryLogHeader H,
 
 void BinaryLogWriter::writeCycle(unsigned RobotIndex, uint32_t Cycle,
                                  llvm::ArrayRef<unsigned char> EntryInput,
+                                 llvm::ArrayRef<unsigned char> EntryOutput,
                                  const CycleRecord &Calls,
                                  llvm::ArrayRef<unsigned char> Output,
                                  llvm::ArrayRef<unsigned char> Trace) {
@@ -444,17 +458,20 @@ void BinaryLogWriter::writeCycle(unsigned RobotIndex, uint32_t Cycle,
   putULEB(Block, Cycle);
   Block.push_back(uint8_t((Key ? CycleKey : 0) |
                           (Trace.empty() ? 0 : CycleHasTrace)));
-  if (Key)
+  if (Key) {
     putBytes(Block, EntryInput);
-  else
+    putBytes(Block, EntryOutput);
+  } else {
     putRuns(Block, R.Input, EntryInput);
+    putRuns(Block, R.Output, EntryOutput);
+  }
   putULEB(Block, NumCalls);
   putULEB(Block, Encoded.size());
   putBytes(Block, Encoded);
   if (Key)
     putBytes(Block, Output);
   else
-    putRuns(Block, R.Output, Output);
+    putRuns(Block, EntryOutput, Output);
   if (!Trace.empty()) {
     putULEB(Block, Trace.size());
     putBytes(Block, Trace);

@@ -34,7 +34,7 @@ private:
   bool writeText(const NativeClass &Class, void *Obj, llvm::StringRef Text,
                  llvm::SMLoc Loc, const char *What);
   bool toBinary(ReplayReader &R, llvm::raw_ostream &OS);
-  bool toJSON(ReplayReader &R, llvm::raw_ostream &OS);
+  bool toJSON(ReplayReader &R, llvm::raw_ostream &OS, llvm::StringRef From);
 
   Compilation &C;
   LoadedBehavior &L;
@@ -76,6 +76,15 @@ bool Converter::toBinary(ReplayReader &R, llvm::raw_ostream &OS) {
                                          P ? N : 0);
   };
   std::vector<uint32_t> Cycles(Robots, 0);
+  // Each robot's objects as its last line left them (a line may leave a
+  // member out), in the session's objects while a line is written.
+  auto Snapshot = [&](void *P, size_t N) {
+    auto B = Bytes(P, N);
+    return std::vector<unsigned char>(B.begin(), B.end());
+  };
+  std::vector<std::vector<unsigned char>> Inputs(
+      Robots, Snapshot(S.getInput(), L.Input.Size)),
+      Outputs(Robots, Snapshot(S.getOutput(), L.Output.Size));
   ReplayLine Line;
   while (R.next(Line)) {
     unsigned Robot = Line.Robot.value_or(0);
@@ -85,7 +94,12 @@ bool Converter::toBinary(ReplayReader &R, llvm::raw_ostream &OS) {
                  "of " + std::to_string(Robots);
       return false;
     }
-    // A line without `output` keeps the one before.
+    if (!Inputs[Robot].empty())
+      std::memcpy(S.getInput(), Inputs[Robot].data(), Inputs[Robot].size());
+    if (!Outputs[Robot].empty())
+      std::memcpy(S.getOutput(), Outputs[Robot].data(), Outputs[Robot].size());
+    // A JSON line's entry found the output the line before left.
+    std::vector<unsigned char> EntryOutput = Outputs[Robot];
     if ((!Line.Input.empty() &&
          !writeText(*L.InputClass, S.getInput(), Line.Input, Line.Loc,
                     "input")) ||
@@ -104,14 +118,17 @@ bool Converter::toBinary(ReplayReader &R, llvm::raw_ostream &OS) {
         return false;
       }
     }
-    Log.writeCycle(Robot, ++Cycles[Robot], Bytes(S.getInput(), L.Input.Size),
-                   Calls, Bytes(S.getOutput(), L.Output.Size));
+    Inputs[Robot] = Snapshot(S.getInput(), L.Input.Size);
+    Outputs[Robot] = Snapshot(S.getOutput(), L.Output.Size);
+    Log.writeCycle(Robot, ++Cycles[Robot], Inputs[Robot], EntryOutput, Calls,
+                   Outputs[Robot]);
   }
   Log.finish();
   return !R.failed();
 }
 
-bool Converter::toJSON(ReplayReader &R, llvm::raw_ostream &OS) {
+bool Converter::toJSON(ReplayReader &R, llvm::raw_ostream &OS,
+                       llvm::StringRef From) {
   const RecordingHeader &H = R.getHeader();
   debug::printJSON(
       OS, llvm::json::Object{
@@ -124,9 +141,22 @@ bool Converter::toJSON(ReplayReader &R, llvm::raw_ostream &OS) {
   bool Team = R.countRobots() > 1;
   // The bytes, aligned for the classes' getters.
   std::vector<uint64_t> In((L.Input.Size + 7) / 8), Out((L.Output.Size + 7) / 8);
+  // What each robot's next entry finds in JSON lines: the output the line
+  // before left (the first: the session's new object).
+  const auto *Fresh = static_cast<const unsigned char *>(S.getOutput());
+  std::vector<std::vector<unsigned char>> Left(
+      R.countRobots(), std::vector<unsigned char>(
+                           Fresh, Fresh + (Fresh ? L.Output.Size : 0)));
   ReplayLine Line;
   while (R.next(Line)) {
     const BinaryLogCycle &Cycle = *Line.Logged;
+    std::vector<unsigned char> &Before = Left[Cycle.Robot];
+    if (!llvm::equal(Cycle.EntryOutput, Before)) {
+      C.Diags.report(llvm::SMLoc(), diag::err_convert_entry_output)
+          << From << Cycle.Cycle;
+      return false;
+    }
+    Before.assign(Cycle.Output.begin(), Cycle.Output.end());
     llvm::json::Object Rec{{"cycle", int64_t(Cycle.Cycle)}};
     if (Team)
       Rec["robot"] = int64_t(Cycle.Robot);
@@ -164,7 +194,7 @@ bool Converter::run(llvm::StringRef From, llvm::StringRef To) {
       openOutput(C.Diags, To, /*Text=*/!Binary);
   if (!Out)
     return false;
-  if (!(Binary ? toBinary(R, Out->os()) : toJSON(R, Out->os())))
+  if (!(Binary ? toBinary(R, Out->os()) : toJSON(R, Out->os(), From)))
     return false;
   Out->keep();
   return true;

@@ -119,8 +119,12 @@ void bsc::logCycle(BinaryLogWriter &Log, unsigned Robot,
       Calls.EntryInput.size() == Input.size()
           ? llvm::ArrayRef<unsigned char>(Calls.EntryInput)
           : Input;
-  Log.writeCycle(Robot, S.getCycle(), Entry, Calls,
-                 Bytes(S.getOutput(), L.Output.Size));
+  llvm::ArrayRef<unsigned char> Output = Bytes(S.getOutput(), L.Output.Size);
+  llvm::ArrayRef<unsigned char> EntryOutput =
+      Calls.EntryOutput.size() == Output.size()
+          ? llvm::ArrayRef<unsigned char>(Calls.EntryOutput)
+          : Output;
+  Log.writeCycle(Robot, S.getCycle(), Entry, EntryOutput, Calls, Output);
 }
 
 bool bsc::parseRecordedCalls(const llvm::json::Value &Value,

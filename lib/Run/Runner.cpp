@@ -344,9 +344,14 @@ bool CycleRunner::replay() {
 
 bool CycleRunner::writeInput(BehaviorSession &S, const ReplayLine &Line) {
   if (Line.Logged) { // Bytes laid out as here (ReplayReader::openLog).
-    llvm::ArrayRef<unsigned char> In = Line.Logged->Input;
-    if (!In.empty())
-      std::memcpy(S.getInput(), In.data(), In.size());
+    // The output too: the robot's software may have changed it since the
+    // cycle before (a robot that builds its requests afresh each frame).
+    const BinaryLogCycle &Logged = *Line.Logged;
+    if (!Logged.Input.empty())
+      std::memcpy(S.getInput(), Logged.Input.data(), Logged.Input.size());
+    if (!Logged.EntryOutput.empty())
+      std::memcpy(S.getOutput(), Logged.EntryOutput.data(),
+                  Logged.EntryOutput.size());
     return true;
   }
   // A recording's text is written as it is read; anything else (and any

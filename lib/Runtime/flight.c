@@ -329,7 +329,8 @@ void bs_flight_begin(bs_flight_recorder *r, const void *state) {
   r->recording = 0;
   /* The record's start and input (and what was lost before it) go into
    * one block: the current one, or the next if it is too full. */
-  uint32_t need = 2 * RECORD_SLACK + runs_bound(t->input_size);
+  uint32_t need = 2 * RECORD_SLACK + runs_bound(t->input_size) +
+                  runs_bound(t->output_size);
   if (room(r) < need && r->used != NO_BLOCK && r->used)
     hand_over(r);
   if (!open_block(r) || room(r) < need) {
@@ -353,14 +354,23 @@ void bs_flight_begin(bs_flight_recorder *r, const void *state) {
   p = put_uleb(p, 0);
   p = put_uleb(p, r->cycle);
   *p++ = (unsigned char)((key ? 1 : 0) | (trace ? 2 : 0));
+  /* The input, and the output as the robot's software left it since the
+   * cycle before (a robot may build its requests afresh each frame). */
   if (key) {
     p = put_bytes(p, r->input, t->input_size);
     copy_bytes(r->input_seen, r->input, t->input_size);
+    p = put_bytes(p, r->output, t->output_size);
+    copy_bytes(r->output_seen, r->output, t->output_size);
   } else {
     unsigned char *count = p;
     uint32_t prev = 0, runs = 0;
     p = put_runs(reserve_uleb(p), r->input, r->input_seen, t->input_size, 0,
                  &prev, &runs);
+    patch_uleb(count, runs);
+    count = p;
+    prev = runs = 0;
+    p = put_runs(reserve_uleb(p), r->output, r->output_seen, t->output_size,
+                 0, &prev, &runs);
     patch_uleb(count, runs);
   }
   /* The number of calls and their bytes' length, filled in at the end. */

@@ -172,6 +172,9 @@ struct BehaviorLayout {
   /// The exported entries (CodeGenOptions::Exports), in that order.
   std::vector<Entry> Entries;
   std::string InfoSymbol; ///< `bs_<Name>_info`.
+  /// With CodeGenOptions::FlightRecorder: `bs_<Name>_flight`, the table of
+  /// bscript/flight.h; empty otherwise.
+  std::string FlightTableSymbol;
   /// With CodeGenOptions::Probes: the sites, numbered from 1 (0 in a probe
   /// global means "none").
   std::vector<DebugSite> Sites;

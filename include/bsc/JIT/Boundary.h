@@ -70,11 +70,15 @@ struct CycleRecord {
   /// The input when the entry was called (after the world's begin hook):
   /// what the cycle's first statement saw.
   std::vector<unsigned char> EntryInput;
+  /// The output when the entry was called: what the cycle before left, as
+  /// the robot's software (or the world's begin hook) left it.
+  std::vector<unsigned char> EntryOutput;
   /// The encoded calls (Boundary.cpp) and their number.
   std::vector<unsigned char> Calls;
   unsigned NumCalls = 0;
   void clear() {
     EntryInput.clear();
+    EntryOutput.clear();
     Calls.clear();
     NumCalls = 0;
   }

@@ -74,8 +74,10 @@ struct BinaryLogCycle {
   uint32_t Cycle = 0;
   /// The byte of the file where its record starts (for messages).
   uint64_t Offset = 0;
-  /// The input the entry saw and the output the cycle left, whole.
-  llvm::ArrayRef<unsigned char> Input, Output;
+  /// The input and the output the entry found (the robot's software may
+  /// have changed the output since the cycle before left it), and the
+  /// output the cycle left, whole.
+  llvm::ArrayRef<unsigned char> Input, EntryOutput, Output;
   /// The calls, encoded as CycleRecord::Calls with this process's site
   /// ids (internBoundaryName) and the reader's view.
   std::vector<unsigned char> Calls;
@@ -125,8 +127,8 @@ private:
   std::vector<uint32_t> SiteIds; ///< Log site -> internBoundaryName.
   size_t LogView[3] = {0, 0, 0}, View[3] = {0, 0, 0};
   struct Robot {
-    /// As the cycle before left them, and the input its entry saw.
-    std::vector<unsigned char> Input, Output, EntryInput;
+    /// As the cycle before left them, and what its entry found.
+    std::vector<unsigned char> Input, Output, EntryInput, EntryOutput;
     uint32_t Cycle = 0;
     bool Started = false;
   };
@@ -142,11 +144,12 @@ class BinaryLogWriter {
 public:
   BinaryLogWriter(llvm::raw_ostream &OS, BinaryLogHeader H, bool Compress);
   ~BinaryLogWriter() { finish(); }
-  /// One cycle of robot `Robot`: the input its entry saw, its calls (as
-  /// recorded, in this process's site ids, over the header's view), the
-  /// output the cycle left, and its trace record, if any.
+  /// One cycle of robot `Robot`: the input and output its entry found, its
+  /// calls (as recorded, in this process's site ids, over the header's
+  /// view), the output the cycle left, and its trace record, if any.
   void writeCycle(unsigned Robot, uint32_t Cycle,
                   llvm::ArrayRef<unsigned char> EntryInput,
+                  llvm::ArrayRef<unsigned char> EntryOutput,
                   const CycleRecord &Calls,
                   llvm::ArrayRef<unsigned char> Output,
                   llvm::ArrayRef<unsigned char> Trace = {});

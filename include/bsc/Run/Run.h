@@ -70,9 +70,11 @@ struct LoadedBehavior {
   std::string Hash;
 };
 
-/// 16 hex digits that change with the behavior's sources, its binding
-/// modules (their descriptors) and its entry: a recording whose hash is
-/// the loaded behavior's replays exactly (docs/repl.md "Recordings").
+/// 16 hex digits that change with the behavior's sources, what its binding
+/// modules register (the same on every target: a robot's log names the
+/// workstation's build of its behavior) and its entry: a recording whose
+/// hash is the loaded behavior's replays exactly (docs/repl.md
+/// "Recordings").
 std::string computeBehaviorHash(const Compilation &C,
                                 const CallableDecl &Entry);
 

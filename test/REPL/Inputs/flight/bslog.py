@@ -93,10 +93,11 @@ def records(data, header):
             elif tag == "C":
                 robot, cycle, flags = r.uleb(), r.uleb(), r.bytes(1)[0]
                 key = flags & 1
-                if key:
-                    r.bytes(header["input"])
-                else:
-                    r.runs()
+                for size in (header["input"], header["output"]):
+                    if key:  # The input, then the output the entry found.
+                        r.bytes(size)
+                    else:
+                        r.runs()
                 calls = r.uleb()
                 r.bytes(r.uleb())
                 output_at = block_at + 12 + r.at

@@ -20,7 +20,7 @@ extern "C" void bs_world_begin(void *User, void *Input, void *Output,
 extern "C" void bs_world_end(void *User, const void *Input, void *Output,
                              uint32_t Cycle);
 extern "C" void bs_world_exit(void *User);
-extern "C" const bs_flight_table bs_game_flight;
+
 
 static void printFloat(float V) {
   char Buf[32];
