@@ -5,7 +5,7 @@
 #   ./dev.sh test   install what is missing, build, run the whole test suite
 #   ./dev.sh sanitize  the same suite with bsc built with ASan and UBSan
 #                   (in build-sanitize/)
-#   ./dev.sh fuzz frontend|binding|jsonl|timeline [SECONDS]
+#   ./dev.sh fuzz frontend|binding|jsonl|timeline|binarylog [SECONDS]
 #                   a libFuzzer campaign on one target (fuzz/README.md)
 # Both work on a fresh Debian 12 machine as root (apt), and are what CI runs.
 set -euo pipefail
@@ -82,8 +82,8 @@ sanitize() {
 fuzz() {
   local target=${1:-} seconds=${2:-3600}
   [[ $target == frontend || $target == binding || $target == jsonl ||
-     $target == timeline ]] ||
-    { echo "usage: $0 fuzz frontend|binding|jsonl|timeline [SECONDS]" >&2; exit 2; }
+     $target == timeline || $target == binarylog ]] ||
+    { echo "usage: $0 fuzz frontend|binding|jsonl|timeline|binarylog [SECONDS]" >&2; exit 2; }
   PACKAGES+=(libclang-rt-19-dev)
   install_missing
   BUILD=${BSC_BUILD_DIR:-$ROOT/build-fuzz}
@@ -99,6 +99,9 @@ fuzz() {
   elif [[ $target == timeline ]]; then
     cmake --build "$BUILD" --target bsc-fuzz-timeline
     seeds=("$ROOT/fuzz/corpus/timeline")
+  elif [[ $target == binarylog ]]; then
+    cmake --build "$BUILD" --target bsc-fuzz-binarylog
+    seeds=("$ROOT/fuzz/corpus/binarylog")
   else
     cmake --build "$BUILD" --target bsc-fuzz-frontend
   fi

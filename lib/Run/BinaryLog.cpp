@@ -25,6 +25,9 @@
 using namespace bsc;
 using namespace bsc::binlog;
 
+/// The largest raw block a reader takes (BinaryLogReader::nextBlock).
+static constexpr uint32_t MaxBlockBytes = 64u << 20;
+
 bool bsc::isBinaryLog(llvm::StringRef Bytes) {
   return Bytes.size() >= sizeof Magic &&
          std::memcmp(Bytes.data(), Magic, sizeof Magic) == 0;
@@ -141,6 +144,11 @@ bool BinaryLogReader::nextBlock() {
     End = P + Data.size();
     return true;
   }
+  // No writer makes blocks this large (bsc: 64 KiB; a robot: 2 MiB): a
+  // damaged size must not decide how much memory the reader takes.
+  if (RawSize > MaxBlockBytes)
+    return fail(At, "a block of " + std::to_string(RawSize) +
+                        " bytes, larger than any writer makes");
   if (!llvm::compression::zstd::isAvailable())
     return fail(At, "the block is compressed with zstd, which this bsc "
                     "was built without");
@@ -200,7 +208,9 @@ bool BinaryLogReader::readHeaderRecord() {
     return fail(At(), "a header record for " +
                           std::to_string(Header.Robots) + " robots");
   if (Header.InputSize > (1u << 24) || Header.OutputSize > (1u << 24) ||
-      Header.StateSize > (1u << 28))
+      Header.StateSize > (1u << 28) ||
+      uint64_t(Header.Robots) * (Header.InputSize + Header.OutputSize) >
+          (uint64_t(1) << 26))
     return fail(At(), "a header record with implausible sizes");
   LogView[0] = View[0] = Header.StateSize;
   LogView[1] = View[1] = Header.InputSize;
