@@ -24,6 +24,10 @@ poke have effects):
   jit-travel  bsc repl: :run N, :goto 1, :goto N, :back 1 (every re-run
               cycle is checked against the live one; no "parted from its
               record" may appear)
+  i586-flight bsc -target i586 -O2 --flight-recorder --cycles N P.bs -o prog;
+              BS_FLIGHT_LOG=L prog; bsc run -O0 --replay L P.bs (the
+              robot's flight log replayed exactly: docs/repl.md "The
+              robot's log")
 
 each with `--bind DIR/GenWorld.<host|i586>.o` (the world module `Gen` of
 utils/GenWorld.cpp, which test/CMakeLists.txt builds into
@@ -59,7 +63,7 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 CONFIGS = ["jit-O0", "jit-O2", "host-O0", "host-O2", "i586-O0", "i586-O2"]
-BOUNDARY_CONFIGS = ["jit-record", "jit-replay"]
+BOUNDARY_CONFIGS = ["jit-record", "jit-replay", "i586-flight"]
 
 
 def load_generator():
@@ -73,11 +77,13 @@ def load_generator():
 GEN = load_generator()
 
 
-def run(cmd, timeout):
-    """(status, stdout, stderr); status is 'timeout' on a timeout."""
+def run(cmd, timeout, env=None):
+    """(status, stdout, stderr); status is 'timeout' on a timeout. `env`:
+    variables added to the environment."""
     try:
         p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                           timeout=timeout)
+                           timeout=timeout,
+                           env=dict(os.environ, **env) if env else None)
         return p.returncode, p.stdout, p.stderr
     except subprocess.TimeoutExpired as e:
         return "timeout", e.stdout or b"", e.stderr or b""
@@ -143,6 +149,19 @@ def check_seed(seed, args, workdir):
                 continue
             st, out, err = run([args.bsc, "run", "-O2", "--replay", record] + budget_option(seed)
                                + bind + [src], args.timeout)
+        elif cfg == "i586-flight":
+            exe, log = os.path.join(d, cfg), os.path.join(d, "flight.bslog")
+            st, out, err = run([args.bsc, "-target", "i586", "-O2", "--flight-recorder"] + cyc
+                               + bind + [src, "-o", exe], args.timeout)
+            if st == 0:
+                st, out, err = run([sys.executable, os.path.join(HERE, "run-i586"), exe],
+                                   args.timeout, {"BS_FLIGHT_LOG": log})
+            if st == 0 and os.path.exists(log):
+                host = ["--bind", os.path.join(args.bind_objs, "GenWorld.host.o")]
+                st, out, err = run([args.bsc, "run", "-O0", "--replay", log]
+                                   + budget_option(seed) + host + [src], args.timeout)
+            elif st == 0:
+                problems.append(f"{cfg}: the program wrote no flight log")
         elif kind == "jit":
             # The optimised JIT also counts coverage, which must change
             # nothing the program prints.

@@ -145,7 +145,8 @@ uint32_t bs_flight_memory_size(const bs_flight_table *table,
 int bs_flight_start(bs_flight_recorder *recorder,
                     const bs_flight_config *config);
 
-/** Starts the cycle's record: after bs_begin_cycle, before the entry. */
+/** Starts the cycle's record: after bs_begin_cycle, before the entry (a
+ *  NULL recorder records nothing). */
 void bs_flight_begin(bs_flight_recorder *recorder, const void *state);
 
 /** Ends the cycle's record: after the entry calls. */
@@ -166,6 +167,15 @@ void bs_flight_release(bs_flight_recorder *recorder);
 static inline uint32_t bs_flight_lost(const bs_flight_recorder *recorder) {
   return recorder->lost_total;
 }
+
+/** Programs bsc links with --flight-recorder call these around their
+ *  cycles: the log goes to the file $BS_FLIGHT_LOG names (none without it:
+ *  then NULL, which bs_flight_begin and bs_flight_end take as "record
+ *  nothing"). They use stdio, like the io module. */
+bs_flight_recorder *bs_flight_program_start(const bs_flight_table *table,
+                                            const bs_behavior_info *info,
+                                            const char *entry);
+void bs_flight_program_end(bs_flight_recorder *recorder);
 
 /** What generated code calls around each call of registered C++. */
 void bs_flight_enter(const bs_flight_site *site);

@@ -388,6 +388,22 @@ void ModuleEmitter::emitProgramMain() {
 
   // Then `input` and `output`, the world's objects on main's stack.
   IRB.SetInsertPoint(Start);
+  // `--flight-recorder`: the runtime records the cycles into the file
+  // $BS_FLIGHT_LOG names (a null recorder, recording nothing, without it).
+  llvm::Value *Flight = nullptr;
+  llvm::FunctionCallee FlightBegin, FlightEnd;
+  if (Opts.FlightRecorder) {
+    Flight = IRB.CreateCall(
+        M.getOrInsertFunction("bs_flight_program_start",
+                              llvm::FunctionType::get(Ptr, {Ptr, Ptr, Ptr},
+                                                      false)),
+        {getFlightTable(), Info, getString(Entry->getQualifiedName())},
+        "flight");
+    llvm::FunctionType *StepTy = llvm::FunctionType::get(
+        llvm::Type::getVoidTy(Ctx), {Ptr, Ptr}, false);
+    FlightBegin = M.getOrInsertFunction("bs_flight_begin", StepTy);
+    FlightEnd = M.getOrInsertFunction("bs_flight_end", StepTy);
+  }
   const NativeClass *WorldClasses[2] = {
       B.World ? B.World->Input : nullptr, B.World ? B.World->Output : nullptr};
   llvm::Value *WorldObjects[2];
@@ -407,6 +423,8 @@ void ModuleEmitter::emitProgramMain() {
 
   IRB.SetInsertPoint(Body);
   IRB.CreateCall(Begin, {State, WorldObjects[0], WorldObjects[1]});
+  if (Flight)
+    IRB.CreateCall(FlightBegin, {Flight, State});
   emitBudgetStart(IRB, State);
   llvm::Function *Callee = getFunction(Entry);
   llvm::SmallVector<llvm::Value *, 4> Args = {State};
@@ -414,6 +432,8 @@ void ModuleEmitter::emitProgramMain() {
   for (unsigned A = 1; A < Callee->arg_size(); ++A)
     Args.push_back(llvm::Constant::getNullValue(Callee->getArg(A)->getType()));
   IRB.CreateCall(Callee, Args);
+  if (Flight)
+    IRB.CreateCall(FlightEnd, {Flight, State});
   // `--cycle-budget`: a cycle that ran out says where, on stderr.
   if (Opts.CycleBudget)
     IRB.CreateCall(M.getOrInsertFunction(
@@ -436,6 +456,12 @@ void ModuleEmitter::emitProgramMain() {
         M.getOrInsertFunction("bs_report_assertions",
                               llvm::FunctionType::get(I32, {Ptr, Ptr}, false)),
         {State, Info}, "assertions.failed");
+  if (Flight)
+    IRB.CreateCall(
+        M.getOrInsertFunction(
+            "bs_flight_program_end",
+            llvm::FunctionType::get(llvm::Type::getVoidTy(Ctx), {Ptr}, false)),
+        {Flight});
   IRB.CreateCall(Destroy, {State, Info});
   for (unsigned K = 0; K < 2; ++K)
     if (needsDestroy(WorldClasses[K]))

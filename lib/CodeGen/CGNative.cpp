@@ -182,8 +182,25 @@ llvm::FunctionCallee ModuleEmitter::wrapForBoundary(
   return F;
 }
 
-void ModuleEmitter::emitFlightTable() {
+llvm::StructType *ModuleEmitter::getFlightTableType() {
   // struct bs_flight_table (bscript/flight.h).
+  llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
+  llvm::Type *I32 = llvm::Type::getInt32Ty(Ctx);
+  return llvm::StructType::get(Ctx, {I32, I32, Ptr, I32, I32, Ptr, Ptr, I32, Ptr});
+}
+
+llvm::GlobalVariable *ModuleEmitter::getFlightTable() {
+  // Declared when `main` refers to it; defined last, when every call
+  // site is known (emitFlightTable).
+  Layout.FlightTableSymbol = "bs_" + Opts.BehaviorName + "_flight";
+  if (llvm::GlobalVariable *GV = M.getNamedGlobal(Layout.FlightTableSymbol))
+    return GV;
+  return new llvm::GlobalVariable(M, getFlightTableType(), true,
+                                  llvm::GlobalValue::ExternalLinkage, nullptr,
+                                  Layout.FlightTableSymbol);
+}
+
+void ModuleEmitter::emitFlightTable() {
   llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
   llvm::Type *I32 = llvm::Type::getInt32Ty(Ctx);
   auto Private = [&](llvm::Constant *Init, const char *Name) {
@@ -205,8 +222,7 @@ void ModuleEmitter::emitFlightTable() {
   auto SizeOf = [&](const NativeClass *C) {
     return llvm::ConstantInt::get(I32, C ? C->Size : 0);
   };
-  auto *TableTy = llvm::StructType::get(
-      Ctx, {I32, I32, Ptr, I32, I32, Ptr, Ptr, I32, Ptr});
+  llvm::StructType *TableTy = getFlightTableType();
   llvm::Constant *Fields[] = {
       llvm::ConstantInt::get(I32, 1), // BS_FLIGHT_VERSION
       llvm::ConstantInt::get(I32, BoundarySites.size()),
@@ -218,11 +234,7 @@ void ModuleEmitter::emitFlightTable() {
       llvm::ConstantInt::get(I32, Entries.size()),
       Private(llvm::ConstantArray::get(EntriesTy, Entries),
               "bs.flight.entries")};
-  Layout.FlightTableSymbol = "bs_" + Opts.BehaviorName + "_flight";
-  new llvm::GlobalVariable(M, TableTy, true,
-                           llvm::GlobalValue::ExternalLinkage,
-                           llvm::ConstantStruct::get(TableTy, Fields),
-                           Layout.FlightTableSymbol);
+  getFlightTable()->setInitializer(llvm::ConstantStruct::get(TableTy, Fields));
 }
 
 llvm::FunctionCallee

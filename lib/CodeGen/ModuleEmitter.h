@@ -75,8 +75,11 @@ public:
                   uint32_t Flags,
                   llvm::ArrayRef<std::pair<unsigned, uint64_t>> Writable);
   /// With CodeGenOptions::FlightRecorder, the table `bs_<Name>_flight`
-  /// of the sites wrapForBoundary made (call it last).
+  /// of the sites wrapForBoundary made (call it last); getFlightTable
+  /// declares it for code emitted before.
   void emitFlightTable();
+  llvm::GlobalVariable *getFlightTable();
+  llvm::StructType *getFlightTableType();
   /// `Module::f` or `Class::m`, and whether the module is a standard one.
   std::string getNativeName(const NativeFunction &NF, bool &Standard) const;
   /// The storage of a registered class value in frames and allocas: Size

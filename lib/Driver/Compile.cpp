@@ -201,24 +201,23 @@ bool CompileJob::setUpCodeGen() {
     if (!CGOpts.Exports)
       return false;
   }
-  if (Opts.FlightRecorder) {
-    // A program that bsc links runs its cycles without a robot's log
-    // writer to hand the recorder's blocks to.
-    if (Kind == OutputKind::Program) {
-      C.Diags.report(llvm::SMLoc(), diag::err_flight_recorder_program);
-      return false;
-    }
-    CGOpts.FlightRecorder = true;
-    for (const CallableDecl *D :
-         CGOpts.Exports ? *CGOpts.Exports : findBehaviorRoots(C.Checked))
-      CGOpts.FlightEntries.push_back(
-          {D->getQualifiedName(), computeBehaviorHash(C, *D)});
-  }
   if (Kind == OutputKind::Program) {
     CGOpts.ProgramEntry = findProgramEntry(C, Opts.EntryName);
     if (!CGOpts.ProgramEntry)
       return false;
     CGOpts.ProgramCycles = BOpts.Cycles;
+  }
+  if (Opts.FlightRecorder) {
+    // Each exported entry's hash, and the entry a program's main calls
+    // (which records into $BS_FLIGHT_LOG).
+    CGOpts.FlightRecorder = true;
+    std::vector<const CallableDecl *> Entries =
+        CGOpts.Exports ? *CGOpts.Exports : findBehaviorRoots(C.Checked);
+    if (CGOpts.ProgramEntry && !llvm::is_contained(Entries, CGOpts.ProgramEntry))
+      Entries.push_back(CGOpts.ProgramEntry);
+    for (const CallableDecl *D : Entries)
+      CGOpts.FlightEntries.push_back(
+          {D->getQualifiedName(), computeBehaviorHash(C, *D)});
   }
   return true;
 }

@@ -318,6 +318,8 @@ int bs_flight_start(bs_flight_recorder *r, const bs_flight_config *c) {
 }
 
 void bs_flight_begin(bs_flight_recorder *r, const void *state) {
+  if (!r)
+    return;
   const bs_state_header *h = (const bs_state_header *)state;
   const bs_flight_table *t = r->table;
   r->input = (const unsigned char *)h->input;
@@ -431,6 +433,8 @@ void bs_flight_leave(const bs_flight_site *site, void *result,
 }
 
 void bs_flight_end(bs_flight_recorder *r, const void *state) {
+  if (!r)
+    return;
   bs_flight_current = (bs_flight_recorder *)r->previous;
   if (!r->recording)
     return; /* Lost. */

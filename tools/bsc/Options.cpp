@@ -177,11 +177,12 @@ cl::opt<bool> InstrumentFlag(
     BSC_TOP);
 cl::opt<bool> FlightRecorderFlag(
     "flight-recorder",
-    cl::desc("Objects for the robot: log every cycle's input changes and "
-             "the effects of calls into registered C++ into the robot's "
-             "flight recorder (bscript/flight.h), so that `bsc run "
-             "--replay`, the REPL, `bsc replay` and `bsc timeline` replay "
-             "the robot's game exactly"),
+    cl::desc("Log every cycle's input changes and the effects of calls "
+             "into registered C++ into the robot's flight recorder "
+             "(bscript/flight.h; a program bsc links writes the file "
+             "$BS_FLIGHT_LOG names), so that `bsc run --replay`, the REPL, "
+             "`bsc replay` and `bsc timeline` replay the robot's game "
+             "exactly"),
     BSC_TOP);
 cl::opt<std::string> AssertionsArg(
     "assertions",
