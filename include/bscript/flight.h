@@ -78,6 +78,9 @@ typedef struct bs_flight_table {
   const char *layout; /**< 16 hex digits: how input and output are laid out. */
   uint32_t num_entries;
   const bs_flight_entry *entries;
+  /** Whether the object evaluates its assertions' conditions (and so
+   *  makes and logs their calls): --assertions=count or trap. */
+  uint32_t assertions;
 } bs_flight_table;
 
 /** bs_flight_start's settings. */

@@ -129,6 +129,17 @@ void FunctionEmitter::emitAssert(const AssertStmt &S) {
   llvm::Value *Holds;
   llvm::AllocaInst *Record = nullptr;
   uint32_t RecordSize = 0;
+  // The JIT's recorder is told where the condition's calls into C++ are:
+  // a replay of a robot's log makes them for real when the robot's object
+  // left its assertions out (bsc/JIT/Boundary.h).
+  llvm::FunctionCallee MarkAssertion;
+  if (CGM.getOptions().Boundary) {
+    MarkAssertion = CGM.getModule().getOrInsertFunction(
+        "bs_boundary_assertion",
+        llvm::FunctionType::get(Builder.getVoidTy(), {Builder.getInt32Ty()},
+                                false));
+    Builder.CreateCall(MarkAssertion, {Builder.getInt32(1)});
+  }
   if (Mode == AssertionMode::Report) {
     Holds = emitRecordedCond(
         ExplainSite::Assert, S.getLoc(), S.Cond,
@@ -152,6 +163,8 @@ void FunctionEmitter::emitAssert(const AssertStmt &S) {
   } else {
     Holds = emitFullCond(S.Cond);
   }
+  if (MarkAssertion)
+    Builder.CreateCall(MarkAssertion, {Builder.getInt32(0)});
   auto *Failed = llvm::BasicBlock::Create(Ctx, "assert.failed", Fn);
   auto *Go = llvm::BasicBlock::Create(Ctx, "assert.ok", Fn);
   Builder.CreateCondBr(Holds, Go, Failed,

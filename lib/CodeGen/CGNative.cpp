@@ -186,7 +186,8 @@ llvm::StructType *ModuleEmitter::getFlightTableType() {
   // struct bs_flight_table (bscript/flight.h).
   llvm::Type *Ptr = llvm::PointerType::getUnqual(Ctx);
   llvm::Type *I32 = llvm::Type::getInt32Ty(Ctx);
-  return llvm::StructType::get(Ctx, {I32, I32, Ptr, I32, I32, Ptr, Ptr, I32, Ptr});
+  return llvm::StructType::get(Ctx,
+                               {I32, I32, Ptr, I32, I32, Ptr, Ptr, I32, Ptr, I32});
 }
 
 llvm::GlobalVariable *ModuleEmitter::getFlightTable() {
@@ -233,7 +234,8 @@ void ModuleEmitter::emitFlightTable() {
       getString(getIOLayoutHash(B)),
       llvm::ConstantInt::get(I32, Entries.size()),
       Private(llvm::ConstantArray::get(EntriesTy, Entries),
-              "bs.flight.entries")};
+              "bs.flight.entries"),
+      llvm::ConstantInt::get(I32, Opts.Assertions != AssertionMode::None)};
   getFlightTable()->setInitializer(llvm::ConstantStruct::get(TableTy, Fields));
 }
 

@@ -175,26 +175,45 @@ int bsc::runCommand(Compilation &C, const FrontendOptions &FOpts,
   return loadAndRun(C, Opts, LOpts, ROpts, Robots, *Entry, CoverageFloor);
 }
 
+/// The behavior of `--behavior FILES` (with `--entry`, `--bind`, `-I`) in
+/// the host JIT, for the commands that read binary logs with its layout.
+/// Null after reporting; `Status` is then the exit status.
+static std::unique_ptr<LoadedBehavior>
+loadBehaviorFiles(Compilation &C, const FrontendOptions &FOpts,
+                  const std::vector<std::string> &Files,
+                  llvm::StringRef EntryName, int &Status) {
+  FrontendOptions Behavior = FOpts;
+  Behavior.Inputs = Files;
+  LoadOptions LOpts;
+  const CallableDecl *Entry =
+      checkForJIT(C, Behavior, /*OptionsOK=*/true, EntryName,
+                  BackendOptions(), /*DebugInfo=*/false, LOpts);
+  if (!Entry) {
+    Status = finishCompilation(C);
+    return nullptr;
+  }
+  auto Loaded = loadBehavior(C, *Entry, LOpts);
+  if (!Loaded) {
+    Status = finishWithInternalError(C, Loaded.takeError());
+    return nullptr;
+  }
+  if (!*Loaded)
+    Status = finishCompilation(C);
+  return std::move(*Loaded);
+}
+
 int bsc::timelineCommand(Compilation &C, const FrontendOptions &FOpts,
                          timeline::TimelineOptions Opts) {
   if (Opts.BehaviorFiles.empty()) {
     timeline::writeTimeline(C, Opts, llvm::outs());
     return finishCompilation(C);
   }
-  FrontendOptions Behavior = FOpts;
-  Behavior.Inputs = Opts.BehaviorFiles;
-  LoadOptions LOpts;
-  const CallableDecl *Entry =
-      checkForJIT(C, Behavior, /*OptionsOK=*/true, Opts.EntryName,
-                  BackendOptions(), /*DebugInfo=*/false, LOpts);
-  if (!Entry)
-    return finishCompilation(C);
-  auto Loaded = loadBehavior(C, *Entry, LOpts);
+  int Status = 1;
+  std::unique_ptr<LoadedBehavior> Loaded =
+      loadBehaviorFiles(C, FOpts, Opts.BehaviorFiles, Opts.EntryName, Status);
   if (!Loaded)
-    return finishWithInternalError(C, Loaded.takeError());
-  if (!*Loaded)
-    return finishCompilation(C);
-  LoadedBehavior &L = **Loaded;
+    return Status;
+  LoadedBehavior &L = *Loaded;
   // Each log is replayed by robots of its own, from their first cycle.
   llvm::Error Internal = llvm::Error::success();
   Opts.ReplayLog = [&](llvm::StringRef Path,
@@ -235,24 +254,16 @@ int bsc::convertCommand(Compilation &C, const FrontendOptions &FOpts,
         << "--behavior FILE.bs (the layout of input and output)";
     return finishCompilation(C);
   }
-  FrontendOptions Behavior = FOpts;
-  Behavior.Inputs = Opts.BehaviorFiles;
-  LoadOptions LOpts;
-  const CallableDecl *Entry =
-      checkForJIT(C, Behavior, /*OptionsOK=*/true, Opts.EntryName,
-                  BackendOptions(), /*DebugInfo=*/false, LOpts);
-  if (!Entry)
-    return finishCompilation(C);
-  auto Loaded = loadBehavior(C, *Entry, LOpts);
+  int Status = 1;
+  std::unique_ptr<LoadedBehavior> Loaded =
+      loadBehaviorFiles(C, FOpts, Opts.BehaviorFiles, Opts.EntryName, Status);
   if (!Loaded)
-    return finishWithInternalError(C, Loaded.takeError());
-  if (!*Loaded)
-    return finishCompilation(C);
-  auto S = startSession(C, **Loaded);
+    return Status;
+  auto S = startSession(C, *Loaded);
   if (!S)
     return finishWithInternalError(C, S.takeError());
   if (*S)
-    convertRecording(C, **Loaded, **S, Opts.From, Opts.To);
+    convertRecording(C, *Loaded, **S, Opts.From, Opts.To);
   return finishCompilation(C);
 }
 

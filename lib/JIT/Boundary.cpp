@@ -174,6 +174,7 @@ void Boundary::startReplay(const CycleRecord &R) {
 
 std::string Boundary::finish() {
   redirectOutput(false); // A crash in a call left it redirected.
+  InAssertion = false;   // A failed assertion stopped the cycle inside.
   if (M == Mode::Replay && Divergence.empty() &&
       ReadAt < Replaying->Calls.size()) {
     Reader R{Replaying->Calls.data() + ReadAt,
@@ -283,6 +284,10 @@ bool Boundary::recordViewWrites() {
 bool Boundary::enter(const bs_boundary_site *Site) {
   if (Site->flags & SiteStandard) // Prints only: never kept.
     return M == Mode::Replay && !ReplayCallsStandard;
+  if (callsForReal()) { // As outside cycles.
+    redirectOutput(true);
+    return false;
+  }
   switch (M) {
   case Mode::Off:
     redirectOutput(true);
@@ -319,7 +324,7 @@ void Boundary::leave(const bs_boundary_site *Site, void *Result,
   bool IsString = Site->flags & SiteResultIsString;
   if (Site->flags & SiteStandard)
     return;
-  if (M == Mode::Off) {
+  if (M == Mode::Off || callsForReal()) {
     redirectOutput(false);
     return;
   }
@@ -663,4 +668,9 @@ void bs_boundary_leave(const bs_boundary_site *Site, void *Result,
                        void *const *Ptrs) {
   if (Boundary *B = Boundary::Current)
     B->leave(Site, Result, Ptrs);
+}
+
+void bs_boundary_assertion(int32_t Inside) {
+  if (Boundary *B = Boundary::Current)
+    B->setInAssertion(Inside != 0);
 }

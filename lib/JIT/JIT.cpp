@@ -128,6 +128,7 @@ BehaviorJIT::create(unsigned OptLevel, bool Debuggable) {
   // The boundary's recorder (Boundary.h, CodeGenOptions::Boundary).
   Add("bs_boundary_enter", &bs_boundary_enter);
   Add("bs_boundary_leave", &bs_boundary_leave);
+  Add("bs_boundary_assertion", &bs_boundary_assertion);
   // What the io thunks call.
   Add("bs_io_printi", &bs_io_printi);
   Add("bs_io_printf", &bs_io_printf);
@@ -629,6 +630,10 @@ BehaviorSession::runGuardedBody(llvm::function_ref<void()> Body,
   if (__fpending(stdout)) // What the behavior printed, before bsc's lines.
     std::fflush(stdout);
   return Result;
+}
+
+void BehaviorSession::replayMakesAssertionCalls(bool On) {
+  Calls->setReplayMakesAssertionCalls(On);
 }
 
 void BehaviorSession::setWorldOutput(int Fd) {

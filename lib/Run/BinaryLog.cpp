@@ -68,6 +68,16 @@ struct RecordReader {
     llvm::ArrayRef<unsigned char> B = bytes(uleb());
     return std::string(B.begin(), B.end());
   }
+  /// `To` whole (a key cycle), or runs of changes to it; false if the
+  /// bytes end or a run falls outside it.
+  bool state(bool Whole, std::vector<unsigned char> &To) {
+    if (!Whole)
+      return runs(To);
+    llvm::ArrayRef<unsigned char> B = bytes(To.size());
+    if (!Bad && !B.empty())
+      std::memcpy(To.data(), B.data(), B.size());
+    return !Bad;
+  }
   /// Applies runs of changes to `To`; false if one falls outside it.
   bool runs(std::vector<unsigned char> &To) {
     uint64_t Count = uleb(), At = 0;
@@ -204,6 +214,10 @@ bool BinaryLogReader::readHeaderRecord() {
   uint64_t NumSites = R.uleb();
   if (R.Bad || !readSites(NumSites))
     return fail(At(), "a damaged header record");
+  uint64_t Assertions = R.uleb();
+  if (R.Bad || Assertions > 1)
+    return fail(At(), "a damaged header record");
+  Header.Assertions = Assertions;
   if (Header.Robots == 0 || Header.Robots > 1000)
     return fail(At(), "a header record for " +
                           std::to_string(Header.Robots) + " robots");
@@ -276,24 +290,13 @@ bool BinaryLogReader::next(BinaryLogCycle &C) {
     return fail(RecordAt, std::string("cycle ") + std::to_string(Cycle) +
                               ": damaged " + What);
   };
-  if (Flags & CycleKey) {
-    llvm::ArrayRef<unsigned char> In = R.bytes(Header.InputSize);
-    if (R.Bad)
-      return Damaged("input");
-    std::memcpy(Rb.Input.data(), In.data(), In.size());
-  } else if (!R.runs(Rb.Input)) {
+  bool Key = Flags & CycleKey;
+  if (!R.state(Key, Rb.Input))
     return Damaged("input");
-  }
   // The entry's input, before the calls write into it.
   std::vector<unsigned char> EntryInput = Rb.Input;
-  if (Flags & CycleKey) {
-    llvm::ArrayRef<unsigned char> Out = R.bytes(Header.OutputSize);
-    if (R.Bad)
-      return Damaged("entry output");
-    std::memcpy(Rb.Output.data(), Out.data(), Out.size());
-  } else if (!R.runs(Rb.Output)) {
+  if (!R.state(Key, Rb.Output))
     return Damaged("entry output");
-  }
   std::vector<unsigned char> EntryOutput = Rb.Output;
   uint64_t NumCalls = R.uleb();
   llvm::ArrayRef<unsigned char> CallBytes = R.bytes(R.uleb());
@@ -318,14 +321,8 @@ bool BinaryLogReader::next(BinaryLogCycle &C) {
     return fail(RecordAt, "cycle " + std::to_string(Cycle) + ": " + Why);
   if (C.NumCalls != NumCalls)
     return Damaged("calls (their count)");
-  if (Flags & CycleKey) {
-    llvm::ArrayRef<unsigned char> Out = R.bytes(Header.OutputSize);
-    if (R.Bad)
-      return Damaged("output");
-    std::memcpy(Rb.Output.data(), Out.data(), Out.size());
-  } else if (!R.runs(Rb.Output)) {
+  if (!R.state(Key, Rb.Output))
     return Damaged("output");
-  }
   C.Trace = {};
   if (Flags & CycleHasTrace) {
     C.Trace = R.bytes(R.uleb());
@@ -417,6 +414,7 @@ BinaryLogWriter::BinaryLogWriter(llvm::raw_ostream &OS, BinaryLogHeader H,
   putULEB(Block, Header.Sites.size());
   for (const std::string &S : Header.Sites)
     putString(Block, S);
+  putULEB(Block, Header.Assertions);
   for (uint32_t I = 0; I < Header.Sites.size(); ++I)
     LogSites[internBoundaryName(Header.Sites[I])] = I;
   Robots.resize(Header.Robots);

@@ -10,6 +10,7 @@
 #include "ReplayReader.h"
 #include "bsc/Basic/JSON.h"
 #include "llvm/TargetParser/Host.h"
+#include "llvm/TargetParser/Triple.h"
 
 using namespace bsc;
 
@@ -65,14 +66,20 @@ bool ReplayReader::openLog(llvm::StringRef Bytes) {
   Header.Behavior = H.Behavior;
   Header.Entry = H.Entry;
   Header.Binary = true;
+  Header.Assertions = H.Assertions;
   // The log's bytes are written into this workstation's objects as they
   // are: the two must be laid out alike.
   auto SizeOf = [](const NativeClass *C) { return C ? C->Size : 0; };
   if (H.Layout != getIOLayoutHash(C.Checked) ||
       H.InputSize != SizeOf(L.InputClass) ||
       H.OutputSize != SizeOf(L.OutputClass)) {
-    C.Diags.report(llvm::SMLoc(), diag::err_log_layout)
-        << Path << H.Target << llvm::sys::getProcessTriple();
+    // On this very target the classes themselves differ.
+    llvm::Triple Host(llvm::sys::getProcessTriple());
+    if (H.Target == Host.getArchName())
+      C.Diags.report(llvm::SMLoc(), diag::err_log_other_world) << Path;
+    else
+      C.Diags.report(llvm::SMLoc(), diag::err_log_layout)
+          << Path << H.Target << llvm::sys::getProcessTriple();
     return false;
   }
   for (const NativeClass *Class : {L.InputClass, L.OutputClass})

@@ -32,6 +32,9 @@ struct RecordingHeader {
   std::string Behavior, Entry;
   /// A binary log (BinaryLog.h), of a robot or a workstation.
   bool Binary = false;
+  /// Whether its calls include those of assertions' conditions
+  /// (BinaryLogHeader::Assertions; recordings: always).
+  bool Assertions = true;
 };
 
 /// Reads a JSONL replay file a line at a time, as its cycles come: the

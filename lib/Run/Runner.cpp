@@ -199,6 +199,10 @@ bool CycleRunner::openReplay() {
     Why = "it was recorded with another version of the behavior, its "
           "bindings or its entry";
   Exact = Why.empty();
+  // A robot's object without assertions never made their conditions'
+  // calls: the replay makes them for real.
+  for (RobotRun &R : Robots)
+    R.S->replayMakesAssertionCalls(Exact && !H.Assertions);
   if (Opts.ReplayedExactly)
     *Opts.ReplayedExactly = Exact;
   if (Opts.AnnounceReplayMode) {

@@ -313,6 +313,7 @@ int bs_flight_start(bs_flight_recorder *r, const bs_flight_config *c) {
   p = put_uleb(p, t->num_sites);
   for (uint32_t i = 0; i < t->num_sites; ++i)
     p = put_text(p, t->sites[i]->name);
+  p = put_uleb(p, t->assertions ? 1 : 0);
   settle(r, p);
   return BS_FLIGHT_OK;
 }

@@ -59,6 +59,8 @@ int32_t bs_boundary_enter(const bs_boundary_site *Site);
 /// effects. `Result` is the result slot; `Ptrs` the mutable pointers.
 void bs_boundary_leave(const bs_boundary_site *Site, void *Result,
                        void *const *Ptrs);
+/// Around the evaluation of an assertion's condition: 1 before, 0 after.
+void bs_boundary_assertion(int32_t Inside);
 }
 
 namespace bsc {
@@ -154,6 +156,12 @@ public:
   /// What the running cycle's print-capture redirects C++'s standard
   /// output to (-1: nothing).
   void setCaptureFd(int Fd) { CaptureFd = Fd; }
+  /// Whether a replay makes the calls of assertions' conditions for real
+  /// instead of taking them from the record: a robot's object that leaves
+  /// its assertions out (the default) never made them.
+  void setReplayMakesAssertionCalls(bool On) { ReplayMakesAssertionCalls = On; }
+  /// bs_boundary_assertion: whether an assertion's condition runs now.
+  void setInAssertion(bool On) { InAssertion = On; }
   /// Whether a replay calls the standard `io` module for real: a replay of
   /// a recording prints what the behavior prints, the REPL's re-runs print
   /// nothing again.
@@ -217,6 +225,11 @@ private:
   std::deque<std::string> Strings;
   int CaptureFd = -1, SavedStdout = -1;
   bool ReplayCallsStandard = false;
+  bool ReplayMakesAssertionCalls = false, InAssertion = false;
+  /// In a replay, a call made for real (an assertion's) is running.
+  bool callsForReal() const {
+    return M == Mode::Replay && InAssertion && ReplayMakesAssertionCalls;
+  }
 };
 
 /// The name of call-site id `Id` (ids are the same in the whole process).

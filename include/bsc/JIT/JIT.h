@@ -224,6 +224,9 @@ public:
   /// Whether runCycle keeps each cycle's calls (the REPL's history and
   /// recordings do).
   void keepCalls(bool On) { KeepCalls = On; }
+  /// replayCycle makes the calls of assertions' conditions for real: the
+  /// record is of a robot's object that left its assertions out.
+  void replayMakesAssertionCalls(bool On);
   bool keepsCalls() const { return KeepCalls; }
   /// The calls of the last cycle runCycle ran with keepCalls on.
   const CycleRecord &getLastCalls() const { return LastCalls; }

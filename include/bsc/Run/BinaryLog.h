@@ -66,6 +66,10 @@ struct BinaryLogHeader {
   unsigned Robots = 1;
   /// The names of the call sites, by number ('H', then 'S' records).
   std::vector<std::string> Sites;
+  /// Whether the code that wrote it evaluated its assertions' conditions
+  /// (and so made and logged their calls into C++): the JIT always, a
+  /// robot's object with --assertions=count or trap.
+  bool Assertions = true;
 };
 
 /// One cycle as a reader gives it; the arrays stay valid until the next.

@@ -85,6 +85,7 @@ def records(data, header):
                               state=r.uleb(), input=r.uleb(),
                               output=r.uleb(), robots=r.uleb())
                 header["sites"] = [r.text() for _ in range(r.uleb())]
+                header["assertions"] = r.uleb()
                 yield block_at, "H", None, None
             elif tag == "S":
                 header["sites"] += [r.text() for _ in range(r.uleb())]
