@@ -3,7 +3,7 @@
 #   P/bin/bsc, bsread
 #   P/lib/bscript/libbscript_rt.a, libbscript_rt_i586.a
 #   P/include/bscript/Bind.h (BindDetail.h), bscript.h, descriptor.h,
-#                         world.h
+#                         flight.h, world.h
 #   P/lib/cmake/bscript/  the package: find_package(bscript 0.1 REQUIRED)
 #   P/share/doc/bscript/  README.md, docs/ and examples/embedding, in the
 #                         source tree's layout so that their links work
@@ -19,7 +19,8 @@ install(TARGETS bsc bsread bscript_rt bscript_rt_i586 bscript_bind
   ARCHIVE DESTINATION lib/bscript)
 install(FILES include/bscript/Bind.h include/bscript/BindDetail.h
               include/bscript/bscript.h
-              include/bscript/descriptor.h include/bscript/world.h
+              include/bscript/descriptor.h include/bscript/flight.h
+              include/bscript/world.h
   DESTINATION include/bscript)
 # Every document the README links to, and the example embedding.md links
 # to, where the links expect them (test/Install/installed-docs.test).
