@@ -128,8 +128,14 @@ static llvm::Expected<LogResult> replayOne(Compilation &C, LoadedBehavior &L,
     Run.RobotsFromRecording = true; // A team's log replays its team.
     Run.Regression = Opts.Regression;
     Run.Compare = Opts.Compare;
-    if (Opts.Update) { // Recorded again beside the log, then over it.
-      Run.RecordPath = Path + ".update";
+    if (Opts.Update) {
+      // Recorded again beside the log, then over it: in the log's format
+      // (its extension), under a hidden name --logs never takes for a log.
+      llvm::SmallString<128> Temp = llvm::sys::path::parent_path(Path);
+      llvm::sys::path::append(Temp, "." + llvm::sys::path::filename(Path) +
+                                        ".update" +
+                                        llvm::sys::path::extension(Path));
+      Run.RecordPath = Temp.str().str();
       Run.Changed = &R.Changed;
     }
     Run.AnnounceReplayMode = false; // Counted for the summary instead.
