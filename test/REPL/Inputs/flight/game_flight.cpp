@@ -10,16 +10,10 @@
 #include "game.h"
 #include "sim.h"
 #include <bscript/flight.h>
+#include <bscript/world.h> // The hooks of world.cpp, called as the JIT does.
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-
-extern "C" void *bs_world_init(void *Input, void *Output);
-extern "C" void bs_world_begin(void *User, void *Input, void *Output,
-                               uint32_t Cycle);
-extern "C" void bs_world_end(void *User, const void *Input, void *Output,
-                             uint32_t Cycle);
-extern "C" void bs_world_exit(void *User);
 
 
 static void printFloat(float V) {
