@@ -13,10 +13,10 @@
 //
 //===----------------------------------------------------------------------===//
 #include "bsc/JIT/Boundary.h"
+#include "bsc/Basic/ByteCoding.h"
 #include "llvm/ADT/StringExtras.h"
 #include "llvm/ADT/SmallVector.h"
 #include "llvm/ADT/StringMap.h"
-#include "llvm/Support/LEB128.h"
 #include <cstdio>
 #include <cstring>
 #include <unistd.h>
@@ -39,45 +39,13 @@ NameTable &getNames() {
   return T;
 }
 
-void putULEB(std::vector<unsigned char> &Out, uint64_t V) {
-  unsigned char Buf[16];
-  unsigned N = llvm::encodeULEB128(V, Buf);
-  Out.insert(Out.end(), Buf, Buf + N);
-}
-
 void putBytes(std::vector<unsigned char> &Out, const void *P, size_t N) {
-  putULEB(Out, N);
+  appendULEB(Out, N);
   auto *B = static_cast<const unsigned char *>(P);
   if (N)
     Out.insert(Out.end(), B, B + N);
 }
 
-/// Reads the encoding above; a read past the end sets Bad and gives 0.
-struct Reader {
-  const unsigned char *P, *End;
-  bool Bad = false;
-  uint64_t uleb() {
-    const char *Error = nullptr;
-    unsigned N = 0;
-    uint64_t V = llvm::decodeULEB128(P, &N, End, &Error);
-    if (Error) {
-      Bad = true;
-      return 0;
-    }
-    P += N;
-    return V;
-  }
-  /// `N` bytes (and moves past them), or null if there are fewer.
-  const unsigned char *bytes(uint64_t N) {
-    if (Bad || uint64_t(End - P) < N) {
-      Bad = true;
-      return nullptr;
-    }
-    const unsigned char *At = P;
-    P += N;
-    return At;
-  }
-};
 /// One call of a record as it lies in the bytes (nothing copied).
 struct CallView {
   uint32_t Id = 0;
@@ -94,30 +62,28 @@ struct CallView {
 
 /// Reads the call at `R` (the encoding above); false if the bytes end or
 /// are not of that form.
-bool readCall(Reader &R, CallView &C) {
+bool readCall(ByteReader &R, CallView &C) {
   C = CallView();
   uint64_t Head = R.uleb();
   C.Id = uint32_t(Head >> 1);
   C.IsString = Head & 1;
-  uint64_t Len = R.uleb();
-  if (const unsigned char *B = R.bytes(Len))
-    C.Result = {B, size_t(Len)};
+  C.Result = R.bytes(R.uleb());
   uint64_t NumPtrs = R.uleb();
   for (uint64_t I = 0; I < NumPtrs && !R.Bad; ++I) {
-    uint64_t N = R.uleb();
-    if (const unsigned char *B = R.bytes(N))
-      C.Ptrs.push_back({B, size_t(N)});
+    llvm::ArrayRef<unsigned char> B = R.bytes(R.uleb());
+    if (!R.Bad)
+      C.Ptrs.push_back(B);
   }
   uint64_t NumRuns = R.uleb();
   uint64_t At = 0;
   for (uint64_t I = 0; I < NumRuns && !R.Bad; ++I) {
     At += R.uleb();
     uint64_t N = R.uleb();
-    const unsigned char *B = R.bytes(N);
-    if (!B || At + N < At) // Past the bytes, or a wrapping offset.
+    llvm::ArrayRef<unsigned char> B = R.bytes(N);
+    if (R.Bad || At + N < At) // Past the bytes, or a wrapping offset.
       R.Bad = true;
     else
-      C.Writes.push_back({At, {B, size_t(N)}});
+      C.Writes.push_back({At, B});
     At += N;
   }
   return !R.Bad;
@@ -177,7 +143,7 @@ std::string Boundary::finish() {
   InAssertion = false;   // A failed assertion stopped the cycle inside.
   if (M == Mode::Replay && Divergence.empty() &&
       ReadAt < Replaying->Calls.size()) {
-    Reader R{Replaying->Calls.data() + ReadAt,
+    ByteReader R{Replaying->Calls.data() + ReadAt,
              Replaying->Calls.data() + Replaying->Calls.size()};
     diverge("the cycle ended after " + std::to_string(CallIndex) +
             " calls into C++; the recorded run went on to call '" +
@@ -193,7 +159,7 @@ bool Boundary::nextCallIs(llvm::StringRef Name) const {
   if (M != Mode::Replay || !Divergence.empty() ||
       ReadAt >= Replaying->Calls.size())
     return false;
-  Reader R{Replaying->Calls.data() + ReadAt,
+  ByteReader R{Replaying->Calls.data() + ReadAt,
            Replaying->Calls.data() + Replaying->Calls.size()};
   return getBoundaryName(uint32_t(R.uleb() >> 1)) == Name;
 }
@@ -262,11 +228,11 @@ bool Boundary::recordViewWrites() {
     Base += B.Size;
   }
   std::vector<unsigned char> &Out = Recording->Calls;
-  putULEB(Out, Runs.size());
+  appendULEB(Out, Runs.size());
   size_t Prev = 0;
   for (const Run &R : Runs) {
-    putULEB(Out, R.Start - Prev);
-    putULEB(Out, R.End - R.Start);
+    appendULEB(Out, R.Start - Prev);
+    appendULEB(Out, R.End - R.Start);
     // The bytes now, from the blocks.
     size_t Off = R.Start;
     for (const Block &B : Blocks) {
@@ -310,7 +276,7 @@ bool Boundary::enter(const bs_boundary_site *Site) {
             std::to_string(Replaying->NumCalls) + " in this cycle");
     return true;
   }
-  Reader R{Calls.data() + ReadAt, Calls.data() + Calls.size()};
+  ByteReader R{Calls.data() + ReadAt, Calls.data() + Calls.size()};
   uint32_t Recorded = uint32_t(R.uleb() >> 1);
   if (Recorded != Id)
     diverge("call " + std::to_string(CallIndex) + " into C++ is '" +
@@ -332,7 +298,7 @@ void Boundary::leave(const bs_boundary_site *Site, void *Result,
     redirectOutput(false);
     std::vector<unsigned char> &Out = Recording->Calls;
     size_t Start = Out.size();
-    putULEB(Out, uint64_t(internSite(Site)) << 1 | (IsString ? 1 : 0));
+    appendULEB(Out, uint64_t(internSite(Site)) << 1 | (IsString ? 1 : 0));
     if (IsString) {
       const char *S = Result ? *static_cast<const char *const *>(Result)
                              : nullptr;
@@ -340,7 +306,7 @@ void Boundary::leave(const bs_boundary_site *Site, void *Result,
     } else {
       putBytes(Out, Result, Result ? Site->result_size : 0);
     }
-    putULEB(Out, Ptrs ? Site->num_ptrs : 0);
+    appendULEB(Out, Ptrs ? Site->num_ptrs : 0);
     for (uint32_t I = 0; Ptrs && I < Site->num_ptrs; ++I)
       putBytes(Out, Ptrs[I], Site->ptr_sizes[I]);
     if (!recordViewWrites() && (Site->flags & SitePseudo)) {
@@ -357,7 +323,7 @@ void Boundary::leave(const bs_boundary_site *Site, void *Result,
     return;
   }
   const std::vector<unsigned char> &Calls = Replaying->Calls;
-  Reader R{Calls.data() + ReadAt, Calls.data() + Calls.size()};
+  ByteReader R{Calls.data() + ReadAt, Calls.data() + Calls.size()};
   CallView C; // Its id was checked by enter.
   bool Fits = readCall(R, C) &&
               (IsString || C.Result.size() == (Result ? Site->result_size
@@ -415,7 +381,7 @@ void Boundary::leave(const bs_boundary_site *Site, void *Result,
 std::vector<RecordedCall> bsc::decodeCalls(const CycleRecord &Rec,
                                            const size_t BlockSizes[3]) {
   std::vector<RecordedCall> Calls;
-  Reader R{Rec.Calls.data(), Rec.Calls.data() + Rec.Calls.size()};
+  ByteReader R{Rec.Calls.data(), Rec.Calls.data() + Rec.Calls.size()};
   CallView V;
   while (R.P < R.End && readCall(R, V)) {
     RecordedCall C;
@@ -443,13 +409,13 @@ bool bsc::encodeCalls(llvm::ArrayRef<RecordedCall> Calls,
   Rec.NumCalls = 0;
   std::vector<unsigned char> &Out = Rec.Calls;
   for (const RecordedCall &C : Calls) {
-    putULEB(Out, uint64_t(internBoundaryName(C.Name)) << 1 |
+    appendULEB(Out, uint64_t(internBoundaryName(C.Name)) << 1 |
                      (C.ResultIsString ? 1 : 0));
     putBytes(Out, C.Result.data(), C.Result.size());
-    putULEB(Out, C.Ptrs.size());
+    appendULEB(Out, C.Ptrs.size());
     for (const std::vector<unsigned char> &P : C.Ptrs)
       putBytes(Out, P.data(), P.size());
-    putULEB(Out, C.Writes.size());
+    appendULEB(Out, C.Writes.size());
     uint64_t Prev = 0;
     for (const RecordedCall::Write &W : C.Writes) {
       if (W.Block > 2 || W.Offset + W.Bytes.size() > BlockSizes[W.Block]) {
@@ -466,7 +432,7 @@ bool bsc::encodeCalls(llvm::ArrayRef<RecordedCall> Calls,
         Error = "the writes of a call are not in the order of the view";
         return false;
       }
-      putULEB(Out, At - Prev);
+      appendULEB(Out, At - Prev);
       putBytes(Out, W.Bytes.data(), W.Bytes.size());
       Prev = At + W.Bytes.size();
     }
@@ -482,7 +448,7 @@ bool bsc::translateCalls(
     unsigned &NumCalls, std::string &Error,
     llvm::function_ref<void(unsigned, uint64_t, llvm::ArrayRef<unsigned char>)>
         OnWrite) {
-  Reader R{In.data(), In.data() + In.size()};
+  ByteReader R{In.data(), In.data() + In.size()};
   CallView V;
   while (R.P < R.End) {
     if (!readCall(R, V)) {
@@ -495,12 +461,12 @@ bool bsc::translateCalls(
               std::to_string(V.Id) + ", which the log does not name";
       return false;
     }
-    putULEB(Out, uint64_t(*Id) << 1 | (V.IsString ? 1 : 0));
+    appendULEB(Out, uint64_t(*Id) << 1 | (V.IsString ? 1 : 0));
     putBytes(Out, V.Result.data(), V.Result.size());
-    putULEB(Out, V.Ptrs.size());
+    appendULEB(Out, V.Ptrs.size());
     for (llvm::ArrayRef<unsigned char> P : V.Ptrs)
       putBytes(Out, P.data(), P.size());
-    putULEB(Out, V.Writes.size());
+    appendULEB(Out, V.Writes.size());
     uint64_t Prev = 0;
     for (const CallView::Run &W : V.Writes) {
       uint64_t Off = W.At;
@@ -520,7 +486,7 @@ bool bsc::translateCalls(
       uint64_t At = Off;
       for (unsigned B = 0; B < Block; ++B)
         At += To[B];
-      putULEB(Out, At - Prev);
+      appendULEB(Out, At - Prev);
       putBytes(Out, W.Bytes.data(), W.Bytes.size());
       Prev = At + W.Bytes.size();
     }

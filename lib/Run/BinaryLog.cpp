@@ -17,9 +17,9 @@
 //===----------------------------------------------------------------------===//
 #include "bsc/Run/BinaryLog.h"
 #include "bsc/JIT/Boundary.h"
+#include "bsc/Basic/ByteCoding.h"
 #include "llvm/Support/Compression.h"
 #include "llvm/Support/Endian.h"
-#include "llvm/Support/LEB128.h"
 #include <cstring>
 
 using namespace bsc;
@@ -38,61 +38,38 @@ bool bsc::isBinaryLog(llvm::StringRef Bytes) {
 //===----------------------------------------------------------------------===//
 
 namespace {
-/// LEB128 numbers and byte strings from a record; a read past the end
-/// sets Bad.
-struct RecordReader {
-  const unsigned char *&P;
-  const unsigned char *End;
-  bool Bad = false;
-  uint64_t uleb() {
-    const char *Error = nullptr;
-    unsigned N = 0;
-    uint64_t V = llvm::decodeULEB128(P, &N, End, &Error);
-    if (Error) {
-      Bad = true;
-      return 0;
-    }
-    P += N;
-    return V;
-  }
-  llvm::ArrayRef<unsigned char> bytes(uint64_t N) {
-    if (Bad || uint64_t(End - P) < N) {
-      Bad = true;
-      return {};
-    }
-    llvm::ArrayRef<unsigned char> B(P, size_t(N));
-    P += N;
-    return B;
-  }
-  std::string string() {
-    llvm::ArrayRef<unsigned char> B = bytes(uleb());
-    return std::string(B.begin(), B.end());
-  }
-  /// `To` whole (a key cycle), or runs of changes to it; false if the
-  /// bytes end or a run falls outside it.
-  bool state(bool Whole, std::vector<unsigned char> &To) {
-    if (!Whole)
-      return runs(To);
-    llvm::ArrayRef<unsigned char> B = bytes(To.size());
-    if (!Bad && !B.empty())
-      std::memcpy(To.data(), B.data(), B.size());
-    return !Bad;
-  }
-  /// Applies runs of changes to `To`; false if one falls outside it.
-  bool runs(std::vector<unsigned char> &To) {
-    uint64_t Count = uleb(), At = 0;
-    for (uint64_t I = 0; I < Count && !Bad; ++I) {
-      At += uleb();
-      uint64_t N = uleb();
-      llvm::ArrayRef<unsigned char> B = bytes(N);
-      if (Bad || At > To.size() || N > To.size() - At)
-        return Bad = true, false;
+/// A string: its length, then its bytes.
+std::string readString(ByteReader &R) {
+  llvm::ArrayRef<unsigned char> B = R.bytes(R.uleb());
+  return std::string(B.begin(), B.end());
+}
+
+/// Applies runs of changes to `To`; false if the bytes end or a run falls
+/// outside it.
+bool readRuns(ByteReader &R, std::vector<unsigned char> &To) {
+  uint64_t Count = R.uleb(), At = 0;
+  for (uint64_t I = 0; I < Count && !R.Bad; ++I) {
+    At += R.uleb();
+    uint64_t N = R.uleb();
+    llvm::ArrayRef<unsigned char> B = R.bytes(N);
+    if (R.Bad || At > To.size() || N > To.size() - At)
+      return R.Bad = true, false;
+    if (N)
       std::memcpy(To.data() + At, B.data(), N);
-      At += N;
-    }
-    return !Bad;
+    At += N;
   }
-};
+  return !R.Bad;
+}
+
+/// `To` whole (a key cycle), or runs of changes to it.
+bool readState(ByteReader &R, bool Whole, std::vector<unsigned char> &To) {
+  if (!Whole)
+    return readRuns(R, To);
+  llvm::ArrayRef<unsigned char> B = R.bytes(To.size());
+  if (!R.Bad && !B.empty())
+    std::memcpy(To.data(), B.data(), B.size());
+  return !R.Bad;
+}
 } // namespace
 
 bool BinaryLogReader::fail(uint64_t At, std::string Why) {
@@ -150,8 +127,7 @@ bool BinaryLogReader::nextBlock() {
       return fail(At, "a damaged block header (raw size " +
                           std::to_string(RawSize) + ", stored " +
                           std::to_string(Stored) + ")");
-    P = Data.data();
-    End = P + Data.size();
+    In = {Data.data(), Data.data() + Data.size()};
     return true;
   }
   // No writer makes blocks this large (bsc: 64 KiB; a robot: 2 MiB): a
@@ -173,8 +149,7 @@ bool BinaryLogReader::nextBlock() {
     return fail(At, "a damaged compressed block (" + std::to_string(Size) +
                         " bytes, its header says " + std::to_string(RawSize) +
                         ")");
-  P = Raw.data();
-  End = P + Raw.size();
+  In = {Raw.data(), Raw.data() + Raw.size()};
   return true;
 }
 
@@ -182,13 +157,13 @@ uint64_t BinaryLogReader::recordOffset() const {
   // A compressed block's records are not the file's bytes: its start.
   if (Compressed)
     return RawStart - BlockHeaderSize;
-  return uint64_t(reinterpret_cast<const char *>(P) - File.data());
+  return uint64_t(reinterpret_cast<const char *>(In.P) - File.data());
 }
 
 bool BinaryLogReader::readSites(uint64_t Count) {
-  RecordReader R{P, End};
+  ByteReader &R = In;
   for (uint64_t I = 0; I < Count && !R.Bad; ++I) {
-    std::string Name = R.string();
+    std::string Name = readString(R);
     if (!R.Bad) {
       Header.Sites.push_back(Name);
       SiteIds.push_back(internBoundaryName(Name));
@@ -199,14 +174,14 @@ bool BinaryLogReader::readSites(uint64_t Count) {
 
 bool BinaryLogReader::readHeaderRecord() {
   auto At = [&] { return recordOffset(); };
-  if (P == End || *P != TagHeader)
+  if (In.P == In.End || *In.P != TagHeader)
     return fail(At(), "the log does not start with its header record");
-  ++P;
-  RecordReader R{P, End};
-  Header.Behavior = R.string();
-  Header.Entry = R.string();
-  Header.Target = R.string();
-  Header.Layout = R.string();
+  ++In.P;
+  ByteReader &R = In;
+  Header.Behavior = readString(R);
+  Header.Entry = readString(R);
+  Header.Target = readString(R);
+  Header.Layout = readString(R);
   Header.StateSize = R.uleb();
   Header.InputSize = R.uleb();
   Header.OutputSize = R.uleb();
@@ -242,12 +217,12 @@ void BinaryLogReader::setView(uint64_t StateSize) { View[0] = StateSize; }
 bool BinaryLogReader::next(BinaryLogCycle &C) {
   if (failed())
     return false;
-  while (P == End)
+  while (In.P == In.End)
     if (!nextBlock())
       return false;
   uint64_t RecordAt = recordOffset();
-  uint8_t Tag = *P++;
-  RecordReader R{P, End};
+  uint8_t Tag = *In.P++;
+  ByteReader &R = In;
   if (Tag == TagSites) {
     uint64_t Count = R.uleb();
     if (R.Bad || !readSites(Count))
@@ -270,7 +245,7 @@ bool BinaryLogReader::next(BinaryLogCycle &C) {
     return fail(RecordAt, "a record of unknown kind " + std::to_string(Tag));
   uint64_t RobotIndex = R.uleb();
   uint64_t Cycle = R.uleb();
-  if (R.Bad || R.P == End)
+  if (R.Bad || R.P == R.End)
     return fail(RecordAt, "a damaged cycle record");
   uint8_t Flags = *R.P++;
   if (RobotIndex >= Robots.size())
@@ -291,11 +266,11 @@ bool BinaryLogReader::next(BinaryLogCycle &C) {
                               ": damaged " + What);
   };
   bool Key = Flags & CycleKey;
-  if (!R.state(Key, Rb.Input))
+  if (!readState(R, Key, Rb.Input))
     return Damaged("input");
   // The entry's input, before the calls write into it.
   std::vector<unsigned char> EntryInput = Rb.Input;
-  if (!R.state(Key, Rb.Output))
+  if (!readState(R, Key, Rb.Output))
     return Damaged("entry output");
   std::vector<unsigned char> EntryOutput = Rb.Output;
   uint64_t NumCalls = R.uleb();
@@ -321,7 +296,7 @@ bool BinaryLogReader::next(BinaryLogCycle &C) {
     return fail(RecordAt, "cycle " + std::to_string(Cycle) + ": " + Why);
   if (C.NumCalls != NumCalls)
     return Damaged("calls (their count)");
-  if (!R.state(Key, Rb.Output))
+  if (!readState(R, Key, Rb.Output))
     return Damaged("output");
   C.Trace = {};
   if (Flags & CycleHasTrace) {
@@ -354,17 +329,12 @@ constexpr size_t BlockBytes = 64 * 1024;
 /// Key cycles come this often per robot (and first).
 constexpr uint32_t KeyEvery = 256;
 
-void putULEB(std::vector<unsigned char> &Out, uint64_t V) {
-  unsigned char Buf[16];
-  unsigned N = llvm::encodeULEB128(V, Buf);
-  Out.insert(Out.end(), Buf, Buf + N);
-}
 void putBytes(std::vector<unsigned char> &Out,
               llvm::ArrayRef<unsigned char> B) {
   Out.insert(Out.end(), B.begin(), B.end());
 }
 void putString(std::vector<unsigned char> &Out, llvm::StringRef S) {
-  putULEB(Out, S.size());
+  appendULEB(Out, S.size());
   Out.insert(Out.end(), S.begin(), S.end());
 }
 /// The runs where `Now` differs from `Before` (same size), joined across
@@ -384,11 +354,11 @@ void putRuns(std::vector<unsigned char> &Out,
     else
       Runs.push_back({I, I + 1});
   }
-  putULEB(Out, Runs.size());
+  appendULEB(Out, Runs.size());
   size_t Prev = 0;
   for (const Run &R : Runs) {
-    putULEB(Out, R.Start - Prev);
-    putULEB(Out, R.End - R.Start);
+    appendULEB(Out, R.Start - Prev);
+    appendULEB(Out, R.End - R.Start);
     putBytes(Out, Now.slice(R.Start, R.End - R.Start));
     Prev = R.End;
   }
@@ -407,14 +377,14 @@ BinaryLogWriter::BinaryLogWriter(llvm::raw_ostream &OS, BinaryLogHeader H,
   putString(Block, Header.Entry);
   putString(Block, Header.Target);
   putString(Block, Header.Layout);
-  putULEB(Block, Header.StateSize);
-  putULEB(Block, Header.InputSize);
-  putULEB(Block, Header.OutputSize);
-  putULEB(Block, Header.Robots);
-  putULEB(Block, Header.Sites.size());
+  appendULEB(Block, Header.StateSize);
+  appendULEB(Block, Header.InputSize);
+  appendULEB(Block, Header.OutputSize);
+  appendULEB(Block, Header.Robots);
+  appendULEB(Block, Header.Sites.size());
   for (const std::string &S : Header.Sites)
     putString(Block, S);
-  putULEB(Block, Header.Assertions);
+  appendULEB(Block, Header.Assertions);
   for (uint32_t I = 0; I < Header.Sites.size(); ++I)
     LogSites[internBoundaryName(Header.Sites[I])] = I;
   Robots.resize(Header.Robots);
@@ -456,14 +426,14 @@ void BinaryLogWriter::writeCycle(unsigned RobotIndex, uint32_t Cycle,
                  });
   if (!NewSites.empty()) {
     Block.push_back(TagSites);
-    putULEB(Block, NewSites.size());
+    appendULEB(Block, NewSites.size());
     for (const std::string &S : NewSites)
       putString(Block, S);
   }
   bool Key = R.Cycles % KeyEvery == 0;
   Block.push_back(TagCycle);
-  putULEB(Block, RobotIndex);
-  putULEB(Block, Cycle);
+  appendULEB(Block, RobotIndex);
+  appendULEB(Block, Cycle);
   Block.push_back(uint8_t((Key ? CycleKey : 0) |
                           (Trace.empty() ? 0 : CycleHasTrace)));
   if (Key) {
@@ -473,15 +443,15 @@ void BinaryLogWriter::writeCycle(unsigned RobotIndex, uint32_t Cycle,
     putRuns(Block, R.Input, EntryInput);
     putRuns(Block, R.Output, EntryOutput);
   }
-  putULEB(Block, NumCalls);
-  putULEB(Block, Encoded.size());
+  appendULEB(Block, NumCalls);
+  appendULEB(Block, Encoded.size());
   putBytes(Block, Encoded);
   if (Key)
     putBytes(Block, Output);
   else
     putRuns(Block, EntryOutput, Output);
   if (!Trace.empty()) {
-    putULEB(Block, Trace.size());
+    appendULEB(Block, Trace.size());
     putBytes(Block, Trace);
   }
   R.Input = std::move(InputAfter);

@@ -21,6 +21,7 @@
 #ifndef BSC_RUN_BINARYLOG_H
 #define BSC_RUN_BINARYLOG_H
 
+#include "bsc/Basic/ByteCoding.h"
 #include "llvm/ADT/ArrayRef.h"
 #include "llvm/ADT/DenseMap.h"
 #include "llvm/ADT/StringRef.h"
@@ -118,13 +119,14 @@ private:
   bool nextBlock();
   bool readHeaderRecord();
   bool readSites(uint64_t Count);
-  /// The file byte of the record at P (of its block, if compressed).
+  /// The file byte of the record at In.P (of its block, if compressed).
   uint64_t recordOffset() const;
 
   llvm::StringRef File;
   uint64_t BlockAt = 0; ///< The file byte of the next block.
   std::vector<unsigned char> Raw;
-  const unsigned char *P = nullptr, *End = nullptr;
+  /// The records of the loaded block, read from In.P on.
+  ByteReader In;
   uint64_t RawStart = 0; ///< The file byte of the loaded block's records.
   bool Compressed = false;
   BinaryLogHeader Header;
