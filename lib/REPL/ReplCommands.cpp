@@ -251,12 +251,8 @@ void Repl::cmdRecord(llvm::StringRef Args, llvm::SMLoc Loc) {
     C->Diags.report(Loc, diag::err_repl_log_exists) << Args;
     return;
   }
-  for (const NativeClass *Class : {L->InputClass, L->OutputClass})
-    if (Binary && !canLogAsBytes(Class)) {
-      C->Diags.report(Loc, diag::err_log_not_bytes)
-          << Args << Class->QualifiedName;
-      return;
-    }
+  if (Binary && !checkWorldAsBytes(C->Diags, Loc, *L, Args))
+    return;
   std::error_code EC;
   auto F = std::make_unique<llvm::raw_fd_ostream>(
       Args, EC, Binary ? llvm::sys::fs::OF_None : llvm::sys::fs::OF_Append);

@@ -59,12 +59,6 @@ bool Converter::writeText(const NativeClass &Class, void *Obj,
 }
 
 bool Converter::toBinary(ReplayReader &R, llvm::raw_ostream &OS) {
-  for (const NativeClass *Class : {L.InputClass, L.OutputClass})
-    if (!canLogAsBytes(Class)) {
-      C.Diags.report(llvm::SMLoc(), diag::err_log_not_bytes)
-          << "the converted log" << Class->QualifiedName;
-      return false;
-    }
   unsigned Robots = R.countRobots();
   BinaryLogHeader H = logHeader(C, L, S, Robots);
   // The recording's own behavior and entry: the log replays as it would.
@@ -190,6 +184,8 @@ bool Converter::run(llvm::StringRef From, llvm::StringRef To) {
         << From << To << (Binary ? "binary log" : "JSON-lines recording");
     return false;
   }
+  if (Binary && !checkWorldAsBytes(C.Diags, llvm::SMLoc(), L, To))
+    return false;
   std::unique_ptr<llvm::ToolOutputFile> Out =
       openOutput(C.Diags, To, /*Text=*/!Binary);
   if (!Out)

@@ -87,8 +87,14 @@ bool bsc::isBinaryLogPath(llvm::StringRef Path) {
   return Path.ends_with(".bslog");
 }
 
-bool bsc::canLogAsBytes(const NativeClass *C) {
-  return !C || C->CopiesAsBytes || C->TriviallyDestructible;
+bool bsc::checkWorldAsBytes(DiagnosticEngine &Diags, llvm::SMLoc Loc,
+                            const LoadedBehavior &L, llvm::StringRef Path) {
+  for (const NativeClass *C : {L.InputClass, L.OutputClass})
+    if (C && !C->CopiesAsBytes && !C->TriviallyDestructible) {
+      Diags.report(Loc, diag::err_log_not_bytes) << Path << C->QualifiedName;
+      return false;
+    }
+  return true;
 }
 
 BinaryLogHeader bsc::logHeader(const Compilation &C, const LoadedBehavior &L,

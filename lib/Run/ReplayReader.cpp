@@ -82,12 +82,8 @@ bool ReplayReader::openLog(llvm::StringRef Bytes) {
           << Path << H.Target << llvm::sys::getProcessTriple();
     return false;
   }
-  for (const NativeClass *Class : {L.InputClass, L.OutputClass})
-    if (!canLogAsBytes(Class)) {
-      C.Diags.report(llvm::SMLoc(), diag::err_log_not_bytes)
-          << Path << Class->QualifiedName;
-      return false;
-    }
+  if (!checkWorldAsBytes(C.Diags, llvm::SMLoc(), L, Path))
+    return false;
   Log->setView(L.Layout.StateSize);
   return true;
 }

@@ -232,12 +232,8 @@ static std::string robotPath(llvm::StringRef Path, unsigned K) {
 bool CycleRunner::openRecordings() {
   llvm::StringRef Path = Opts.RecordPath;
   bool Binary = isBinaryLogPath(Path);
-  for (const NativeClass *Class : {L.InputClass, L.OutputClass})
-    if (Binary && !canLogAsBytes(Class)) {
-      C.Diags.report(llvm::SMLoc(), diag::err_log_not_bytes)
-          << Path << Class->QualifiedName;
-      return false;
-    }
+  if (Binary && !checkWorldAsBytes(C.Diags, llvm::SMLoc(), L, Path))
+    return false;
   auto Open = [&](const std::string &File,
                   std::unique_ptr<llvm::ToolOutputFile> &Into,
                   std::unique_ptr<BinaryLogWriter> &Log, unsigned Count) {

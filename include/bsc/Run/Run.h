@@ -257,10 +257,12 @@ llvm::json::Value recordCycle(debug::ValueIO &Values, const LoadedBehavior &L,
 /// rather than JSON lines: PATH ends in `.bslog`.
 bool isBinaryLogPath(llvm::StringRef Path);
 
-/// Whether a binary log can hold the world's class `C` as its bytes: a
-/// class that owns nothing (trivially destructible, like Eigen's fixed
-/// vectors) reads back from them; one that owns memory does not.
-bool canLogAsBytes(const NativeClass *C);
+/// Whether the binary log `Path` can hold `L`'s world objects as their
+/// bytes: a class that owns nothing (trivially destructible, like Eigen's
+/// fixed vectors) reads back from them; one that owns memory does not,
+/// which is reported at `Loc`.
+bool checkWorldAsBytes(DiagnosticEngine &Diags, llvm::SMLoc Loc,
+                       const LoadedBehavior &L, llvm::StringRef Path);
 
 /// The header of a binary log that sessions of `L` write on this
 /// workstation, for `Robots` robots.
