@@ -129,9 +129,9 @@ void replayRecord(const CycleRecord &R) {
   Boundary B(State, sizeof State, Input, sizeof Input, Output, sizeof Output);
   static const uint32_t PtrSizes[] = {8};
   static const bs_boundary_site Sites[] = {
-      {"f", 0, 4, 0, nullptr},
-      {"g", SiteResultIsString, sizeof(char *), 1, PtrSizes},
-      {"h", 0, 0, 1, PtrSizes}};
+      {"f", 0, 4, 0, nullptr, 0},
+      {"g", SiteResultIsString, sizeof(char *), 1, PtrSizes, 1},
+      {"h", 0, 0, 1, PtrSizes, 2}};
   B.startReplay(R);
   uint64_t Result = 0;
   unsigned char Arg[8];

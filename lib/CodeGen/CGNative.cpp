@@ -60,10 +60,10 @@ llvm::FunctionCallee ModuleEmitter::getNative(const NativeFunction &NF) {
   }
   bool Standard = false;
   std::string Name = getNativeName(NF, Standard);
-  uint32_t Flags = (Standard ? SiteStandard : 0) |
+  uint32_t Flags = (Standard ? SiteStandard : SiteNoFlags) |
                    (!NF.ResultViaOut && NF.Result.TheCode == NativeType::String
                         ? SiteResultIsString
-                        : 0);
+                        : SiteNoFlags);
   return Slot = wrapForBoundary(Thunk, Name, Flags, Writable);
 }
 
@@ -249,7 +249,7 @@ ModuleEmitter::getNativeSetter(const NativeFunction &NF) {
     Fn->addFnAttr(llvm::Attribute::NoUnwind);
   bool Standard;
   std::string Name = getNativeName(NF, Standard) + " (set)";
-  return wrapForBoundary(F, Name, Standard ? SiteStandard : 0,
+  return wrapForBoundary(F, Name, Standard ? SiteStandard : SiteNoFlags,
                          {{0, NF.Owner ? NF.Owner->Size : 0}});
 }
 
@@ -269,7 +269,8 @@ llvm::FunctionCallee ModuleEmitter::getLifeThunk(const NativeClass *C,
                      : Symbol == C->Assign  ? "assign"
                                             : "destroy";
   return wrapForBoundary(F, C->QualifiedName + " (" + What + ")",
-                         C->Module && C->Module->Standard ? SiteStandard : 0,
+                         C->Module && C->Module->Standard ? SiteStandard
+                                                          : SiteNoFlags,
                          {{0, C->Size}});
 }
 

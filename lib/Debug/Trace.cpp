@@ -9,6 +9,7 @@
 #include "bsc/CodeGen/Layout.h"
 #include "bsc/Sema/Sema.h"
 #include "llvm/ADT/DenseMap.h"
+#include "llvm/ADT/Sequence.h"
 #include "llvm/ADT/SetVector.h"
 #include "llvm/ADT/StringExtras.h"
 #include "llvm/ADT/StringMap.h"
@@ -416,6 +417,37 @@ debug::listActiveTasks(const DebugTables &T,
   };
   for (unsigned R : Tree.Roots)
     Walk(R, -1);
+  return List;
+}
+
+const std::vector<RecordedTask> &
+ActiveTaskLister::list(llvm::ArrayRef<Activation> Records) {
+  bool SameTasks =
+      Records.size() == Tasks.size() &&
+      llvm::all_of(llvm::seq(Records.size()),
+                   [&](size_t I) { return Records[I].Task == Tasks[I]; });
+  if (!SameTasks) {
+    List = listActiveTasks(T, Records);
+    Tasks.clear();
+    llvm::DenseMap<unsigned, unsigned> RecordOfTask;
+    for (size_t I = 0; I < Records.size(); ++I) {
+      Tasks.push_back(Records[I].Task);
+      RecordOfTask.try_emplace(Records[I].Task, I); // The first, as listed.
+    }
+    RecordOf.clear();
+    for (const RecordedTask &R : List)
+      RecordOf.push_back(RecordOfTask.lookup(R.Record.Task));
+    return List;
+  }
+  for (size_t I = 0; I < List.size(); ++I) {
+    const Activation &A = Records[RecordOf[I]];
+    RecordedTask &R = List[I];
+    if (A.Resume == R.Record.Resume && A.State == R.Record.State)
+      continue;
+    R.Record = A;
+    R.State = activationState(T, A);
+    R.Place = activationPlace(T, A);
+  }
   return List;
 }
 

@@ -17,6 +17,7 @@
 #include "llvm/Support/raw_ostream.h"
 #include <algorithm>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <cstdint>
@@ -59,21 +60,33 @@ std::optional<double> debug::floatFromJSON(const Value &V) {
 }
 
 /// The shortest decimal that reads back as `D` (as a float when `D` is
-/// one, which every b-script float is).
+/// one, which every b-script float is): `%g` of the least precision that
+/// does. No precision below the digits of std::to_chars's shortest form
+/// can, so the search starts there (a page of a long run prints millions).
 static std::string formatNumber(double D) {
   if (D == 0 && std::signbit(D))
     return "-0.0";
   if (D == std::trunc(D) && std::fabs(D) < 1e15)
     return llvm::formatv("{0}", (long long)D).str();
   bool IsFloat = double(float(D)) == D;
-  for (int Precision = 1; Precision <= 17; ++Precision) {
-    char S[40];
-    std::snprintf(S, sizeof S, "%.*g", Precision, D);
-    double Back = std::strtod(S, nullptr);
+  char S[64];
+  char *End = IsFloat ? std::to_chars(S, S + sizeof S, float(D),
+                                      std::chars_format::scientific)
+                            .ptr
+                      : std::to_chars(S, S + sizeof S, D,
+                                      std::chars_format::scientific)
+                            .ptr;
+  int Digits = llvm::count_if(llvm::StringRef(S, End - S).split('e').first,
+                              llvm::isDigit);
+  for (int Precision = std::max(Digits, 1); Precision <= 17; ++Precision) {
+    End = std::to_chars(S, S + sizeof S, D, std::chars_format::general,
+                        Precision)
+              .ptr;
+    double Back = 0;
+    std::from_chars(S, End, Back);
     if (IsFloat ? float(Back) == float(D) : Back == D)
-      return S;
+      return std::string(S, End);
   }
-  char S[40];
   std::snprintf(S, sizeof S, "%.17g", D);
   return S;
 }
@@ -417,6 +430,63 @@ Value ValueIO::readClass(const NativeClass &C, const void *Obj) {
     if (M.isData())
       O[M.Name] = readMember(C, M, Obj);
   return O;
+}
+
+void debug::forEachJSONLeaf(std::string &Path, const Value &V,
+                            LeafCallback Leaf) {
+  size_t Length = Path.size();
+  if (const llvm::json::Object *O = V.getAsObject()) {
+    for (const auto &KV : *O) {
+      (Path += ".") += llvm::StringRef(KV.first);
+      forEachJSONLeaf(Path, KV.second, Leaf);
+      Path.resize(Length);
+    }
+    return;
+  }
+  if (const llvm::json::Array *A = V.getAsArray()) {
+    for (size_t I = 0; I < A->size(); ++I) {
+      ((Path += "[") += std::to_string(I)) += "]";
+      forEachJSONLeaf(Path, (*A)[I], Leaf);
+      Path.resize(Length);
+    }
+    return;
+  }
+  Leaf(Path, V);
+}
+
+void ValueIO::readNativeLeaves(const NativeType &NT, const void *Addr,
+                               std::string &Path, LeafCallback Leaf,
+                               size_t Dim) {
+  size_t Length = Path.size();
+  if (Dim < NT.Extents.size()) {
+    uint64_t Stride = getStride(NT, Dim);
+    for (uint32_t I = 0; I < NT.Extents[Dim]; ++I) {
+      ((Path += "[") += std::to_string(I)) += "]";
+      readNativeLeaves(NT, static_cast<const char *>(Addr) + I * Stride, Path,
+                       Leaf, Dim + 1);
+      Path.resize(Length);
+    }
+    return;
+  }
+  if (NT.TheCode == NativeType::Class && NT.TheClass)
+    return readLeaves(*NT.TheClass, Addr, Path, Leaf);
+  Leaf(Path, readNative(NT, Addr, Dim));
+}
+
+void ValueIO::readLeaves(const NativeClass &C, const void *Obj,
+                         std::string &Path, LeafCallback Leaf) {
+  size_t Length = Path.size();
+  for (const NativeFunction &M : C.Members) {
+    if (!M.isData())
+      continue;
+    (Path += ".") += M.Name;
+    if (M.FieldOffset)
+      readNativeLeaves(M.Result, static_cast<const char *>(Obj) + *M.FieldOffset,
+                       Path, Leaf, 0);
+    else // A property: a class it returns is read whole.
+      forEachJSONLeaf(Path, readMember(C, M, Obj), Leaf);
+    Path.resize(Length);
+  }
 }
 
 //===----------------------------------------------------------------------===//

@@ -216,9 +216,7 @@ int bsc::timelineCommand(Compilation &C, const FrontendOptions &FOpts,
   LoadedBehavior &L = *Loaded;
   // Each log is replayed by robots of its own, from their first cycle.
   llvm::Error Internal = llvm::Error::success();
-  Opts.ReplayLog = [&](llvm::StringRef Path,
-                       llvm::function_ref<bool(const llvm::json::Value &)>
-                           Take) {
+  Opts.ReplayLog = [&](llvm::StringRef Path, timeline::CycleSink &Sink) {
     auto Robots = Team::start(C, L, 1);
     if (!Robots) {
       Internal = Robots.takeError();
@@ -226,11 +224,19 @@ int bsc::timelineCommand(Compilation &C, const FrontendOptions &FOpts,
     }
     if (!*Robots)
       return false;
+    TimelineFeed Feed(L, Sink);
     RunOptions ROpts;
     ROpts.ReplayPath = Path.str();
     ROpts.RobotsFromRecording = true;
     ROpts.CycleLimitMs = DefaultCycleLimitMs;
-    ROpts.TakeCycle = Take;
+    ROpts.TakeCycle = [&](unsigned Robot, const BehaviorSession &S) {
+      if (Robot > 0) {
+        C.Diags.report(llvm::SMLoc(), diag::err_timeline_team_log) << Path;
+        return false;
+      }
+      Feed.take(S);
+      return true;
+    };
     return runTeam(C, L, **Robots, ROpts, llvm::nulls()) &&
            !C.Diags.hasErrors();
   };

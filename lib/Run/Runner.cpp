@@ -138,8 +138,7 @@ private:
   void keepRecordings();
   bool isTeam() const { return Robots.size() > 1; }
   bool recording() const {
-    return Record || (!Robots.empty() && Robots[0].Record) ||
-           Opts.TakeCycle;
+    return Record || (!Robots.empty() && Robots[0].Record);
   }
 
   Compilation &C;
@@ -264,7 +263,7 @@ bool CycleRunner::openRecordings() {
 bool CycleRunner::open() {
   if (!Opts.ReplayPath.empty() && !openReplay())
     return false;
-  // Lines handed over carry the input the entry saw, as recordings do.
+  // Cycles handed over carry the input the entry saw, as recordings do.
   if (Opts.TakeCycle)
     for (RobotRun &R : Robots)
       R.S->keepCalls(true);
@@ -490,17 +489,9 @@ bool CycleRunner::runCycle(unsigned K, const ReplayLine *Line) {
     Out = *Rec.getAsObject()->get("output");
   else if (L.OutputClass && Opts.PrintOutput)
     Out = Values.readClass(*L.OutputClass, S.getOutput());
-  if (Opts.TakeCycle) {
-    // As the line reads back from a recording: a float's value is then
-    // its shortest decimal, as in every other recording.
-    llvm::Expected<llvm::json::Value> Line =
-        llvm::json::parse(debug::toJSONString(Rec));
-    if (!Line || !Opts.TakeCycle(*Line)) {
-      if (!Line)
-        llvm::consumeError(Line.takeError()); // Printed by bsc: valid.
-      Broken = true;
-      return false;
-    }
+  if (Opts.TakeCycle && !Opts.TakeCycle(K, S)) {
+    Broken = true;
+    return false;
   }
   writeCycle(K, std::move(Rec), Out);
   checkEntryFailed(K, Cycle);

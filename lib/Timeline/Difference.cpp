@@ -115,7 +115,9 @@ std::vector<std::string> compareCycle(const Run &A, const Run &B,
   for (const auto &[SA, SB] : P.Values) {
     const llvm::json::Value &VA = (SA ? SA : &Absent)->at(Cycle);
     const llvm::json::Value &VB = (SB ? SB : &Absent)->at(Cycle);
-    if (!(VA == VB))
+    // A number compares as the float it is: a replay's values are the
+    // floats themselves, a recording's the shortest decimals of them.
+    if (debug::findDifference(VA, VB, ""))
       Notes.push_back((SA ? SA : SB)->Path + ": A " + describeValue(VA) +
                       ", B " + describeValue(VB));
   }

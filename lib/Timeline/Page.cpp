@@ -11,6 +11,7 @@
 #include "bsc/Debug/Values.h"
 #include "llvm/ADT/StringExtras.h"
 #include "llvm/Support/raw_ostream.h"
+#include <functional>
 #include <map>
 #include <set>
 
@@ -169,18 +170,29 @@ private:
   llvm::StringMap<int64_t> StringIndex;
 };
 
-/// `<` as `\u003c`: valid in JSON only inside strings, where it means `<`.
-std::string escapeForScript(llvm::StringRef JSON) {
-  std::string Out;
-  Out.reserve(JSON.size() + JSON.count('<') * 5);
-  for (char C : JSON) {
-    if (C == '<')
-      Out += "\\u003c";
-    else
-      Out += C;
+/// Writes to `OS` with every `<` as `\u003c` (valid in JSON only inside
+/// strings, where it means `<`): the data streams into the page, whose
+/// tens of megabytes for a long run were built in a string and copied.
+class ScriptEscaper : public llvm::raw_ostream {
+public:
+  explicit ScriptEscaper(llvm::raw_ostream &OS) : OS(OS) {}
+  ~ScriptEscaper() override { flush(); }
+
+private:
+  void write_impl(const char *Ptr, size_t Size) override {
+    llvm::StringRef Text(Ptr, Size);
+    Written += Size;
+    for (size_t At; (At = Text.find('<')) != llvm::StringRef::npos;) {
+      OS << Text.take_front(At) << "\\u003c";
+      Text = Text.drop_front(At + 1);
+    }
+    OS << Text;
   }
-  return Out;
-}
+  uint64_t current_pos() const override { return Written; }
+
+  llvm::raw_ostream &OS;
+  uint64_t Written = 0;
+};
 
 std::string escapeHTML(llvm::StringRef Text) {
   std::string Out;
@@ -200,11 +212,6 @@ std::string escapeHTML(llvm::StringRef Text) {
 void timeline::writePage(llvm::raw_ostream &OS,
                          llvm::ArrayRef<const Run *> Runs,
                          const std::optional<Difference> &Diff) {
-  std::string Data;
-  {
-    llvm::raw_string_ostream DataOS(Data);
-    DataWriter(DataOS).write(Runs, Diff);
-  }
   std::vector<std::string> Names;
   for (const Run *R : Runs)
     Names.push_back(R->Name);
@@ -212,14 +219,19 @@ void timeline::writePage(llvm::raw_ostream &OS,
 
   // One pass over the template: a marker's text inside the data or the
   // script is not a marker.
-  const std::pair<llvm::StringRef, std::string> Fills[] = {
-      {"@BSC_TIMELINE_TITLE@", Title},
-      {"@BSC_TIMELINE_DATA@", escapeForScript(Data)},
-      {"@BSC_TIMELINE_SCRIPT@", PageScript}};
+  using Filler = std::function<void()>;
+  const std::pair<llvm::StringRef, Filler> Fills[] = {
+      {"@BSC_TIMELINE_TITLE@", [&] { OS << Title; }},
+      {"@BSC_TIMELINE_DATA@",
+       [&] {
+         ScriptEscaper Escaped(OS);
+         DataWriter(Escaped).write(Runs, Diff);
+       }},
+      {"@BSC_TIMELINE_SCRIPT@", [&] { OS << PageScript; }}};
   llvm::StringRef Rest = PageHTML;
   while (!Rest.empty()) {
     size_t At = Rest.find("@BSC_TIMELINE_");
-    const std::pair<llvm::StringRef, std::string> *Fill = nullptr;
+    const std::pair<llvm::StringRef, Filler> *Fill = nullptr;
     for (const auto &F : Fills)
       if (At != llvm::StringRef::npos && Rest.substr(At).starts_with(F.first))
         Fill = &F;
@@ -228,7 +240,8 @@ void timeline::writePage(llvm::raw_ostream &OS,
       Rest = Rest.drop_front(At == llvm::StringRef::npos ? Rest.size() : At + 1);
       continue;
     }
-    OS << Rest.take_front(At) << Fill->second;
+    OS << Rest.take_front(At);
+    Fill->second();
     Rest = Rest.drop_front(At + Fill->first.size());
   }
 }

@@ -236,20 +236,9 @@ bool timeline::readReplayedLog(Compilation &C, const TimelineOptions &Opts,
   }
   R.Name = Path.str();
   RunBuilder Builder(R);
-  std::optional<uint32_t> Previous;
-  bool OK = Opts.ReplayLog(Path, [&](const llvm::json::Value &Line) {
-    uint32_t Cycle = 0;
-    std::vector<CycleTask> Tasks;
-    if (!LineReader(C, llvm::SMLoc()).read(Line, Previous, Cycle, Tasks))
-      return false;
-    const llvm::json::Object *O = Line.getAsObject();
-    Builder.addCycle(Cycle, O->get("input"), O->get("output"), Tasks);
-    Previous = Cycle;
-    return true;
-  });
-  if (!OK)
+  if (!Opts.ReplayLog(Path, Builder))
     return false;
-  if (!Previous) {
+  if (R.Cycles.empty()) {
     C.Diags.report(llvm::SMLoc(), diag::err_record_empty) << Path;
     return false;
   }

@@ -91,10 +91,22 @@ struct CycleTask {
   const llvm::json::Object *Params = nullptr, *Locals = nullptr;
 };
 
-/// Folds cycles, in increasing order, into a Run.
-class RunBuilder {
+/// Folds cycles, in increasing order, into a Run: a replay's changes
+/// (CycleSink), or whole cycles a reader found (addCycle).
+class RunBuilder final : public CycleSink {
 public:
   explicit RunBuilder(Run &R) : R(R) {}
+  unsigned valueIndex(llvm::StringRef Path) override;
+  unsigned laneIndex(llvm::StringRef Task) override;
+  unsigned fieldIndex(unsigned Lane, llvm::StringRef Name,
+                      bool IsParam) override;
+  void beginCycle(uint32_t Cycle) override;
+  void setValue(unsigned Value, const llvm::json::Value &V) override;
+  void keepValue(unsigned Value) override;
+  void addTask(unsigned Lane, llvm::StringRef State, llvm::StringRef Place,
+               int ParentLane) override;
+  void endCycle() override;
+  /// A whole cycle: a recording's line, or a robot's trace (tasks only).
   void addCycle(uint32_t Cycle, const llvm::json::Value *Input,
                 const llvm::json::Value *Output,
                 llvm::ArrayRef<CycleTask> Tasks);
@@ -102,18 +114,37 @@ public:
   void finish();
 
 private:
-  void addLeaves(std::string &Path, const llvm::json::Value &V,
-                 uint32_t Cycle);
-  unsigned laneFor(llvm::StringRef Task);
-  void addFields(unsigned Lane, const llvm::json::Object *Fields,
-                 bool IsParam, uint32_t Cycle);
+  /// A value set whole: `input`, `output` or a part of one (whose leaves
+  /// are Run::Leaves), or a task's parameter or local (whose leaves are
+  /// its lane's Fields).
+  struct Source {
+    int Lane; ///< -1 for `input` and `output`.
+    bool IsParam;
+    std::string Name;
+    /// Its leaves, as it was last set.
+    std::vector<unsigned> Leaves;
+  };
+  /// The path of a leaf of `S`: `input.ball.x`, or a field's `target.x`.
+  const std::string &leafName(const Source &S, unsigned Leaf) const;
+  /// Its index, added if new.
+  unsigned findLeaf(const Source &S, llvm::StringRef Leaf);
+  void setFields(unsigned Lane, const llvm::json::Object *Fields,
+                 bool IsParam);
 
   Run &R;
-  llvm::StringMap<unsigned> LeafIndex, LaneIndex;
-  /// Per lane, its fields by `p` or `l` (parameter or local) and name.
-  std::vector<llvm::StringMap<unsigned>> FieldIndex;
-  /// Per leaf, and per lane and field, the last cycle that set it: what a
-  /// cycle did not set is absent (null) from then on.
+  uint32_t Cycle = 0;
+  /// Counts the cycles begun: a leaf set or kept in this one has it.
+  uint32_t Generation = 0;
+  std::vector<Source> Sources;
+  llvm::StringMap<unsigned> RootIndex, LaneIndex, LeafIndex;
+  /// Per lane: its parameters and locals (Sources), and the leaves of
+  /// each (Fields) by name.
+  struct LaneKeys {
+    llvm::StringMap<unsigned> Params, Locals, ParamLeaves, LocalLeaves;
+  };
+  std::vector<LaneKeys> Lanes;
+  /// Per leaf, and per lane and field, the last generation that set or
+  /// kept it: what a cycle did not is absent (null) from then on.
   std::vector<uint32_t> LeafSetIn;
   std::vector<std::vector<uint32_t>> FieldSetIn;
 };

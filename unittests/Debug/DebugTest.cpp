@@ -4,7 +4,9 @@
 #include "bsc/Debug/Values.h"
 #include "gtest/gtest.h"
 #include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <map>
 
 using namespace bsc;
 using namespace bsc::debug;
@@ -603,3 +605,110 @@ TEST(DebugValuesTest, WriteClassTextTakesTheRecordedForm) {
         "[1]"})
     EXPECT_FALSE(IO.writeClassText(FC.C, &ByText, Other)) << Other.str();
 }
+
+namespace {
+/// readLeaves gives what readClass holds, leaf by leaf: a nested class's
+/// fields and an array's elements, named as the timeline names them.
+TEST(DebugValuesTest, ReadLeavesAreTheLeavesOfReadClass) {
+  struct Inner {
+    double X, Y;
+  };
+  struct Obj {
+    int16_t S[3];
+    Inner In;
+    bool B;
+  } O = {{-1, 2, 300}, {0.5, -2}, true};
+  NativeClass InnerClass;
+  InnerClass.Name = "Inner";
+  InnerClass.QualifiedName = "M::Inner";
+  addField(InnerClass, "x", NativeType::Float, offsetof(Inner, X), 8);
+  addField(InnerClass, "y", NativeType::Float, offsetof(Inner, Y), 8);
+  NativeClass C;
+  C.Name = "Obj";
+  C.QualifiedName = "M::Obj";
+  addField(C, "s", NativeType::Int, offsetof(Obj, S), 2, {3});
+  addField(C, "in", NativeType::Class, offsetof(Obj, In), sizeof(Inner));
+  C.Members.back().Result.TheClass = &InnerClass;
+  addField(C, "b", NativeType::Bool, offsetof(Obj, B), 1);
+  ValueIO IO([](llvm::StringRef) -> void * { return nullptr; });
+  std::map<std::string, std::string> ByRead, ByClass;
+  std::string Path = "input";
+  IO.readLeaves(C, &O, Path, [&](llvm::StringRef P, const llvm::json::Value &V) {
+    ByRead[P.str()] = toJSONString(V);
+  });
+  EXPECT_EQ(Path, "input");
+  forEachJSONLeaf(Path, IO.readClass(C, &O),
+                  [&](llvm::StringRef P, const llvm::json::Value &V) {
+                    ByClass[P.str()] = toJSONString(V);
+                  });
+  EXPECT_EQ(ByRead, ByClass);
+  EXPECT_EQ(ByRead.size(), 6u);
+  EXPECT_EQ(ByRead["input.s[2]"], "300");
+  EXPECT_EQ(ByRead["input.in.y"], "-2");
+  EXPECT_EQ(ByRead["input.b"], "true");
+}
+
+/// Numbers print as `%.*g` of the least precision that reads back (as a
+/// float, for a float): the form recordings have always had, which the
+/// search from std::to_chars's shortest digits must keep.
+TEST(DebugValuesTest, NumbersPrintAsTheLeastPrecisionThatReadsBack) {
+  auto Reference = [](double D) {
+    bool IsFloat = double(float(D)) == D;
+    char S[40];
+    for (int Precision = 1; Precision <= 17; ++Precision) {
+      std::snprintf(S, sizeof S, "%.*g", Precision, D);
+      double Back = std::strtod(S, nullptr);
+      if (IsFloat ? float(Back) == float(D) : Back == D)
+        return std::string(S);
+    }
+    std::snprintf(S, sizeof S, "%.17g", D);
+    return std::string(S);
+  };
+  EXPECT_EQ("1e-05", toJSONString(floatToJSON(1e-5f)));
+  EXPECT_EQ("0.0001", toJSONString(floatToJSON(1e-4f)));
+  EXPECT_EQ("1.5e+20", toJSONString(floatToJSON(1.5e20f)));
+  EXPECT_EQ("0.1", toJSONString(llvm::json::Value(0.1)));
+  uint32_t Bits = 12345;
+  for (int I = 0; I < 100000; ++I) {
+    Bits = Bits * 1664525u + 1013904223u; // Any float, by its bits.
+    float F;
+    std::memcpy(&F, &Bits, 4);
+    if (!std::isfinite(F) || F == std::trunc(F))
+      continue;
+    ASSERT_EQ(Reference(F), toJSONString(floatToJSON(F))) << Bits;
+    double D = double(F) * (1 + 1e-9); // Not a float: a double's digits.
+    ASSERT_EQ(Reference(D), toJSONString(llvm::json::Value(D))) << Bits;
+  }
+}
+
+/// The lister over a run's cycles gives what listActiveTasks gives for
+/// each, as the active tasks and their activations change and stay.
+TEST(DebugTraceTest, ListerIsListActiveTasksCycleAfterCycle) {
+  DebugTables T = makeTables();
+  T.Tasks[1].YieldStates = {"", "Done::lost"};
+  std::vector<std::vector<Activation>> Cycles = {
+      {{0, 1, 1}, {1, 1, 1}, {2, 1, 1}},
+      {{0, 1, 1}, {1, 1, 1}, {2, 1, 1}},  // The same.
+      {{0, 2, 3}, {1, 2, -1}, {2, 1, 1}}, // Other activations.
+      {{0, 2, 3}, {2, 0, 0}},             // look is gone: walk under main.
+      {{1, 1, 1}, {2, 1, 1}, {3, 0, 0}},
+      {{1, 1, 1}, {2, 1, 1}, {3, 0, 0}},
+      {},
+      {{7, 1, 1}}, // An unknown task.
+      {{0, 1, 1}, {1, 1, 1}, {2, 1, 1}}};
+  ActiveTaskLister Lister(T);
+  for (size_t C = 0; C < Cycles.size(); ++C) {
+    std::vector<RecordedTask> Want = listActiveTasks(T, Cycles[C]);
+    const std::vector<RecordedTask> &Got = Lister.list(Cycles[C]);
+    ASSERT_EQ(Got.size(), Want.size()) << "cycle " << C;
+    for (size_t I = 0; I < Want.size(); ++I) {
+      EXPECT_EQ(Got[I].Record.Task, Want[I].Record.Task) << C;
+      EXPECT_EQ(Got[I].Record.Resume, Want[I].Record.Resume) << C;
+      EXPECT_EQ(Got[I].Record.State, Want[I].Record.State) << C;
+      EXPECT_EQ(Got[I].Parent, Want[I].Parent) << C;
+      EXPECT_EQ(Got[I].State, Want[I].State) << C;
+      EXPECT_EQ(Got[I].Place, Want[I].Place) << C;
+    }
+  }
+}
+} // namespace

@@ -69,3 +69,27 @@ TEST(Difference, AgainstARobotLogOnlyTasksCompare) {
   EXPECT_EQ(findFirstDifference(A, B), std::nullopt);
 }
 } // namespace
+
+namespace {
+/// A replay's values are the floats themselves, a recording's their
+/// shortest decimals: they are the same value.
+TEST(Difference, NumbersCompareAsTheFloatsTheyAre) {
+  timeline::Run A, B;
+  for (auto [R, X] : {std::pair{&A, json::Value(0.1)},
+                      std::pair{&B, json::Value(double(0.1f))}}) {
+    RunBuilder Builder(*R);
+    json::Value Out = json::Object{{"x", X}};
+    Builder.addCycle(1, nullptr, &Out, {});
+    Builder.finish();
+  }
+  EXPECT_FALSE(findFirstDifference(A, B));
+  timeline::Run C;
+  RunBuilder Builder(C);
+  json::Value Out = json::Object{{"x", 0.2}};
+  Builder.addCycle(1, nullptr, &Out, {});
+  Builder.finish();
+  std::optional<Difference> D = findFirstDifference(A, C);
+  ASSERT_TRUE(D);
+  EXPECT_EQ(D->Notes, std::vector<std::string>{"output.x: A 0.1, B 0.2"});
+}
+} // namespace

@@ -109,3 +109,86 @@ TEST(RunBuilder, TaskFieldsAreLeavesWhileTheTaskRuns) {
   EXPECT_EQ(W.Fields[1].Values.at(2), json::Value(nullptr));
 }
 } // namespace
+
+namespace {
+/// What a replay feeds (CycleSink): values set, kept or left out, tasks
+/// by lane. A kept value is the cycle before's; one left out is absent.
+TEST(RunBuilder, ASinkKeepsWhatIsKeptAndDropsWhatIsNot) {
+  timeline::Run R;
+  RunBuilder B(R);
+  CycleSink &S = B;
+  unsigned Time = S.valueIndex("input.time");
+  unsigned Main = S.laneIndex("M::main");
+  unsigned Walk = S.laneIndex("M::walk");
+  unsigned N = S.fieldIndex(Walk, "n", /*IsParam=*/false);
+  unsigned Target = S.fieldIndex(Walk, "target", /*IsParam=*/true);
+  EXPECT_EQ(S.laneIndex("M::walk"), Walk);
+  EXPECT_EQ(S.fieldIndex(Walk, "n", false), N);
+  EXPECT_NE(S.fieldIndex(Walk, "n", true), N); // A parameter n is another.
+
+  S.beginCycle(1);
+  S.setValue(Time, 10);
+  S.addTask(Main, "running", "M.bs:4", -1);
+  S.addTask(Walk, "running", "M.bs:8", int(Main));
+  S.setValue(N, 1);
+  S.setValue(Target, json::Object{{"x", 5}, {"y", 6}});
+  S.endCycle();
+  S.beginCycle(2); // Everything kept.
+  S.keepValue(Time);
+  S.addTask(Main, "running", "M.bs:4", -1);
+  S.addTask(Walk, "running", "M.bs:8", int(Main));
+  S.keepValue(N);
+  S.keepValue(Target);
+  S.endCycle();
+  S.beginCycle(3); // walk has finished: its local is gone.
+  S.setValue(Time, 30);
+  S.addTask(Main, "running", "M.bs:4", -1);
+  S.addTask(Walk, "done", "", int(Main));
+  S.keepValue(Target);
+  S.endCycle();
+  S.beginCycle(4); // walk is not active; input.time is not set.
+  S.addTask(Main, "running", "M.bs:5", -1);
+  S.endCycle();
+  B.finish();
+
+  ASSERT_EQ(R.Leaves.size(), 1u);
+  EXPECT_EQ(R.Leaves[0].Path, "input.time");
+  EXPECT_EQ(R.Leaves[0].ChangeCycles, (std::vector<uint32_t>{1, 3, 4}));
+  EXPECT_EQ(R.Leaves[0].at(2), json::Value(10));
+  EXPECT_EQ(R.Leaves[0].at(4), json::Value(nullptr));
+  const TaskLane &W = R.Tasks[Walk];
+  ASSERT_EQ(W.Fields.size(), 3u);
+  // Parameters first: target.x, target.y, then the local n.
+  EXPECT_EQ(W.Fields[0].Values.Path, "M::walk.target.x");
+  EXPECT_EQ(W.Fields[0].Values.ChangeCycles, (std::vector<uint32_t>{1, 4}));
+  EXPECT_EQ(W.Fields[0].Values.at(3), json::Value(5));
+  EXPECT_EQ(W.Fields[2].Name, "n");
+  EXPECT_EQ(W.Fields[2].Values.at(2), json::Value(1));
+  EXPECT_EQ(W.Fields[2].Values.at(3), json::Value(nullptr));
+  ASSERT_EQ(W.Segments.size(), 2u);
+  EXPECT_EQ(W.Segments[0].Parent, int(Main));
+  EXPECT_EQ(W.Segments[1].State, "done");
+  EXPECT_EQ(R.Tasks[Main].Segments.size(), 2u);
+}
+
+/// A value whose shape changes (a recording may hold anything) is its new
+/// leaves; the old ones are absent from then on.
+TEST(RunBuilder, AValueOfAnotherShapeIsItsNewLeaves) {
+  timeline::Run R;
+  RunBuilder B(R);
+  json::Value Out1 = json::Object{{"a", 1}};
+  json::Value Out2 = json::Object{{"b", json::Array{2, 3}}};
+  json::Value Out3 = json::Object{{"a", 4}, {"b", json::Array{2, 3}}};
+  B.addCycle(1, nullptr, &Out1, {});
+  B.addCycle(2, nullptr, &Out2, {});
+  B.addCycle(3, nullptr, &Out3, {});
+  B.finish();
+  ASSERT_EQ(R.Leaves.size(), 3u);
+  EXPECT_EQ(R.Leaves[0].Path, "output.a");
+  EXPECT_EQ(R.Leaves[0].at(2), json::Value(nullptr));
+  EXPECT_EQ(R.Leaves[0].at(3), json::Value(4));
+  EXPECT_EQ(R.Leaves[2].Path, "output.b[1]");
+  EXPECT_EQ(R.Leaves[2].at(1), json::Value(nullptr));
+  EXPECT_EQ(R.Leaves[2].at(3), json::Value(3));
+}
+} // namespace

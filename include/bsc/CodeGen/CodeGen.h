@@ -33,6 +33,7 @@ namespace bsc {
 /// The flags of a boundary wrapper's site (CodeGenOptions::Boundary), as
 /// generated code hands them to the JIT's recorder (bsc/JIT/Boundary.h).
 enum BoundarySiteFlags : uint32_t {
+  SiteNoFlags = 0,
   /// The result is a `const char *` whose characters are kept, not the
   /// pointer (a re-run gets a pointer to the kept copy).
   SiteResultIsString = 1,

@@ -139,6 +139,26 @@ struct RecordedTask {
 std::vector<RecordedTask> listActiveTasks(const DebugTables &T,
                                           llvm::ArrayRef<Activation> Records);
 
+/// listActiveTasks over the cycles of a run, cycle after cycle: where the
+/// same tasks are active as in the cycle before, the hierarchy is the one
+/// found then, and a task whose activation did not change keeps its state
+/// and place, which is most tasks in most cycles (a timeline of 100,000
+/// cycles of 42 tasks spent a fifth of its time building them anew).
+class ActiveTaskLister {
+public:
+  explicit ActiveTaskLister(const DebugTables &T) : T(T) {}
+  /// listActiveTasks(T, Records).
+  const std::vector<RecordedTask> &list(llvm::ArrayRef<Activation> Records);
+
+private:
+  const DebugTables &T;
+  /// The tasks of the records of the cycle before, in their order.
+  std::vector<unsigned> Tasks;
+  std::vector<RecordedTask> List;
+  /// Per entry of List, its position in the records.
+  std::vector<unsigned> RecordOf;
+};
+
 /// The hierarchy on one line, each path from a root to a leaf, every task
 /// with its describeActivation: `play [running, Soccer.bs:12] >
 /// executeKick [done]`, paths separated by `; `; `idle` when no task ran.

@@ -35,6 +35,16 @@ struct NativeFunction;
 
 namespace debug {
 
+/// Called with a leaf's path and value.
+using LeafCallback =
+    llvm::function_ref<void(llvm::StringRef, const llvm::json::Value &)>;
+
+/// Calls `Leaf` with the path and value of each number, string, bool or
+/// null in `V`, after `Path`: `.member` for an object's members, `[i]` for
+/// elements (`input.ball.position.x`, `output.wide[3]`).
+void forEachJSONLeaf(std::string &Path, const llvm::json::Value &V,
+                     LeafCallback Leaf);
+
 /// Reads and writes values in this process's memory (the JIT's).
 class ValueIO {
 public:
@@ -48,6 +58,13 @@ public:
   llvm::json::Value read(const Type *T, const void *Addr);
   /// An object of a registered class: its fields and properties.
   llvm::json::Value readClass(const NativeClass &C, const void *Obj);
+
+  /// Calls `Leaf` with each number, string, bool or null readClass would
+  /// hold, named as forEachJSONLeaf names them after `Path` (`input` ->
+  /// `input.ball.position.x`), without building the object (a timeline
+  /// reads `input` every cycle, and the objects cost more than the cycle).
+  void readLeaves(const NativeClass &C, const void *Obj, std::string &Path,
+                  LeafCallback Leaf);
 
   /// The inverses. `Path` names the value in messages (`input.ball`);
   /// members a JSON object leaves out keep their values.
@@ -74,6 +91,8 @@ private:
   /// JSON arrays).
   llvm::json::Value readNative(const NativeType &NT, const void *Addr,
                                size_t Dim = 0);
+  void readNativeLeaves(const NativeType &NT, const void *Addr,
+                        std::string &Path, LeafCallback Leaf, size_t Dim);
   llvm::Error writeNative(const NativeType &NT, void *Addr,
                           const llvm::json::Value &V, llvm::StringRef Path,
                           size_t Dim = 0);

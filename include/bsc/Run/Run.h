@@ -28,6 +28,9 @@
 #include <vector>
 
 namespace bsc {
+namespace timeline {
+class CycleSink;
+}
 
 /// The options of loading a behavior into the JIT.
 struct LoadOptions {
@@ -178,10 +181,9 @@ struct RunOptions {
   /// here where they differ (cycles per output member); the run is
   /// recorded again (RecordPath).
   std::map<std::string, unsigned> *Changed = nullptr;
-  /// Each cycle's recording line (recordCycle, as it reads back from a
-  /// recording) handed over (`bsc timeline` of a binary log); false stops
-  /// the run.
-  std::function<bool(const llvm::json::Value &)> TakeCycle;
+  /// Each robot's session after each cycle it ran, handed over (`bsc
+  /// timeline` of a binary log: TimelineFeed); false stops the run.
+  std::function<bool(unsigned Robot, const BehaviorSession &S)> TakeCycle;
 };
 
 /// `--world-output FILE`: opens FILE (emptied) for what a world library
@@ -252,6 +254,56 @@ llvm::json::Value recordHeader(const LoadedBehavior &L);
 /// input its entry saw).
 llvm::json::Value recordCycle(debug::ValueIO &Values, const LoadedBehavior &L,
                               const BehaviorSession &S);
+
+/// The names a recording gives a task's parameters and locals, in the
+/// frame's order (BehaviorLayout::Task::Fields): locals of one name in
+/// different blocks are `x`, `x#2`, ...
+std::vector<std::string> recordedFieldNames(const BehaviorLayout::Task &T);
+
+/// Hands each cycle a session ran to a timeline (`bsc timeline` of a
+/// binary log) as what changed: the values a recording's line would hold
+/// (recordCycle), read only where their bytes changed since the cycle
+/// before (strings and classes that do not copy as bytes every cycle).
+class TimelineFeed {
+public:
+  TimelineFeed(const LoadedBehavior &L, timeline::CycleSink &Sink);
+  void take(const BehaviorSession &S);
+
+private:
+  /// A world object: its leaves (`input.ball.x`), each a value of the
+  /// sink, and its bytes as last read.
+  struct WorldObject {
+    const NativeClass *Class = nullptr;
+    const char *Name;
+    std::vector<std::string> Paths;
+    std::vector<unsigned> Leaves;
+    std::vector<unsigned char> Bytes;
+  };
+  void takeObject(WorldObject &O, const void *Bytes, size_t Size);
+  /// What the feed knows of a task (by the tables' index).
+  struct TaskFeed {
+    int Lane = -1; ///< Until the task first runs.
+    std::vector<unsigned> Fields; ///< Sink indices, in the frame's order.
+    /// Per field, the bytes its value is; 0: more than bytes (a string, a
+    /// class that does not copy as bytes), read every cycle.
+    std::vector<unsigned> Bytes;
+    /// Its frame as last read, in the generation it was active then,
+    /// finished or not.
+    std::vector<unsigned char> Frame;
+    uint32_t ActiveIn = 0;
+    bool Finished = false;
+  };
+  void takeTask(TaskFeed &T, unsigned Task, const char *State,
+                bool Finished);
+
+  const LoadedBehavior &L;
+  timeline::CycleSink &Sink;
+  debug::ValueIO Values;
+  debug::ActiveTaskLister Lister;
+  WorldObject Input, Output;
+  std::vector<TaskFeed> Tasks;
+  uint32_t Generation = 0;
+};
 
 /// Whether `--record PATH` writes a binary log (bsc/Run/BinaryLog.h)
 /// rather than JSON lines: PATH ends in `.bslog`.

@@ -15,8 +15,8 @@
 #ifndef BSC_TIMELINE_TIMELINE_H
 #define BSC_TIMELINE_TIMELINE_H
 
-#include "llvm/ADT/STLFunctionalExtras.h"
 #include "llvm/ADT/StringRef.h"
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -32,6 +32,32 @@ namespace bsc {
 struct Compilation;
 
 namespace timeline {
+
+/// A run handed over cycle by cycle as what changed, without text: what a
+/// replayed binary log feeds (bsc/Run's TimelineFeed), since turning each
+/// of 100,000 cycles of 42 tasks into a recording's line and reading it
+/// back took twenty times the replay. Values (`input`, `output`, a task's
+/// parameter or local, each drawn as its leaves: `input.ball.x`,
+/// `target.x`) and lanes (a task each) are named once, then given by index.
+class CycleSink {
+public:
+  virtual ~CycleSink() = default;
+  /// `input` or `output`, or a part of one (`input.ball.x`).
+  virtual unsigned valueIndex(llvm::StringRef Path) = 0;
+  virtual unsigned laneIndex(llvm::StringRef Task) = 0;
+  virtual unsigned fieldIndex(unsigned Lane, llvm::StringRef Name,
+                              bool IsParam) = 0;
+  /// Starts a cycle, after every earlier one. A value the cycle neither
+  /// sets nor keeps is absent in it.
+  virtual void beginCycle(uint32_t Cycle) = 0;
+  virtual void setValue(unsigned Value, const llvm::json::Value &V) = 0;
+  /// The value of the cycle before, unchanged.
+  virtual void keepValue(unsigned Value) = 0;
+  /// An active task, after its parent's lane (-1 for a root), depth first.
+  virtual void addTask(unsigned Lane, llvm::StringRef State,
+                       llvm::StringRef Place, int ParentLane) = 0;
+  virtual void endCycle() = 0;
+};
 
 struct TimelineOptions {
   /// One recording, or two to compare.
@@ -49,11 +75,9 @@ struct TimelineOptions {
   /// --entry, with BehaviorFiles.
   std::string EntryName;
   /// Set by the driver when BehaviorFiles are given: replays the binary
-  /// log at the path and hands each cycle to `Take` as a recording's line
-  /// (`cycle`, `input`, `output`, `tasks`); false after reporting.
-  std::function<bool(llvm::StringRef Path,
-                     llvm::function_ref<bool(const llvm::json::Value &)> Take)>
-      ReplayLog;
+  /// log at the path and hands each cycle to `Sink`; false after
+  /// reporting.
+  std::function<bool(llvm::StringRef Path, CycleSink &Sink)> ReplayLog;
 };
 
 /// Writes the page. With two records, prints their first difference (or
