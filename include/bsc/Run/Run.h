@@ -255,6 +255,19 @@ llvm::json::Value recordHeader(const LoadedBehavior &L);
 llvm::json::Value recordCycle(debug::ValueIO &Values, const LoadedBehavior &L,
                               const BehaviorSession &S);
 
+/// What explainLastCycle could show.
+enum class WhyOutcome { Printed, NoCycle, NotRecorded, DidNotRun };
+
+/// `:why`: the conditions the session's last cycle evaluated, from the
+/// JIT's explain log (LoadOptions::Explain), with the values of their
+/// parts and where each task call ended; of task `Task` (its index in the
+/// layout; -1: the entry func's own conditions), or of every task that
+/// ran, in the hierarchy's order. NotRecorded if the log is not of that
+/// cycle (another cycle ran since, or the behavior was loaded without it).
+WhyOutcome explainLastCycle(const LoadedBehavior &L, debug::ValueIO &Values,
+                            const BehaviorSession &S, std::optional<int> Task,
+                            llvm::raw_ostream &OS);
+
 /// The names a recording gives a task's parameters and locals, in the
 /// frame's order (BehaviorLayout::Task::Fields): locals of one name in
 /// different blocks are `x`, `x#2`, ...
