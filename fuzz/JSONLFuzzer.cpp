@@ -15,9 +15,12 @@
 // `calls` (bsc/JIT/Boundary.h) that are accepted spell the same calls
 // when written again, and a replay of them (as bytes, and the line's own
 // bytes taken as an encoded record) into a made-up behavior's memory stays
-// inside it. A violation aborts, which both drivers report.
+// inside it. A line's `tasks`, as a failed replay's second look reads
+// them (lib/Run/FailureCause.h), name their parents before them. A
+// violation aborts, which both drivers report.
 //
 //===----------------------------------------------------------------------===//
+#include "FailureCause.h"
 #include "bsc/AST/Native.h"
 #include "bsc/Basic/JSON.h"
 #include "bsc/Debug/Values.h"
@@ -159,6 +162,27 @@ void checkCalls(const llvm::json::Value &Calls) {
   replayRecord(R);
 }
 
+namespace {
+/// A line's `tasks`, as a failed replay's second look reads them: taken,
+/// each parent is an earlier task, and the tasks do not differ from
+/// themselves.
+void checkTasks(const llvm::json::Value &Tasks) {
+  std::optional<std::vector<ActiveTaskView>> Read =
+      parseRecordedTasks(debug::toJSONString(Tasks));
+  if (!Read)
+    return;
+  for (size_t I = 0; I < Read->size(); ++I)
+    if (!(*Read)[I].Parent.empty() &&
+        llvm::none_of(llvm::ArrayRef(*Read).take_front(I),
+                      [&](const ActiveTaskView &T) {
+                        return T.Name == (*Read)[I].Parent;
+                      }))
+      std::abort();
+  if (findTaskDifference(*Read, *Read))
+    std::abort();
+}
+} // namespace
+
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *Data, size_t Size) {
   static const Model M;
   llvm::StringRef Text(reinterpret_cast<const char *>(Data), Size);
@@ -189,6 +213,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *Data, size_t Size) {
       continue;
     if (const llvm::json::Value *Calls = O->get("calls"))
       checkCalls(*Calls);
+    if (const llvm::json::Value *Tasks = O->get("tasks"))
+      checkTasks(*Tasks);
     for (llvm::StringRef Key : {"input", "output"})
       if (const llvm::json::Value *Member = O->get(Key))
         replayMember(IO, M.WorldClass, Obj, *Member);

@@ -337,6 +337,26 @@ int bsc::replayCommand(Compilation &C, const FrontendOptions &FOpts,
   // The compile's warnings once, before the logs' own diagnostics.
   printDiagnostics(C.SM, C.Diags.getDiagnostics(), llvm::errs());
   C.Diags.clear();
+  // A failure's report replays the log again with the conditions recorded,
+  // which slows every cycle: that build is made for the first failure
+  // only (in each worker).
+  std::unique_ptr<LoadedBehavior> Explaining;
+  bool TriedExplaining = false;
+  if (!ROpts.Update)
+    ROpts.ExplainingBehavior = [&]() -> LoadedBehavior * {
+      if (!TriedExplaining) {
+        TriedExplaining = true;
+        LoadOptions XOpts = LOpts;
+        XOpts.Explain = true;
+        XOpts.Coverage = false;
+        auto X = loadBehavior(C, *Entry, XOpts);
+        if (X)
+          Explaining = std::move(*X);
+        else
+          llvm::consumeError(X.takeError()); // The report goes without.
+      }
+      return Explaining.get();
+    };
   llvm::Expected<int> Status = replayLogs(C, **Loaded, ROpts, llvm::outs());
   if (!Status)
     return finishWithInternalError(C, Status.takeError());

@@ -91,10 +91,13 @@ private:
 
 /// How a log failed, the same for logs that fail alike: each diagnostic's
 /// kind and message with its numbers left out (the cycle, the values), and
-/// for an output that differs, the member only.
+/// for an output that differs, the member only; the first task that went
+/// astray, but not its `:why` (values).
 static std::string failureGroup(llvm::ArrayRef<Diagnostic> Diags) {
   std::string Group;
   for (const Diagnostic &D : Diags) {
+    if (D.Kind == diag::note_replay_why)
+      continue;
     llvm::StringRef Message = D.Message;
     if (D.Kind == diag::note_replay_difference)
       Message = Message.split(": recorded").first;
@@ -107,6 +110,63 @@ static std::string failureGroup(llvm::ArrayRef<Diagnostic> Diags) {
   return Group;
 }
 
+/// Replays the log at `Path` in a fresh session of `L` with `Run`'s
+/// options and --world; false if it failed.
+static llvm::Expected<bool> replayLog(Compilation &C, LoadedBehavior &L,
+                                      const ReplayLogsOptions &Opts,
+                                      const std::string &Path, RunOptions Run,
+                                      uint32_t &Cycles) {
+  auto T = Team::start(C, L, 1);
+  if (!T)
+    return T.takeError();
+  if (!*T)
+    return false;
+  // What registered C++ prints in a regression replay is not the report.
+  static int Discard = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+  (*T)->setWorldOutput(Discard);
+  Run.ReplayPath = Path;
+  Run.CycleLimitMs = Opts.CycleLimitMs;
+  Run.RobotsFromRecording = true; // A team's log replays its team.
+  Run.Regression = Opts.Regression;
+  Run.Compare = Opts.Compare;
+  Run.AnnounceReplayMode = false; // Counted for the summary instead.
+  // --world: the robots' user pointers, as on the robot; the log's inputs
+  // replace the world's begin and end hooks.
+  bool Passed = (Opts.WorldLibrary.empty() ||
+                 (*T)->attachWorld(C, L, Opts.WorldLibrary,
+                                   Opts.CycleLimitMs)) &&
+                runTeam(C, L, **T, Run, llvm::nulls()) && !C.Diags.hasErrors();
+  Cycles = (**T)[0].getCycle();
+  return Passed;
+}
+
+/// The second look at a log that failed as `Failure` says: replayed again
+/// by the explaining behavior, which notes the first task that differed
+/// from the recording and its `:why` (RunOptions::Explain). Returns those
+/// notes only.
+static llvm::Expected<std::vector<Diagnostic>>
+explainFailure(Compilation &C, LoadedBehavior &Explaining,
+               const ReplayLogsOptions &Opts, const std::string &Path,
+               const ReplayFailure &Failure) {
+  RunOptions Run;
+  Run.Explain = &Failure;
+  uint32_t Cycles = 0;
+  llvm::Expected<bool> Passed =
+      replayLog(C, Explaining, Opts, Path, Run, Cycles);
+  if (!Passed)
+    return Passed.takeError();
+  std::vector<Diagnostic> Notes;
+  for (const Diagnostic &D : C.Diags.getDiagnostics())
+    if (D.Kind == diag::note_replay_first_task ||
+        D.Kind == diag::note_replay_why ||
+        D.Kind == diag::note_replay_tasks_as_recorded ||
+        D.Kind == diag::note_replay_not_explained ||
+        (D.Kind == diag::note_team_robot && !Notes.empty()))
+      Notes.push_back(D);
+  C.Diags.clear();
+  return Notes;
+}
+
 /// Replays one log in a fresh session of `L`; an llvm::Error is internal.
 static llvm::Expected<LogResult> replayOne(Compilation &C, LoadedBehavior &L,
                                            const ReplayLogsOptions &Opts,
@@ -114,57 +174,50 @@ static llvm::Expected<LogResult> replayOne(Compilation &C, LoadedBehavior &L,
   LogResult R;
   LogSources Sources(C.SM);
   auto Start = std::chrono::steady_clock::now();
-  auto T = Team::start(C, L, 1);
-  if (!T)
-    return T.takeError();
-  // What registered C++ prints in a regression replay is not the report.
-  static int Discard = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
-  if (*T)
-    (*T)->setWorldOutput(Discard);
-  if (*T) {
-    RunOptions Run;
-    Run.ReplayPath = Path;
-    Run.CycleLimitMs = Opts.CycleLimitMs;
-    Run.RobotsFromRecording = true; // A team's log replays its team.
-    Run.Regression = Opts.Regression;
-    Run.Compare = Opts.Compare;
-    if (Opts.Update) {
-      // Recorded again beside the log, then over it: in the log's format
-      // (its extension), under a hidden name --logs never takes for a log.
-      llvm::SmallString<128> Temp = llvm::sys::path::parent_path(Path);
-      llvm::sys::path::append(Temp, "." + llvm::sys::path::filename(Path) +
-                                        ".update" +
-                                        llvm::sys::path::extension(Path));
-      Run.RecordPath = Temp.str().str();
-      Run.Changed = &R.Changed;
-    }
-    Run.AnnounceReplayMode = false; // Counted for the summary instead.
-    Run.ReplayedExactly = &R.Exact;
-    // --world: the robots' user pointers, as on the robot; the log's
-    // inputs replace the world's begin and end hooks.
-    R.Passed = (Opts.WorldLibrary.empty() ||
-                (*T)->attachWorld(C, L, Opts.WorldLibrary,
-                                  Opts.CycleLimitMs)) &&
-               runTeam(C, L, **T, Run, llvm::nulls()) && !C.Diags.hasErrors();
-    if (Opts.Update) {
-      std::error_code EC;
-      if (R.Passed && (EC = llvm::sys::fs::rename(Run.RecordPath, Path)))
-        C.Diags.report(llvm::SMLoc(), diag::err_cannot_write_output)
-            << Path << EC.message();
-      R.Updated = R.Passed && !EC;
-      R.Passed = R.Updated;
-      llvm::sys::fs::remove(Run.RecordPath);
-    }
-    R.Cycles = (**T)[0].getCycle();
+  RunOptions Run;
+  ReplayFailure Failure;
+  Run.Failed = &Failure;
+  if (Opts.Update) {
+    // Recorded again beside the log, then over it: in the log's format
+    // (its extension), under a hidden name --logs never takes for a log.
+    llvm::SmallString<128> Temp = llvm::sys::path::parent_path(Path);
+    llvm::sys::path::append(Temp, "." + llvm::sys::path::filename(Path) +
+                                      ".update" +
+                                      llvm::sys::path::extension(Path));
+    Run.RecordPath = Temp.str().str();
+    Run.Changed = &R.Changed;
   }
+  Run.ReplayedExactly = &R.Exact;
+  llvm::Expected<bool> Passed = replayLog(C, L, Opts, Path, Run, R.Cycles);
+  if (!Passed)
+    return Passed.takeError();
+  R.Passed = *Passed;
+  if (Opts.Update) {
+    std::error_code EC;
+    if (R.Passed && (EC = llvm::sys::fs::rename(Run.RecordPath, Path)))
+      C.Diags.report(llvm::SMLoc(), diag::err_cannot_write_output)
+          << Path << EC.message();
+    R.Updated = R.Passed && !EC;
+    R.Passed = R.Updated;
+    llvm::sys::fs::remove(Run.RecordPath);
+  }
+  std::vector<Diagnostic> Diags = C.Diags.getDiagnostics().vec();
+  C.Diags.clear();
+  if (!R.Passed && Failure.Cycle && Opts.ExplainingBehavior)
+    if (LoadedBehavior *Explaining = Opts.ExplainingBehavior()) {
+      llvm::Expected<std::vector<Diagnostic>> Notes =
+          explainFailure(C, *Explaining, Opts, Path, Failure);
+      if (!Notes)
+        return Notes.takeError();
+      Diags.insert(Diags.end(), Notes->begin(), Notes->end());
+    }
   R.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() -
                                             Start)
                   .count();
   llvm::raw_string_ostream OS(R.Report);
-  printDiagnostics(C.SM, C.Diags.getDiagnostics(), OS);
+  printDiagnostics(C.SM, Diags, OS);
   if (!R.Passed)
-    R.Group = failureGroup(C.Diags.getDiagnostics());
-  C.Diags.clear();
+    R.Group = failureGroup(Diags);
   return R;
 }
 

@@ -193,12 +193,14 @@ bool ReplayReader::read(llvm::StringRef Raw, ReplayLine &Line) {
       Line.Robot = Robot;
     } else if (Key == "calls") {
       Line.Calls = Value;
+    } else if (Key == "tasks") {
+      Line.Tasks = Value;
     } else if (Key == "recording") {
       C.Diags.report(Line.Loc, diag::err_replay_value)
           << "a recording's header ('recording') belongs on its first line "
              "(were two recordings written to one file?)";
       OK = false;
-    } else if (Key != "cycle" && Key != "tasks") {
+    } else if (Key != "cycle") {
       C.Diags.report(Line.Loc, diag::err_replay_unknown_key) << Key;
       OK = false;
     }

@@ -20,6 +20,9 @@ struct ReplayLine {
   std::optional<unsigned> Robot;
   /// The JSON text of its `calls` (recordCycle), empty if it has none.
   llvm::StringRef Calls;
+  /// The JSON text of its `tasks` (recordCycle), empty if it has none:
+  /// read only to explain a failure (RunOptions::Explain).
+  llvm::StringRef Tasks;
   /// A binary log's cycle instead of text: input and output as bytes, the
   /// calls decoded (valid until the next line).
   const BinaryLogCycle *Logged = nullptr;

@@ -8,6 +8,7 @@
 // a recording has one line per robot and cycle, robots in index order.
 //
 //===----------------------------------------------------------------------===//
+#include "FailureCause.h"
 #include "ReplayReader.h"
 #include "bsc/Basic/JSON.h"
 #include "bsc/Basic/Output.h"
@@ -46,14 +47,24 @@ countedDifferences(const llvm::json::Value &Recorded,
   return Ds;
 }
 
+/// Each difference as a failure's note says it.
+static std::vector<std::string>
+describeDifferences(llvm::ArrayRef<debug::Difference> Ds) {
+  std::vector<std::string> Text;
+  for (const debug::Difference &D : Ds)
+    Text.push_back(D.Path + ": recorded " + D.Recorded + ", got " + D.Got);
+  return Text;
+}
+
 /// A replayed cycle whose output differs from the line's: one error, then
 /// a note per field that differs, at the line. Neither echoes it: a
 /// recording fills it with every output member. Returns whether it
-/// reported.
+/// reported (and then sets `Failed`, if given).
 static bool reportMismatch(Compilation &C, const ReplayLine &Line,
                            uint32_t Cycle, const llvm::json::Value &Recorded,
                            const llvm::json::Value &Got,
-                           const OutputComparison &Compare) {
+                           const OutputComparison &Compare,
+                           ReplayFailure *Failed) {
   std::vector<debug::Difference> Ds =
       countedDifferences(Recorded, Got, Compare);
   if (Ds.empty())
@@ -62,6 +73,8 @@ static bool reportMismatch(Compilation &C, const ReplayLine &Line,
   for (const debug::Difference &D : Ds)
     C.Diags.report(Line.Loc, diag::note_replay_difference)
         << D.Path << D.Recorded << D.Got << NoSourceLine();
+  if (Failed)
+    *Failed = {Cycle, describeDifferences(Ds)};
   return true;
 }
 
@@ -127,6 +140,14 @@ private:
   /// not, reports both.
   bool checkLoggedTasks(BehaviorSession &S, const BinaryLogCycle &Logged,
                         uint32_t Cycle);
+  /// How `S`'s output differs from the line's, as a failure's notes say
+  /// it (--ignore and --tolerance applied), reporting nothing.
+  std::vector<std::string> outputDifferences(BehaviorSession &S,
+                                             const ReplayLine &Line);
+  /// RunOptions::Explain's look at the cycle robot `K` just ran:
+  /// true to go on; false once it has noted what it found.
+  bool explainFailure(unsigned K, BehaviorSession &S, const ReplayLine &Line,
+                      uint32_t Cycle);
   /// The trace line, the output line and the recording of the cycle robot
   /// `K` just ran, each only if asked for.
   void writeCycle(unsigned K, llvm::json::Value Rec,
@@ -163,6 +184,14 @@ private:
   /// The replay takes every call into C++ from the recording (its
   /// behavior is this one), rather than calling the C++.
   bool Exact = false;
+  /// RunOptions::Explain: the first cycle whose tasks differed from the
+  /// recording's, the difference, and `:why` of the task that explains it.
+  struct {
+    uint32_t Cycle = 0;
+    std::optional<unsigned> Robot;
+    TaskDifference Difference;
+    std::string Why;
+  } FirstTaskDifference;
 };
 } // namespace
 
@@ -391,7 +420,7 @@ bool CycleRunner::checkOutput(BehaviorSession &S, const ReplayLine &Line,
   return Recorded &&
          !reportMismatch(C, Line, Cycle, *Recorded,
                          Values.readClass(*L.OutputClass, S.getOutput()),
-                         Opts.Compare);
+                         Opts.Compare, Opts.Failed);
 }
 
 bool CycleRunner::checkLoggedOutput(BehaviorSession &S,
@@ -413,7 +442,8 @@ bool CycleRunner::checkLoggedOutput(BehaviorSession &S,
     return true;
   }
   ReplayLine Line;
-  return !reportMismatch(C, Line, Cycle, Recorded, Got, Opts.Compare);
+  return !reportMismatch(C, Line, Cycle, Recorded, Got, Opts.Compare,
+                         Opts.Failed);
 }
 
 bool CycleRunner::checkLoggedTasks(BehaviorSession &S,
@@ -494,6 +524,8 @@ bool CycleRunner::runCycle(unsigned K, const ReplayLine *Line) {
     return false;
   }
   writeCycle(K, std::move(Rec), Out);
+  if (Opts.Explain && Line)
+    return explainFailure(K, S, *Line, Cycle);
   checkEntryFailed(K, Cycle);
   if (Line && (!Line->Output.empty() || Line->Logged) &&
       !checkOutput(S, *Line, Cycle)) {
@@ -507,6 +539,89 @@ bool CycleRunner::runCycle(unsigned K, const ReplayLine *Line) {
     return false;
   }
   return true;
+}
+
+std::vector<std::string> CycleRunner::outputDifferences(BehaviorSession &S,
+                                                       const ReplayLine &Line) {
+  if (!L.OutputClass)
+    return {};
+  llvm::json::Value Got = nullptr, Recorded = nullptr;
+  if (Line.Logged) {
+    llvm::ArrayRef<unsigned char> Out = Line.Logged->Output;
+    if (Out.empty() || std::memcmp(S.getOutput(), Out.data(), Out.size()) == 0)
+      return {};
+    std::vector<unsigned char> Copy(Out.begin(), Out.end());
+    Recorded = Values.readClass(*L.OutputClass, Copy.data());
+  } else {
+    if (Line.Output.empty() ||
+        Values.matchesClassText(*L.OutputClass, S.getOutput(), Line.Output))
+      return {};
+    llvm::Expected<llvm::json::Value> Parsed = llvm::json::parse(Line.Output);
+    if (!Parsed) { // The first replay said so.
+      llvm::consumeError(Parsed.takeError());
+      return {"the recorded output cannot be read"};
+    }
+    Recorded = std::move(*Parsed);
+  }
+  return describeDifferences(countedDifferences(
+      Recorded, Values.readClass(*L.OutputClass, S.getOutput()), Opts.Compare));
+}
+
+bool CycleRunner::explainFailure(unsigned K, BehaviorSession &S,
+                                 const ReplayLine &Line, uint32_t Cycle) {
+  auto &First = FirstTaskDifference;
+  std::optional<std::vector<ActiveTaskView>> Recorded =
+      recordedTasks(L, Line);
+  if (!First.Cycle && Recorded)
+    if (std::optional<TaskDifference> D =
+            findTaskDifference(*Recorded, replayedTasks(L, S))) {
+      First.Cycle = Cycle;
+      if (isTeam())
+        First.Robot = K;
+      First.Difference = *D;
+      // The conditions are of this cycle only: kept now, shown if the
+      // replay fails where the first did.
+      for (unsigned T = 0; T < L.Tables.Tasks.size(); ++T)
+        if (L.Tables.Tasks[T].Name == D->Explains) {
+          llvm::raw_string_ostream Why(First.Why);
+          if (explainLastCycle(L, Values, S, int(T), Why) !=
+              WhyOutcome::Printed)
+            First.Why.clear();
+        }
+    }
+  // (A team's other robots may run the failing cycle as recorded.)
+  std::vector<std::string> Differences = outputDifferences(S, Line);
+  uint32_t FailedAt = Opts.Explain->Cycle;
+  if (Differences.empty() && Cycle <= FailedAt)
+    return true;
+  if (Cycle != FailedAt || Differences != Opts.Explain->Differences) {
+    C.Diags.report(Line.Loc, diag::note_replay_not_explained)
+        << (Differences.empty()
+                ? "did not fail at cycle " + std::to_string(FailedAt)
+            : Cycle != FailedAt
+                ? "failed at cycle " + std::to_string(Cycle)
+                : "failed otherwise at cycle " + std::to_string(Cycle) +
+                      " (" + Differences.front() + ")")
+        << NoSourceLine();
+    return false;
+  }
+  if (!First.Cycle) {
+    // Without the recording's tasks there is nothing to say of them.
+    if (Recorded)
+      C.Diags.report(Line.Loc, diag::note_replay_tasks_as_recorded)
+          << Cycle << NoSourceLine();
+    return false;
+  }
+  C.Diags.report(Line.Loc, diag::note_replay_first_task)
+      << First.Cycle << First.Difference.Task << First.Difference.Recorded
+      << First.Difference.Replayed << NoSourceLine();
+  if (First.Robot)
+    noteRobot(C, *First.Robot, Robots.size());
+  if (!First.Why.empty())
+    C.Diags.report(Line.Loc, diag::note_replay_why)
+        << First.Difference.Explains << First.Cycle
+        << ("\n" + llvm::StringRef(First.Why).rtrim()).str() << NoSourceLine();
+  return false;
 }
 
 void CycleRunner::writeCycle(unsigned K, llvm::json::Value Rec,

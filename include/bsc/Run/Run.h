@@ -151,6 +151,13 @@ struct OutputComparison {
   bool counts(const debug::Difference &D) const;
 };
 
+/// Where a replay's output first differed from the recording, and how:
+/// each member (`output.motion: recorded "walk", got "kick"`).
+struct ReplayFailure {
+  uint32_t Cycle = 0;
+  std::vector<std::string> Differences;
+};
+
 /// `bsc run`'s options beyond loading.
 struct RunOptions {
   unsigned Cycles = 1;
@@ -181,6 +188,15 @@ struct RunOptions {
   /// here where they differ (cycles per output member); the run is
   /// recorded again (RecordPath).
   std::map<std::string, unsigned> *Changed = nullptr;
+  /// Set to where the replay's output first differed, and how.
+  ReplayFailure *Failed = nullptr;
+  /// A second look at a replay that failed so (bsc replay's report; the
+  /// behavior loaded with LoadOptions::Explain): each cycle's active tasks
+  /// are compared with the recording's, and once the output differs as it
+  /// did, the first task that differed is noted with `:why` of it in that
+  /// cycle (or that the tasks are as recorded); if the output differs
+  /// otherwise, a note says so. Outputs are compared but not reported.
+  const ReplayFailure *Explain = nullptr;
   /// Each robot's session after each cycle it ran, handed over (`bsc
   /// timeline` of a binary log: TimelineFeed); false stops the run.
   std::function<bool(unsigned Robot, const BehaviorSession &S)> TakeCycle;
@@ -229,6 +245,11 @@ struct ReplayLogsOptions {
   /// --update: each log is recorded again with the behavior's outputs on
   /// its inputs (open loop), and what changed is summed up per member.
   bool Update = false;
+  /// The behavior loaded again with LoadOptions::Explain, once, when a
+  /// log first fails (a failure's report names the task that went astray
+  /// and shows its `:why`: RunOptions::Explain); null if it
+  /// cannot be. Unset: failures are not explained.
+  std::function<LoadedBehavior *()> ExplainingBehavior;
 };
 
 /// `bsc replay`: replays every recording under Opts.LogsDir against the

@@ -1,0 +1,28 @@
+// replay-triage.test's world: examples/soccer's closed loop with the ball
+// where TRIAGE_BALL_X and TRIAGE_BALL_Y say, so that each recording of the
+// test's corpus is a game of its own.
+#include "SoccerSim.h"
+#include <cstdlib>
+
+static int fromEnv(const char *Name, int Default) {
+  const char *V = std::getenv(Name);
+  return V ? std::atoi(V) : Default;
+}
+
+extern "C" void *bs_world_init(void *, void *) {
+  return new soccer::World(
+      {fromEnv("TRIAGE_BALL_X", 1000), fromEnv("TRIAGE_BALL_Y", 600)},
+      {4500, 0});
+}
+extern "C" void bs_world_begin(void *User, void *Input, void *, uint32_t) {
+  static_cast<soccer::World *>(User)->fillInput(
+      *static_cast<BehaviorInput *>(Input));
+}
+extern "C" void bs_world_end(void *User, const void *, void *Output,
+                             uint32_t) {
+  static_cast<soccer::World *>(User)->step(
+      *static_cast<const BehaviorOutput *>(Output));
+}
+extern "C" void bs_world_exit(void *User) {
+  delete static_cast<soccer::World *>(User);
+}
