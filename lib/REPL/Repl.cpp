@@ -204,16 +204,7 @@ void Repl::carryOver(const LoadedBehavior &NewL, BehaviorSession &NewS,
 }
 
 void Repl::makeChecker(llvm::StringRef FrameTask) {
-  Checker = std::make_unique<ReplChecker>(C->Ctx, C->Diags, C->Checked,
-                                          &C->Natives, L->Entry->Module);
-  llvm::DenseSet<const Decl *> Kept;
-  for (const BehaviorLayout::Task &T : L->Layout.Tasks)
-    for (const BehaviorLayout::FrameField &F : T.Fields)
-      Kept.insert(F.D);
-  Checker->setFrameFields(std::move(Kept));
-  for (const BehaviorLayout::Task &T : L->Layout.Tasks)
-    if (T.Decl->getQualifiedName() == FrameTask)
-      Checker->setFrame(llvm::cast<TaskDecl>(T.Decl));
+  Checker = makeLineChecker(*C, *L, FrameTask);
 }
 
 bool Repl::attachWorld() {
@@ -301,74 +292,11 @@ llvm::SMLoc Repl::addBuffer(llvm::StringRef Text) {
       C->SM.getMemoryBuffer(ID)->getBufferStart());
 }
 
-Slot Repl::allocateSlot(const Type *T) {
-  Slot S;
-  S.Ty = T;
-  if (const NativeClass *NC = T->getClass()) {
-    S.Size = NC->Size ? NC->Size : 1;
-    S.Align = NC->Align ? NC->Align : 1;
-  } else {
-    S.Size = S.Align = T->isBool() ? 1 : T->isString() ? sizeof(void *) : 4;
-  }
-  S.Ptr = llvm::allocate_buffer(S.Size, S.Align);
-  std::memset(S.Ptr, 0, S.Size);
-  return S;
-}
+void Repl::destroySlot(Slot &Sl) { bsc::destroySlot(L.get(), Sl); }
 
-void Repl::destroySlot(Slot &Sl) {
-  if (!Sl.Ptr)
-    return;
-  // A class value the line constructed there (the REPL's variables and
-  // results are never destroyed by generated code).
-  if (const NativeClass *NC = Sl.Ty->getClass())
-    if (!NC->TriviallyDestructible && L)
-      if (void *Destroy = L->JIT->lookup(NC->Destroy))
-        reinterpret_cast<void (*)(void *)>(Destroy)(Sl.Ptr);
-  llvm::deallocate_buffer(Sl.Ptr, Sl.Size, Sl.Align);
-  Sl.Ptr = nullptr;
-}
-
-std::optional<Repl::Compiled> Repl::compileLine(llvm::StringRef Text) {
-  llvm::SMLoc Start = addBuffer(Text);
-  unsigned ID = C->SM.FindBufferContainingLoc(Start);
-  BlockStmt *Body = parseReplLine(C->SM, ID, C->Ctx, C->Diags);
-  if (C->Diags.hasErrors())
-    return std::nullopt;
-  Compiled R;
-  R.Checked = Checker->check(Body, ++LineNo);
-  if (!R.Checked)
-    return std::nullopt;
-  llvm::DenseMap<const Decl *, uint64_t> Addresses;
-  for (size_t I = 0; I < Checker->getVariables().size(); ++I) {
-    const VarDecl *V = Checker->getVariables()[I];
-    if (I >= Variables.size())
-      Variables.push_back(allocateSlot(V->Ty));
-    Addresses[V] = reinterpret_cast<uintptr_t>(Variables[I].Ptr);
-  }
-  if (const VarDecl *Res = R.Checked->Result) {
-    R.Result = allocateSlot(Res->Ty);
-    Addresses[Res] = reinterpret_cast<uintptr_t>(R.Result.Ptr);
-  }
-  std::string Symbol = "bs.repl." + std::to_string(LineNo);
-  auto Ctx = std::make_unique<llvm::LLVMContext>();
-  std::unique_ptr<llvm::Module> M =
-      emitReplLine(C->Checked, *R.Checked->Func, Symbol, *Ctx,
-                   L->JIT->getTriple(), L->JIT->getDataLayout(), Addresses,
-                   L->Layout.Sites);
-  if (llvm::Error E = verifyGeneratedModule(*M)) {
-    llvm::WithColor::error(llvm::errs(), "bsc")
-        << "internal error: " << llvm::toString(std::move(E)) << "\n";
-    destroySlot(R.Result);
-    return std::nullopt;
-  }
-  if (llvm::Error E = L->JIT->addModule(std::move(M), std::move(Ctx), 0)) {
-    llvm::WithColor::error(llvm::errs(), "bsc")
-        << "internal error: " << llvm::toString(std::move(E)) << "\n";
-    destroySlot(R.Result);
-    return std::nullopt;
-  }
-  R.Fn = reinterpret_cast<void (*)(void *)>(L->JIT->lookup(Symbol));
-  return R;
+std::optional<CompiledLine> Repl::compileLine(llvm::StringRef Text) {
+  return bsc::compileLine(*C, *L, *Checker, Text, "<repl>", ++LineNo,
+                          Variables);
 }
 
 std::string Repl::describe(const Type *T, const void *Addr) {
@@ -377,7 +305,7 @@ std::string Repl::describe(const Type *T, const void *Addr) {
 }
 
 void Repl::evaluate(llvm::StringRef Line) {
-  std::optional<Compiled> R = compileLine(Line);
+  std::optional<CompiledLine> R = compileLine(Line);
   if (!R) {
     flushDiagnostics();
     return;

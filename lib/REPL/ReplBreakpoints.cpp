@@ -24,7 +24,7 @@ using namespace bsc::repl;
 std::optional<Probe> Repl::compileProbe(llvm::StringRef Text,
                                         llvm::StringRef Cmd, bool Bool,
                                         llvm::SMLoc Loc) {
-  std::optional<Compiled> R = compileLine(Text);
+  std::optional<CompiledLine> R = compileLine(Text);
   if (!R)
     return std::nullopt;
   if (!R->Result.Ptr || (Bool && !R->Result.Ty->isBool())) {

@@ -13,6 +13,7 @@
 
 #include "bsc/REPL/CycleHistory.h"
 #include "bsc/REPL/Repl.h"
+#include "bsc/Run/Line.h"
 #include "bsc/Sema/Sema.h"
 #include "llvm/LineEditor/LineEditor.h"
 #include "llvm/Support/raw_ostream.h"
@@ -24,13 +25,6 @@ namespace bsc::repl {
 /// 30 Hz cycles would be 2.6 million; a million ends runs that no
 /// breakpoint stops, also in batch mode.
 constexpr unsigned MaxCycles = 1000000;
-
-/// Storage of a REPL variable or a line's result: aligned, zeroed.
-struct Slot {
-  void *Ptr = nullptr;
-  size_t Size = 0, Align = 1;
-  const Type *Ty = nullptr;
-};
 
 /// A compiled expression the REPL evaluates between cycles (a watch, a
 /// breakpoint's condition, `:until`, `:history`): the line's function and
@@ -97,15 +91,9 @@ private:
 
   // Lines of b-script.
   void evaluate(llvm::StringRef Line);
-  /// Compiles `Text` as REPL line number ++LineNo; its result and new
-  /// variables get slots. Null after reporting.
-  struct Compiled {
-    void (*Fn)(void *) = nullptr;
-    std::optional<ReplChecker::Line> Checked;
-    Slot Result;
-  };
-  std::optional<Compiled> compileLine(llvm::StringRef Text);
-  Slot allocateSlot(const Type *T);
+  /// Compiles `Text` as REPL line number ++LineNo (bsc/Run/Line.h); its
+  /// result and new variables get slots. Null after reporting.
+  std::optional<CompiledLine> compileLine(llvm::StringRef Text);
   void destroySlot(Slot &S);
   /// The value as the REPL prints it: `(int) 3`.
   std::string describe(const Type *T, const void *Addr);
