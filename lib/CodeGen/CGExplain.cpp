@@ -229,46 +229,46 @@ static bool isExplained(const Expr *E) {
   llvm_unreachable("not an expression");
 }
 
-/// Adds `E` and the operands below it to `Site` in the order they run.
+/// Calls `Part` with `E` and each operand below it worth a value, in the
+/// order they run, with the index its enclosing operand got (-1: none);
+/// `Part` returns the index `E` gets, or `Parent` if it takes none.
 /// `DataBase`: E is the object of a data member or element, whose value
 /// the member's shows.
-static void collectOperands(ExplainSite &Site, const Expr *E, int Parent,
-                            bool DataBase = false) {
-  if (!DataBase && isExplained(E) &&
-      Site.Operands.size() < MaxExplainOperands &&
-      getRecordedSize(E->Ty).first) {
-    Site.Operands.push_back({E, printExpr(E), E->Ty, Parent, 0});
-    Parent = int(Site.Operands.size() - 1);
-  }
+static void walkOperands(const Expr *E, int Parent, bool DataBase,
+                         llvm::function_ref<int(const Expr *, int)> Part) {
+  if (!DataBase && isExplained(E))
+    Parent = Part(E, Parent);
+  auto Walk = [&](const Expr *Child, bool IsDataBase = false) {
+    walkOperands(Child, Parent, IsDataBase, Part);
+  };
   switch (E->getKind()) {
   case NodeKind::MemberExpr:
-    collectOperands(Site, llvm::cast<MemberExpr>(E)->Base, Parent,
-                    /*DataBase=*/true);
+    Walk(llvm::cast<MemberExpr>(E)->Base, /*IsDataBase=*/true);
     return;
   case NodeKind::IndexExpr: {
     const auto *I = llvm::cast<IndexExpr>(E);
-    collectOperands(Site, I->Base, Parent, /*DataBase=*/true);
-    collectOperands(Site, I->Index, Parent);
+    Walk(I->Base, /*IsDataBase=*/true);
+    Walk(I->Index);
     return;
   }
   case NodeKind::CallExpr: {
     // A method's object is a value of its own (`p.abs()`: which p).
     const auto *C = llvm::cast<CallExpr>(E);
     if (C->Kind == CallKind::Method)
-      collectOperands(Site, llvm::cast<MemberExpr>(C->Callee)->Base, Parent);
+      Walk(llvm::cast<MemberExpr>(C->Callee)->Base);
     for (const Expr *A : getWrittenArgs(*C))
-      collectOperands(Site, A, Parent);
+      Walk(A);
     return;
   }
   case NodeKind::UnaryExpr:
-    collectOperands(Site, llvm::cast<UnaryExpr>(E)->Operand, Parent);
+    Walk(llvm::cast<UnaryExpr>(E)->Operand);
     return;
   case NodeKind::BinaryExpr:
-    collectOperands(Site, llvm::cast<BinaryExpr>(E)->LHS, Parent);
-    collectOperands(Site, llvm::cast<BinaryExpr>(E)->RHS, Parent);
+    Walk(llvm::cast<BinaryExpr>(E)->LHS);
+    Walk(llvm::cast<BinaryExpr>(E)->RHS);
     return;
   case NodeKind::ConversionExpr:
-    collectOperands(Site, llvm::cast<ConversionExpr>(E)->Operand, Parent);
+    Walk(llvm::cast<ConversionExpr>(E)->Operand);
     return;
   case NodeKind::IntLiteralExpr: // No operands.
   case NodeKind::FloatLiteralExpr:
@@ -284,6 +284,27 @@ static void collectOperands(ExplainSite &Site, const Expr *E, int Parent,
     break;
   }
   llvm_unreachable("not an expression");
+}
+
+/// Adds the condition `E` and the operands below it that a record can
+/// hold to `Site`.
+static void collectOperands(ExplainSite &Site, const Expr *E) {
+  walkOperands(E, -1, false, [&](const Expr *Op, int Parent) {
+    if (Site.Operands.size() >= MaxExplainOperands ||
+        !getRecordedSize(Op->Ty).first)
+      return Parent;
+    Site.Operands.push_back({Op, printExpr(Op), Op->Ty, Parent, 0});
+    return int(Site.Operands.size() - 1);
+  });
+}
+
+std::vector<ExpressionPart> bsc::listExpressionParts(const Expr &E) {
+  std::vector<ExpressionPart> Parts;
+  walkOperands(&E, -1, false, [&](const Expr *Op, int Parent) {
+    Parts.push_back({Op, printExpr(Op), Parent});
+    return int(Parts.size() - 1);
+  });
+  return Parts;
 }
 
 /// Places the operands' values after the record's header.
@@ -465,7 +486,7 @@ llvm::Value *FunctionEmitter::emitRecordedCond(
     ExplainSite::SiteKind Kind, llvm::SMLoc Loc, const Expr *Cond,
     llvm::function_ref<llvm::Value *(unsigned, uint32_t)> BeginRecord) {
   ExplainSite Site = makeSite(Kind, D, Loc, CGM.getOptions().Sources);
-  collectOperands(Site, Cond, -1);
+  collectOperands(Site, Cond);
   // The condition is always operand 0, whose value says which way it
   // went; one that is not an operand by itself (a constant's name) comes
   // first with nothing under it.

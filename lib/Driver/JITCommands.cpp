@@ -229,7 +229,7 @@ int bsc::timelineCommand(Compilation &C, const FrontendOptions &FOpts,
     ROpts.ReplayPath = Path.str();
     ROpts.RobotsFromRecording = true;
     ROpts.CycleLimitMs = DefaultCycleLimitMs;
-    ROpts.TakeCycle = [&](unsigned Robot, const BehaviorSession &S) {
+    ROpts.TakeCycle = [&](unsigned Robot, BehaviorSession &S) {
       if (Robot > 0) {
         C.Diags.report(llvm::SMLoc(), diag::err_timeline_team_log) << Path;
         return false;
@@ -318,6 +318,28 @@ int bsc::replayCommand(Compilation &C, const FrontendOptions &FOpts,
   ROpts.Regression = Opts.Regression;
   OK &= parseComparison(C.Diags, Opts.Compare, ROpts.Compare);
   ROpts.Update = Opts.Update;
+  ROpts.Find = Opts.Find;
+  ROpts.FindFirst = Opts.FindFirst;
+  for (const auto &[Given, Name] :
+       {std::pair(Opts.FindFirst, "--first"),
+        std::pair(!Opts.Lasting.empty(), "--lasting")})
+    if (Given && Opts.Find.empty()) {
+      C.Diags.report(llvm::SMLoc(), diag::err_option_needs_option)
+          << Name << "--find";
+      OK = false;
+    }
+  if (!Opts.Lasting.empty() &&
+      (llvm::StringRef(Opts.Lasting).getAsInteger(10, ROpts.FindLasting) ||
+       ROpts.FindLasting < 1)) {
+    C.Diags.report(llvm::SMLoc(), diag::err_bad_option_value)
+        << Opts.Lasting << "--lasting";
+    OK = false;
+  }
+  if (!Opts.Find.empty() && Opts.Update) {
+    C.Diags.report(llvm::SMLoc(), diag::err_conflicting_options)
+        << "--find" << "--update";
+    OK = false;
+  }
   if (Opts.LogsDir.empty()) {
     C.Diags.report(llvm::SMLoc(), diag::err_option_needs_option)
         << "replay" << "--logs";

@@ -9,6 +9,7 @@
 // `--jobs N` replays them in N worker processes (ReplayWorkers.h).
 //
 //===----------------------------------------------------------------------===//
+#include "CycleQuestion.h"
 #include "ReplayWorkers.h"
 #include "bsc/Basic/Output.h"
 #include "llvm/ADT/StringExtras.h"
@@ -167,9 +168,11 @@ explainFailure(Compilation &C, LoadedBehavior &Explaining,
   return Notes;
 }
 
-/// Replays one log in a fresh session of `L`; an llvm::Error is internal.
+/// Replays one log in a fresh session of `L`, asking `Question` (--find)
+/// after each cycle if given; an llvm::Error is internal.
 static llvm::Expected<LogResult> replayOne(Compilation &C, LoadedBehavior &L,
                                            const ReplayLogsOptions &Opts,
+                                           CycleQuestion *Question,
                                            const std::string &Path) {
   LogResult R;
   LogSources Sources(C.SM);
@@ -188,10 +191,22 @@ static llvm::Expected<LogResult> replayOne(Compilation &C, LoadedBehavior &L,
     Run.Changed = &R.Changed;
   }
   Run.ReplayedExactly = &R.Exact;
+  bool Answered = false; // --first: stopped at the first stretch found.
+  if (Question) {
+    Question->startLog();
+    Run.TakeCycle = [&](unsigned K, BehaviorSession &S) {
+      if (!Question->ask(C, K, S))
+        return false;
+      Answered = Opts.FindFirst && Question->justFound();
+      return !Answered;
+    };
+  }
   llvm::Expected<bool> Passed = replayLog(C, L, Opts, Path, Run, R.Cycles);
   if (!Passed)
     return Passed.takeError();
-  R.Passed = *Passed;
+  R.Passed = *Passed || (Answered && !C.Diags.hasErrors());
+  if (Question)
+    R.Found = Question->finishLog(R.Stretches);
   if (Opts.Update) {
     std::error_code EC;
     if (R.Passed && (EC = llvm::sys::fs::rename(Run.RecordPath, Path)))
@@ -286,24 +301,29 @@ namespace {
 /// group's logs.
 class FailureGroups {
 public:
-  /// The log's line and, if it failed, its diagnostics (or the first log
-  /// that failed alike).
+  /// `Asking`: --find's stretches follow each log's line.
+  explicit FailureGroups(bool Asking) : Asking(Asking) {}
+  /// The log's line, --find's stretches and, if it failed, its
+  /// diagnostics (or the first log that failed alike).
   void print(llvm::raw_ostream &OS, llvm::StringRef Path, const LogResult &R) {
     OS << (R.Updated ? "UPDATED " : R.Passed ? "PASS " : "FAIL ") << Path
        << " (" << R.Cycles
        << (R.Cycles == 1 ? " cycle)" : " cycles)");
-    if (R.Passed || R.Group.empty()) {
-      OS << "\n" << (R.Passed ? "" : R.Report);
-    } else {
+    llvm::StringRef Report = R.Passed ? "" : llvm::StringRef(R.Report);
+    if (!R.Passed && !R.Group.empty()) {
       auto [It, New] = Groups.try_emplace(R.Group, Order.size());
       if (New) {
         Order.push_back({Path.str(), {}});
-        OS << "\n" << R.Report;
       } else {
         Order[It->second].Others.push_back(Path.str());
-        OS << ": fails as " << Order[It->second].First << " does\n";
+        OS << ": fails as " << Order[It->second].First << " does";
+        Report = "";
       }
     }
+    OS << "\n";
+    if (Asking)
+      OS << (R.Stretches ? llvm::StringRef(R.Found) : "  not found\n");
+    OS << Report;
     OS.flush();
   }
   /// `a.jsonl and 6 more logs failed alike: ...` for each group of more
@@ -328,6 +348,7 @@ private:
     std::string First;
     std::vector<std::string> Others;
   };
+  bool Asking;
   llvm::StringMap<size_t> Groups;
   std::vector<Group> Order;
 };
@@ -366,8 +387,8 @@ static void summarizeUpdate(llvm::raw_ostream &OS,
 /// the log it was on with a diagnostic saying how it died.
 static llvm::Expected<std::vector<LogResult>>
 replayForked(Compilation &C, LoadedBehavior &L, const ReplayLogsOptions &Opts,
-             llvm::ArrayRef<std::string> Logs, llvm::raw_ostream &OS,
-             FailureGroups &Failures) {
+             CycleQuestion *Question, llvm::ArrayRef<std::string> Logs,
+             llvm::raw_ostream &OS, FailureGroups &Failures) {
   auto Died = [&](llvm::StringRef Fate) {
     LogResult R;
     C.Diags.report(llvm::SMLoc(), diag::err_replay_worker_died) << Fate;
@@ -379,7 +400,7 @@ replayForked(Compilation &C, LoadedBehavior &L, const ReplayLogsOptions &Opts,
   // A worker's JIT counters are its own copy: each log sends what it
   // added, and the parent sums them.
   auto ReplayOne = [&](size_t I) {
-    llvm::Expected<LogResult> R = replayOne(C, L, Opts, Logs[I]);
+    llvm::Expected<LogResult> R = replayOne(C, L, Opts, Question, Logs[I]);
     if (R) {
       R->Coverage = readCoverage(L);
       clearCoverage(L);
@@ -399,17 +420,24 @@ llvm::Expected<int> bsc::replayLogs(Compilation &C, LoadedBehavior &L,
     return 1;
   for (size_t I = Opts.Shard - 1; I < All.size(); I += Opts.Shards)
     Logs.push_back(All[I]);
+  // --find's question, compiled before the workers fork.
+  std::unique_ptr<CycleQuestion> Question;
+  if (!Opts.Find.empty() &&
+      !(Question = CycleQuestion::compile(C, L, Opts.Find, Opts.FindLasting)))
+    return 1;
   std::vector<LogResult> Results;
-  FailureGroups Failures;
+  FailureGroups Failures(Question != nullptr);
   if (Opts.Jobs > 1) {
-    auto Forked = replayForked(C, L, Opts, Logs, OS, Failures);
+    auto Forked =
+        replayForked(C, L, Opts, Question.get(), Logs, OS, Failures);
     if (!Forked)
       return Forked.takeError();
     Results = std::move(*Forked);
   } else {
     // In this process, so that a debugger sees the replay.
     for (const std::string &Path : Logs) {
-      llvm::Expected<LogResult> One = replayOne(C, L, Opts, Path);
+      llvm::Expected<LogResult> One =
+          replayOne(C, L, Opts, Question.get(), Path);
       if (!One)
         return One.takeError();
       Results.push_back(std::move(*One));
@@ -421,6 +449,21 @@ llvm::Expected<int> bsc::replayLogs(Compilation &C, LoadedBehavior &L,
   Failures.summarize(OS);
   if (Opts.Update)
     summarizeUpdate(OS, Results);
+  if (Question) {
+    unsigned Logs = 0, Stretches = 0;
+    for (const LogResult &R : Results) {
+      Logs += R.Stretches > 0;
+      Stretches += R.Stretches;
+    }
+    OS << "'" << Question->getText() << "' held in " << Logs << " of "
+       << Results.size() << (Results.size() == 1 ? " log" : " logs") << ", "
+       << Stretches << (Stretches == 1 ? " time" : " times");
+    if (Opts.FindLasting > 1)
+      OS << " for " << Opts.FindLasting << " cycles or more";
+    if (Opts.FindFirst)
+      OS << " (--first: each log up to its first)";
+    OS << "\n";
+  }
   unsigned Exact = llvm::count_if(
       Results, [](const LogResult &R) { return R.Exact; });
   if (!Results.empty())

@@ -41,7 +41,9 @@ enum ResultTag : uint8_t {
   TagCoverage,
   TagExact,
   TagGroup,
-  TagChanged ///< --update: "1" or "0", then "member\tcycles\n" lines.
+  TagChanged, ///< --update: "1" or "0", then "member\tcycles\n" lines.
+  TagFound,
+  TagStretches
 };
 /// What a worker writes into its pipe: a frame kind, the log's index and
 /// the payload's length, then the payload (a result, or nothing).
@@ -75,6 +77,8 @@ std::string bsc::encodeResult(const LogResult &R) {
   for (const auto &[Member, Cycles] : R.Changed)
     Changed += Member + "\t" + std::to_string(Cycles) + "\n";
   appendField(Out, TagChanged, Changed.data(), Changed.size());
+  appendField(Out, TagFound, R.Found.data(), R.Found.size());
+  appendField(Out, TagStretches, &R.Stretches, 4);
   if (!R.Coverage.empty())
     appendField(Out, TagCoverage, R.Coverage.data(), 8 * R.Coverage.size());
   return Out;
@@ -124,6 +128,12 @@ bool bsc::decodeResult(llvm::StringRef Payload, LogResult &R) {
       break;
     case TagGroup:
       R.Group = Data.str();
+      break;
+    case TagFound:
+      R.Found = Data.str();
+      break;
+    case TagStretches:
+      OK = Fixed(&R.Stretches, 4);
       break;
     case TagChanged: {
       R.Updated = Data.starts_with("1");

@@ -38,6 +38,10 @@ struct LogResult {
   /// output differed, per output member.
   bool Updated = false;
   std::map<std::string, unsigned> Changed;
+  /// --find: the stretches in which the question held, a line each, and
+  /// how many.
+  std::string Found;
+  uint32_t Stretches = 0;
   /// From a worker: the coverage counters the log added (readCoverage's
   /// order); empty in bsc's own process, whose JIT keeps the sum.
   std::vector<uint64_t> Coverage;

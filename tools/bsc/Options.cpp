@@ -130,6 +130,23 @@ cl::opt<bool> UpdateFlag(
     cl::desc("Record each log again with this behavior's outputs on its own "
              "inputs (open loop), and say what changed"),
     cl::sub(ReplayCmd));
+cl::opt<std::string> FindArg(
+    "find",
+    cl::desc("Ask this condition (a line of b-script of type bool, as the "
+             "REPL takes it: task fields, input, output; or a task's name: "
+             "it ran) after every cycle of every log: the stretches of "
+             "cycles in which it holds, with the values of its parts"),
+    cl::value_desc("expr"), cl::sub(ReplayCmd));
+cl::opt<std::string> LastingArg(
+    "lasting",
+    cl::desc("With --find: only stretches of at least N consecutive cycles "
+             "count"),
+    cl::value_desc("N"), cl::sub(ReplayCmd));
+cl::opt<bool> FindFirstFlag(
+    "first",
+    cl::desc("With --find: replay each log only up to the first cycle the "
+             "condition holds in"),
+    cl::sub(ReplayCmd));
 cl::opt<bool> RegressionFlag(
     "regression",
     cl::desc("Replay in regression mode: inputs from the recording, "
@@ -422,6 +439,9 @@ ReplayCommandOptions getReplayOptions() {
   Opts.Compare = {{IgnoreFields.begin(), IgnoreFields.end()},
                   {Tolerances.begin(), Tolerances.end()}};
   Opts.Update = UpdateFlag;
+  Opts.Find = FindArg;
+  Opts.Lasting = LastingArg;
+  Opts.FindFirst = FindFirstFlag;
   return Opts;
 }
 

@@ -151,6 +151,17 @@ struct CodeGenOptions {
 void defineDebugTables(llvm::Module &M, const BehaviorLayout &Layout,
                        llvm::StringRef JSON);
 
+/// A sub-expression whose value says something (what `:why` shows of a
+/// condition, CGExplain.cpp): its text as b-script, and its enclosing
+/// part (-1 for none).
+struct ExpressionPart {
+  const Expr *E;
+  std::string Text;
+  int Parent;
+};
+/// `E` (if it is such a part) and its parts, in the order they run.
+std::vector<ExpressionPart> listExpressionParts(const Expr &E);
+
 /// Builds the IR of a REPL line (ReplChecker::Line::Func) as
 /// `void @<Symbol>(ptr state)` in a module of its own that only declares the
 /// behavior's funcs and tasks: it runs in the JIT that holds the behavior,

@@ -270,6 +270,9 @@ struct ReplayCommandOptions {
   bool Regression = false;  ///< --regression.
   CompareArgs Compare;
   bool Update = false; ///< --update.
+  std::string Find;    ///< --find.
+  std::string Lasting; ///< --lasting.
+  bool FindFirst = false; ///< --first.
 };
 
 /// `bsc replay`: the behavior compiled once into the host JIT, every

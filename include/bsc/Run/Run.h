@@ -199,7 +199,7 @@ struct RunOptions {
   const ReplayFailure *Explain = nullptr;
   /// Each robot's session after each cycle it ran, handed over (`bsc
   /// timeline` of a binary log: TimelineFeed); false stops the run.
-  std::function<bool(unsigned Robot, const BehaviorSession &S)> TakeCycle;
+  std::function<bool(unsigned Robot, BehaviorSession &S)> TakeCycle;
 };
 
 /// `--world-output FILE`: opens FILE (emptied) for what a world library
@@ -245,6 +245,13 @@ struct ReplayLogsOptions {
   /// --update: each log is recorded again with the behavior's outputs on
   /// its inputs (open loop), and what changed is summed up per member.
   bool Update = false;
+  /// --find EXPR: the stretches of cycles of each log in which EXPR (a
+  /// line of b-script of type bool, or a task's name: the task ran) holds,
+  /// with the values of its parts; --lasting N: only stretches of N cycles
+  /// or more; --first: each log only up to its first.
+  std::string Find;
+  unsigned FindLasting = 1;
+  bool FindFirst = false;
   /// The behavior loaded again with LoadOptions::Explain, once, when a
   /// log first fails (a failure's report names the task that went astray
   /// and shows its `:why`: RunOptions::Explain); null if it
