@@ -1,6 +1,7 @@
 //===- Diagnostic.cpp - the diagnostics table and its engine --------------===//
 #include "bsc/Basic/Diagnostic.h"
 #include "llvm/Support/ErrorHandling.h"
+#include "llvm/Support/WithColor.h"
 #include "llvm/Support/raw_ostream.h"
 #include <algorithm>
 
@@ -209,4 +210,9 @@ void bsc::printDiagnostics(const llvm::SourceMgr &SM,
   }
   if (Errors >= DiagnosticEngine::MaxErrors)
     OS << "bsc: fatal: too many errors emitted, stopping now\n";
+}
+
+void bsc::reportInternalError(llvm::Error E) {
+  llvm::WithColor::error(llvm::errs(), "bsc")
+      << "internal error: " << llvm::toString(std::move(E)) << "\n";
 }

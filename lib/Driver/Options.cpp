@@ -26,8 +26,7 @@ int bsc::finishCompilation(Compilation &C, bool Verify) {
 
 int bsc::finishWithInternalError(Compilation &C, llvm::Error E) {
   finishCompilation(C);
-  llvm::WithColor::error(llvm::errs(), "bsc")
-      << "internal error: " << llvm::toString(std::move(E)) << "\n";
+  reportInternalError(std::move(E));
   return 1;
 }
 

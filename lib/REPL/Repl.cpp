@@ -103,8 +103,7 @@ bool Repl::load(std::unique_ptr<Compilation> NewC) {
   LOpts.Coverage = true; // :coverage
   auto Loaded = loadBehavior(*NewC, *Entry, LOpts);
   if (!Loaded) {
-    llvm::WithColor::error(llvm::errs(), "bsc")
-        << "internal error: " << llvm::toString(Loaded.takeError()) << "\n";
+    reportInternalError(Loaded.takeError());
     return false;
   }
   if (!*Loaded) {
@@ -114,8 +113,7 @@ bool Repl::load(std::unique_ptr<Compilation> NewC) {
   auto NewTeam = Team::start(*NewC, **Loaded, Opts.Robots);
   if (!NewTeam || !*NewTeam) {
     if (!NewTeam)
-      llvm::WithColor::error(llvm::errs(), "bsc")
-          << "internal error: " << llvm::toString(NewTeam.takeError()) << "\n";
+      reportInternalError(NewTeam.takeError());
     printDiagnostics(NewC->SM, NewC->Diags.getDiagnostics(), llvm::errs());
     return false;
   }

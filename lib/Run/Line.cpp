@@ -89,8 +89,7 @@ bsc::compileLine(Compilation &C, LoadedBehavior &L, ReplChecker &Checker,
   if (!E)
     E = L.JIT->addModule(std::move(M), std::move(Ctx), 0);
   if (E) {
-    llvm::WithColor::error(llvm::errs(), "bsc")
-        << "internal error: " << llvm::toString(std::move(E)) << "\n";
+    reportInternalError(std::move(E));
     destroySlot(&L, R.Result);
     return std::nullopt;
   }

@@ -209,8 +209,7 @@ static bool writeFrame(int Fd, FrameKind Kind, size_t Log,
     }
     llvm::Expected<LogResult> R = ReplayOne(Log);
     if (!R) {
-      llvm::errs() << "bsc: internal error: "
-                   << llvm::toString(R.takeError()) << "\n";
+      reportInternalError(R.takeError());
       Status = 70;
       break;
     }

@@ -56,8 +56,7 @@ bool Team::grow(Compilation &C, LoadedBehavior &L, unsigned N) {
     auto S = startSession(C, L);
     if (!S) {
       // Not the user's: the first session started from the same code.
-      llvm::WithColor::error(llvm::errs(), "bsc")
-          << "internal error: " << llvm::toString(S.takeError()) << "\n";
+      reportInternalError(S.takeError());
       return false;
     }
     if (!*S)

@@ -14,6 +14,7 @@
 #include "llvm/ADT/SmallVector.h"
 #include "llvm/ADT/StringRef.h"
 #include "llvm/Support/SMLoc.h"
+#include "llvm/Support/Error.h"
 #include "llvm/Support/SourceMgr.h"
 #include <string>
 #include <vector>
@@ -176,6 +177,11 @@ private:
 void printDiagnostics(const llvm::SourceMgr &SM,
                       llvm::ArrayRef<Diagnostic> Diags, llvm::raw_ostream &OS,
                       bool ShowColors = false);
+
+/// An error in bsc itself, not in what it was given (an llvm::Error from
+/// LLVM or the JIT where bsc's own code should have made none): `bsc:
+/// error: internal error: ...` on stderr, the one place that words it.
+void reportInternalError(llvm::Error E);
 
 } // namespace bsc
 
