@@ -11,6 +11,7 @@
 #include "bsc/Driver/Driver.h"
 #include "bsc/Run/Run.h"
 #include "bsc/REPL/Repl.h"
+#include "llvm/Support/Path.h"
 #include "llvm/Support/Threading.h"
 #include "llvm/Support/raw_ostream.h"
 #include <algorithm>
@@ -340,7 +341,22 @@ int bsc::replayCommand(Compilation &C, const FrontendOptions &FOpts,
         << "--find" << "--update";
     OK = false;
   }
-  if (Opts.LogsDir.empty()) {
+  // --shrink takes one log instead of a folder.
+  if (!Opts.Shrink.empty()) {
+    for (const auto &[Given, Name] :
+         {std::pair(!Opts.LogsDir.empty(), "--logs"),
+          std::pair(!Opts.Find.empty(), "--find"),
+          std::pair(Opts.Update, "--update")})
+      if (Given) {
+        C.Diags.report(llvm::SMLoc(), diag::err_conflicting_options)
+            << "--shrink" << Name;
+        OK = false;
+      }
+  } else if (!Opts.ShrinkOutput.empty()) {
+    C.Diags.report(llvm::SMLoc(), diag::err_option_needs_option)
+        << "-o" << "--shrink";
+    OK = false;
+  } else if (Opts.LogsDir.empty()) {
     C.Diags.report(llvm::SMLoc(), diag::err_option_needs_option)
         << "replay" << "--logs";
     OK = false;
@@ -379,6 +395,20 @@ int bsc::replayCommand(Compilation &C, const FrontendOptions &FOpts,
       }
       return Explaining.get();
     };
+  if (!Opts.Shrink.empty()) {
+    std::string Out = Opts.ShrinkOutput;
+    if (Out.empty()) {
+      llvm::SmallString<128> Path(Opts.Shrink);
+      llvm::sys::path::replace_extension(Path, "shrunk.jsonl");
+      Out = Path.str().str();
+    }
+    llvm::Expected<int> Status =
+        shrinkLog(C, **Loaded, ROpts, Opts.Shrink, Out, llvm::outs());
+    if (!Status)
+      return finishWithInternalError(C, Status.takeError());
+    finishCompilation(C);
+    return *Status;
+  }
   llvm::Expected<int> Status = replayLogs(C, **Loaded, ROpts, llvm::outs());
   if (!Status)
     return finishWithInternalError(C, Status.takeError());

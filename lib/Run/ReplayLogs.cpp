@@ -10,6 +10,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "CycleQuestion.h"
+#include "ReplayLog.h"
 #include "ReplayWorkers.h"
 #include "bsc/Basic/Output.h"
 #include "llvm/ADT/StringExtras.h"
@@ -62,33 +63,6 @@ static bool findLogs(Compilation &C, llvm::StringRef Dir,
   return !Logs.empty() && Others.empty();
 }
 
-namespace {
-/// Gives a log a SourceMgr of its own while it is replayed: views of the
-/// compilation's buffers (so that diagnostics in the behavior keep their
-/// places) and, added by the replay, the log's file, which is unmapped
-/// when the log is done. Without it every log would stay mapped until the
-/// end, and a corpus of thousands would grow without bound.
-class LogSources {
-public:
-  explicit LogSources(llvm::SourceMgr &SM) : SM(SM) {
-    llvm::SourceMgr Own;
-    Own.setIncludeDirs(SM.getIncludeDirs());
-    for (unsigned ID = 1; ID <= SM.getNumBuffers(); ++ID)
-      Own.AddNewSourceBuffer(
-          llvm::MemoryBuffer::getMemBuffer(
-              SM.getMemoryBuffer(ID)->getMemBufferRef(),
-              /*RequiresNullTerminator=*/false),
-          llvm::SMLoc());
-    Saved = std::move(SM);
-    SM = std::move(Own);
-  }
-  ~LogSources() { SM = std::move(Saved); }
-
-private:
-  llvm::SourceMgr &SM;
-  llvm::SourceMgr Saved;
-};
-} // namespace
 
 /// How a log failed, the same for logs that fail alike: each diagnostic's
 /// kind and message with its numbers left out (the cycle, the values), and
@@ -111,9 +85,7 @@ static std::string failureGroup(llvm::ArrayRef<Diagnostic> Diags) {
   return Group;
 }
 
-/// Replays the log at `Path` in a fresh session of `L` with `Run`'s
-/// options and --world; false if it failed.
-static llvm::Expected<bool> replayLog(Compilation &C, LoadedBehavior &L,
+llvm::Expected<bool> bsc::replayLog(Compilation &C, LoadedBehavior &L,
                                       const ReplayLogsOptions &Opts,
                                       const std::string &Path, RunOptions Run,
                                       uint32_t &Cycles) {

@@ -243,6 +243,14 @@ cl::opt<std::string> ConvertOutput(
     "o", cl::desc("The file to write: a binary log if it ends in '.bslog', "
                   "else JSON lines"),
     cl::value_desc("file"), cl::sub(ConvertCmd), cl::cat(BscCategory));
+cl::opt<std::string> ShrinkLog(
+    "shrink",
+    cl::desc("Write the shortest recording that fails as this failing JSON "
+             "recording does (-o, default: its name with '.shrunk.jsonl')"),
+    cl::value_desc("log.jsonl"), cl::sub(ReplayCmd));
+cl::opt<std::string> ShrinkOutput(
+    "o", cl::desc("With --shrink: the recording to write"),
+    cl::value_desc("file.jsonl"), cl::sub(ReplayCmd), cl::cat(BscCategory));
 cl::opt<std::string> TimelineOutput(
     "o",
     cl::desc("The page to write (default: the first record's name with "
@@ -441,6 +449,8 @@ ReplayCommandOptions getReplayOptions() {
   Opts.Update = UpdateFlag;
   Opts.Find = FindArg;
   Opts.Lasting = LastingArg;
+  Opts.Shrink = ShrinkLog;
+  Opts.ShrinkOutput = ShrinkOutput;
   Opts.FindFirst = FindFirstFlag;
   return Opts;
 }

@@ -271,6 +271,7 @@ struct ReplayCommandOptions {
   CompareArgs Compare;
   bool Update = false; ///< --update.
   std::string Find;    ///< --find.
+  std::string Shrink, ShrinkOutput; ///< --shrink, -o.
   std::string Lasting; ///< --lasting.
   bool FindFirst = false; ///< --first.
 };

@@ -268,6 +268,15 @@ llvm::Expected<int> replayLogs(Compilation &C, LoadedBehavior &L,
                                const ReplayLogsOptions &Opts,
                                llvm::raw_ostream &OS);
 
+/// `bsc replay --shrink LOG -o OUT`: the shortest recording that fails as
+/// the JSON recording `Log` does (lib/Run/Shrink.cpp), written to `Out`,
+/// with the sizes before and after printed to `OS`. Returns the exit
+/// status; an llvm::Error is an internal error.
+llvm::Expected<int> shrinkLog(Compilation &C, LoadedBehavior &L,
+                              const ReplayLogsOptions &Opts,
+                              llvm::StringRef Log, llvm::StringRef Out,
+                              llvm::raw_ostream &OS);
+
 /// The version of the recordings this bsc writes (docs/repl.md,
 /// "Recordings"): 2 adds the header line and each cycle's `calls`.
 constexpr unsigned RecordingFormat = 2;
