@@ -1,6 +1,7 @@
-// bench/corpus.sh's world: examples/soccer's closed loop (as
-// world_library.cpp) with the ball where BENCH_BALL_X and BENCH_BALL_Y say,
-// so that each recording of the corpus is a run of its own.
+// bench/corpus.sh's world (and test/REPL/replay-triage.test's):
+// examples/soccer's closed loop (as world_library.cpp) with the ball where
+// BENCH_BALL_X and BENCH_BALL_Y say, so that each recording of the corpus
+// is a run of its own.
 #include "SoccerSim.h"
 #include <cstdlib>
 

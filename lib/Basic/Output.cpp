@@ -21,3 +21,16 @@ bsc::openOutput(DiagnosticEngine &Diags, llvm::StringRef Path, bool Text) {
   }
   return Out;
 }
+
+bool bsc::keepOutput(DiagnosticEngine &Diags, llvm::ToolOutputFile &Out,
+                     llvm::StringRef Path) {
+  Out.os().close();
+  if (Out.os().has_error()) {
+    Diags.report(llvm::SMLoc(), diag::err_cannot_write_output)
+        << Path << Out.os().error().message();
+    Out.os().clear_error();
+    return false;
+  }
+  Out.keep();
+  return true;
+}

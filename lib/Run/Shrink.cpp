@@ -213,15 +213,7 @@ bool Shrinker::write(llvm::StringRef Path) {
   if (!Out)
     return false;
   Out->os() << render(Start, Keep);
-  Out->os().close();
-  if (Out->os().has_error()) {
-    C.Diags.report(llvm::SMLoc(), diag::err_cannot_write_output)
-        << Path << Out->os().error().message();
-    Out->os().clear_error();
-    return false;
-  }
-  Out->keep();
-  return true;
+  return keepOutput(C.Diags, *Out, Path);
 }
 
 llvm::Expected<int> bsc::shrinkLog(Compilation &C, LoadedBehavior &L,

@@ -66,14 +66,8 @@ bool timeline::writeTimeline(Compilation &C, const TimelineOptions &Opts,
   for (const Run &R : Runs)
     Drawn.push_back(&R);
   writePage(Page->os(), Drawn, Diff);
-  Page->os().close();
-  if (Page->os().has_error()) {
-    C.Diags.report(llvm::SMLoc(), diag::err_cannot_write_output)
-        << Output << Page->os().error().message();
-    Page->os().clear_error();
+  if (!keepOutput(C.Diags, *Page, Output))
     return false;
-  }
-  Page->keep();
 
   if (Runs.size() == 2) {
     if (!Diff) {

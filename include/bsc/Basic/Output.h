@@ -20,6 +20,11 @@ namespace bsc {
 std::unique_ptr<llvm::ToolOutputFile>
 openOutput(DiagnosticEngine &Diags, llvm::StringRef Path, bool Text);
 
+/// Closes what openOutput opened at `Path` and keeps it; false after
+/// reporting a write that failed (a full disk), and the file is removed.
+bool keepOutput(DiagnosticEngine &Diags, llvm::ToolOutputFile &Out,
+                llvm::StringRef Path);
+
 } // namespace bsc
 
 #endif
