@@ -545,7 +545,7 @@ std::vector<std::string> CycleRunner::outputDifferences(BehaviorSession &S,
                                                        const ReplayLine &Line) {
   if (!L.OutputClass)
     return {};
-  llvm::json::Value Got = nullptr, Recorded = nullptr;
+  llvm::json::Value Recorded = nullptr;
   if (Line.Logged) {
     llvm::ArrayRef<unsigned char> Out = Line.Logged->Output;
     if (Out.empty() || std::memcmp(S.getOutput(), Out.data(), Out.size()) == 0)
