@@ -319,12 +319,17 @@ int bsc::replayCommand(Compilation &C, const FrontendOptions &FOpts,
   ROpts.Regression = Opts.Regression;
   OK &= parseComparison(C.Diags, Opts.Compare, ROpts.Compare);
   ROpts.Update = Opts.Update;
-  ROpts.Find = Opts.Find;
+  ROpts.Find = Opts.Find.value_or("");
+  if (Opts.Find && llvm::StringRef(*Opts.Find).trim().empty()) {
+    C.Diags.report(llvm::SMLoc(), diag::err_replay_find_not_bool)
+        << *Opts.Find << "empty";
+    OK = false;
+  }
   ROpts.FindFirst = Opts.FindFirst;
   for (const auto &[Given, Name] :
        {std::pair(Opts.FindFirst, "--first"),
         std::pair(!Opts.Lasting.empty(), "--lasting")})
-    if (Given && Opts.Find.empty()) {
+    if (Given && !Opts.Find) {
       C.Diags.report(llvm::SMLoc(), diag::err_option_needs_option)
           << Name << "--find";
       OK = false;
@@ -336,7 +341,7 @@ int bsc::replayCommand(Compilation &C, const FrontendOptions &FOpts,
         << Opts.Lasting << "--lasting";
     OK = false;
   }
-  if (!Opts.Find.empty() && Opts.Update) {
+  if (Opts.Find && Opts.Update) {
     C.Diags.report(llvm::SMLoc(), diag::err_conflicting_options)
         << "--find" << "--update";
     OK = false;
@@ -345,7 +350,7 @@ int bsc::replayCommand(Compilation &C, const FrontendOptions &FOpts,
   if (!Opts.Shrink.empty()) {
     for (const auto &[Given, Name] :
          {std::pair(!Opts.LogsDir.empty(), "--logs"),
-          std::pair(!Opts.Find.empty(), "--find"),
+          std::pair(Opts.Find.has_value(), "--find"),
           std::pair(Opts.Update, "--update")})
       if (Given) {
         C.Diags.report(llvm::SMLoc(), diag::err_conflicting_options)

@@ -9,7 +9,9 @@
 // input changed get the input of the cycle before, halving the chunks,
 // while the log still fails the same way. "The same way": the replay's
 // first failure is at the log's last cycle with the same output members
-// differing. Every candidate is replayed as `bsc replay` would.
+// differing. Every candidate is replayed as `bsc replay` would. The shrunk
+// log has no header and no calls: it is no run of any behavior, and
+// replays in regression mode.
 //
 //===----------------------------------------------------------------------===//
 #include "ReplayLog.h"
@@ -57,7 +59,6 @@ private:
   LoadedBehavior &L;
   const ReplayLogsOptions &Opts;
   std::string Temp;
-  std::string Header;                    ///< The header line, if any.
   std::vector<llvm::json::Value> Cycles; ///< Each cycle's line.
   std::vector<bool> Keep; ///< Per cycle: its input change stays.
 };
@@ -75,7 +76,10 @@ llvm::Expected<bool> Shrinker::start(llvm::StringRef Path) {
   if (!Passed)
     return Passed.takeError();
   if (*Passed || !Original.Cycle) {
-    // Its own diagnostics say what else went wrong.
+    // Its own diagnostics say what else went wrong; a log that could not
+    // be read at all needs no more.
+    if (!*Passed && Count == 0)
+      return false;
     printDiagnostics(C.SM, C.Diags.getDiagnostics(), llvm::errs());
     C.Diags.clear();
     C.Diags.report(llvm::SMLoc(), diag::err_shrink_passes)
@@ -98,10 +102,8 @@ llvm::Expected<bool> Shrinker::start(llvm::StringRef Path) {
     if (!V)
       return V.takeError(); // The replay took it.
     const llvm::json::Object *O = V->getAsObject();
-    if (O && O->get("recording")) {
-      Header = Line.str();
-      continue;
-    }
+    if (O && O->get("recording"))
+      continue; // The header: the shrunk log has none (render).
     if (O && O->get("robot")) {
       C.Diags.report(llvm::SMLoc(), diag::err_shrink_team) << Path;
       return false;
@@ -116,7 +118,10 @@ llvm::Expected<bool> Shrinker::start(llvm::StringRef Path) {
 }
 
 std::string Shrinker::render(size_t From, const std::vector<bool> &Keep) const {
-  std::string Text = Header.empty() ? "" : Header + "\n";
+  // No header and no calls: cut and edited, the log is no longer a run of
+  // any behavior, so it replays in regression mode (an exact replay would
+  // part from calls made in cycles that are gone).
+  std::string Text;
   // Each cycle's input: its own if its change stays, else the one before's.
   const llvm::json::Value *Input = nullptr;
   for (size_t I = From; I < End; ++I) {
@@ -127,6 +132,7 @@ std::string Shrinker::render(size_t From, const std::vector<bool> &Keep) const {
     if (Input)
       Line["input"] = *Input;
     Line["cycle"] = int64_t(I - From + 1);
+    Line.erase("calls");
     Text += debug::toJSONString(llvm::json::Value(std::move(Line))) + "\n";
   }
   return Text;

@@ -447,7 +447,7 @@ ReplayCommandOptions getReplayOptions() {
   Opts.Compare = {{IgnoreFields.begin(), IgnoreFields.end()},
                   {Tolerances.begin(), Tolerances.end()}};
   Opts.Update = UpdateFlag;
-  Opts.Find = FindArg;
+  Opts.Find = given(FindArg);
   Opts.Lasting = LastingArg;
   Opts.Shrink = ShrinkLog;
   Opts.ShrinkOutput = ShrinkOutput;

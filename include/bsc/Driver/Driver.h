@@ -270,7 +270,7 @@ struct ReplayCommandOptions {
   bool Regression = false;  ///< --regression.
   CompareArgs Compare;
   bool Update = false; ///< --update.
-  std::string Find;    ///< --find.
+  std::optional<std::string> Find; ///< --find.
   std::string Shrink, ShrinkOutput; ///< --shrink, -o.
   std::string Lasting; ///< --lasting.
   bool FindFirst = false; ///< --first.
