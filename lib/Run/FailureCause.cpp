@@ -5,9 +5,22 @@
 
 using namespace bsc;
 
+/// The hierarchy of a cycle's activations (a snapshot of the state, or a
+/// robot's trace record), named.
+static std::vector<ActiveTaskView>
+viewTasks(const LoadedBehavior &L, llvm::ArrayRef<debug::Activation> Records) {
+  std::vector<debug::RecordedTask> Listed =
+      debug::listActiveTasks(L.Tables, Records);
+  std::vector<ActiveTaskView> Tasks;
+  for (const debug::RecordedTask &T : Listed)
+    Tasks.push_back(
+        {L.Tables.Tasks[T.Record.Task].Name, T.State, T.Place,
+         T.Parent < 0 ? "" : L.Tables.Tasks[Listed[T.Parent].Record.Task].Name});
+  return Tasks;
+}
+
 std::optional<std::vector<ActiveTaskView>>
 bsc::recordedTasks(const LoadedBehavior &L, const ReplayLine &Line) {
-  std::vector<ActiveTaskView> Tasks;
   if (Line.Logged) {
     if (Line.Logged->Trace.empty())
       return std::nullopt;
@@ -17,14 +30,7 @@ bsc::recordedTasks(const LoadedBehavior &L, const ReplayLine &Line) {
       llvm::consumeError(Records.takeError()); // The replay reports it.
       return std::nullopt;
     }
-    std::vector<debug::RecordedTask> Listed =
-        debug::listActiveTasks(L.Tables, *Records);
-    for (const debug::RecordedTask &T : Listed)
-      Tasks.push_back({L.Tables.Tasks[T.Record.Task].Name, T.State, T.Place,
-                       T.Parent < 0 ? ""
-                                    : L.Tables.Tasks[Listed[T.Parent].Record.Task]
-                                          .Name});
-    return Tasks;
+    return viewTasks(L, *Records);
   }
   if (Line.Tasks.empty())
     return std::nullopt;
@@ -62,14 +68,7 @@ bsc::parseRecordedTasks(llvm::StringRef Text) {
 
 std::vector<ActiveTaskView> bsc::replayedTasks(const LoadedBehavior &L,
                                                const BehaviorSession &S) {
-  std::vector<debug::RecordedTask> Listed = debug::listActiveTasks(
-      L.Tables, debug::takeSnapshot(S.getState(), &S.getInfo()));
-  std::vector<ActiveTaskView> Tasks;
-  for (const debug::RecordedTask &T : Listed)
-    Tasks.push_back(
-        {L.Tables.Tasks[T.Record.Task].Name, T.State, T.Place,
-         T.Parent < 0 ? "" : L.Tables.Tasks[Listed[T.Parent].Record.Task].Name});
-  return Tasks;
+  return viewTasks(L, debug::takeSnapshot(S.getState(), &S.getInfo()));
 }
 
 /// `running at Kick.bs:10 under Kick::main`, or `not active`.

@@ -118,7 +118,7 @@ llvm::Expected<bool> bsc::replayLog(Compilation &C, LoadedBehavior &L,
 /// from the recording and its `:why` (RunOptions::Explain). Returns those
 /// notes only.
 static llvm::Expected<std::vector<Diagnostic>>
-explainFailure(Compilation &C, LoadedBehavior &Explaining,
+explainFailedLog(Compilation &C, LoadedBehavior &Explaining,
                const ReplayLogsOptions &Opts, const std::string &Path,
                const ReplayFailure &Failure) {
   RunOptions Run;
@@ -193,7 +193,7 @@ static llvm::Expected<LogResult> replayOne(Compilation &C, LoadedBehavior &L,
   if (!R.Passed && Failure.Cycle && Opts.ExplainingBehavior)
     if (LoadedBehavior *Explaining = Opts.ExplainingBehavior()) {
       llvm::Expected<std::vector<Diagnostic>> Notes =
-          explainFailure(C, *Explaining, Opts, Path, Failure);
+          explainFailedLog(C, *Explaining, Opts, Path, Failure);
       if (!Notes)
         return Notes.takeError();
       Diags.insert(Diags.end(), Notes->begin(), Notes->end());
