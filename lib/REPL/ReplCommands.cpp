@@ -89,16 +89,6 @@ bool Repl::oneRobot(llvm::StringRef Name, llvm::SMLoc Loc) {
   return false;
 }
 
-BehaviorSession::Outcome Repl::runTeamCycle(unsigned &Broke) {
-  BehaviorSession::Outcome O;
-  for (Broke = 0; Broke < Robots->size(); ++Broke) {
-    O = (*Robots)[Broke].runCycle(Opts.CycleLimitMs);
-    if (O.K != BehaviorSession::Outcome::Completed)
-      break;
-  }
-  return O;
-}
-
 void Repl::reportStop(llvm::StringRef Why) {
   flushDiagnostics();
   uint32_t Cycle = S->getCycle();
@@ -125,9 +115,7 @@ StepEnd Repl::step(unsigned N, bool Report, Probe *Until) {
     uint32_t Cycle = S->getCycle() + 1;
     bool FromHistory = false;
     unsigned Broke = 0;
-    // A team has no history (startHistory): its cycles always run live.
-    BehaviorSession::Outcome O =
-        RobotCount == 1 ? runNextCycle(FromHistory) : runTeamCycle(Broke);
+    BehaviorSession::Outcome O = runNextCycle(FromHistory, Broke);
     if (!reportOutcome(*C, *L, O, Cycle, Opts.CycleLimitMs)) {
       noteRobot(*C, Broke, RobotCount);
       bool Diverged = O.K == BehaviorSession::Outcome::Diverged;
@@ -354,9 +342,12 @@ void Repl::cmdRobot(llvm::StringRef Args, llvm::SMLoc Loc) {
     }
     Selected = K;
     S = &(*Robots)[K];
+    if (!Histories.empty())
+      History = Histories[K].get();
   }
   OS << "robot " << Selected << " of " << Robots->size()
-     << ": lines, :tasks, breakpoints and watches follow it\n";
+     << ": lines, :tasks, :why, :history, breakpoints and watches follow "
+        "it\n";
 }
 
 void Repl::cmdGraph(llvm::StringRef Args, llvm::SMLoc Loc) {
@@ -482,7 +473,7 @@ llvm::ArrayRef<Repl::CommandInfo> Repl::getCommands() {
        &Repl::cmdWhy},
       {"robot", "[K]",
        "show robot K of a team (--robots N, from 0): lines, :tasks, "
-       "breakpoints and watches follow it",
+       ":why, :history, breakpoints and watches follow it",
        &Repl::cmdRobot},
       {"help", "", "this list", &Repl::cmdHelp},
       {"quit", "", "leave (so does the end of input)", nullptr},

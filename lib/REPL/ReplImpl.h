@@ -125,12 +125,9 @@ private:
   void cmdFrame(llvm::StringRef Args, llvm::SMLoc Loc);
   void cmdQuiet(llvm::StringRef Args, llvm::SMLoc Loc);
   void cmdRobot(llvm::StringRef Args, llvm::SMLoc Loc);
-  /// Reports command `Name` for a team, which it cannot follow (it needs
-  /// one state: time travel, `:why`'s log, `:reload`); true for one robot.
+  /// Reports command `Name` for a team, which it cannot follow (it loads
+  /// one state: `:reload`, `:replay`); true for one robot.
   bool oneRobot(llvm::StringRef Name, llvm::SMLoc Loc);
-  /// Runs the next cycle of every robot in index order; at the first that
-  /// does not complete, stops with its outcome and index in `Broke`.
-  BehaviorSession::Outcome runTeamCycle(unsigned &Broke);
   /// "cycle N" and, for a team, ", robot K".
   std::string cycleName(uint32_t Cycle, unsigned Robot) const;
 
@@ -138,22 +135,35 @@ private:
   void cmdGoto(llvm::StringRef Args, llvm::SMLoc Loc);
   void cmdBack(llvm::StringRef Args, llvm::SMLoc Loc);
   void cmdHistory(llvm::StringRef Args, llvm::SMLoc Loc);
-  /// Starts the history at the present cycle (a load, a reload), or says
-  /// in NoHistory why the state cannot have one.
+  /// Starts a history per robot at the present cycle (a load, a reload),
+  /// or says in NoHistory why the state cannot have one.
   void startHistory();
-  CycleHistory::Blocks getBlocks() const;
-  /// Runs the next cycle: from the history on its logged input (no world)
-  /// if the present is in the past, else live, recorded into the history.
-  BehaviorSession::Outcome runNextCycle(bool &FromHistory);
-  /// History->restore, keeping the session's user pointer; the copy's
-  /// cycle.
-  uint32_t restoreFromHistory(uint32_t Cycle, bool Before);
+  static CycleHistory::Blocks getBlocks(const BehaviorSession &R);
+  /// Runs the next cycle of every robot in index order (runRobotCycle); at
+  /// the first that does not complete, stops with its outcome and index in
+  /// `Broke`. `FromHistory`: the cycle was a re-run.
+  BehaviorSession::Outcome runNextCycle(bool &FromHistory, unsigned &Broke);
+  /// Runs robot K's next cycle: from its history on the logged input (no
+  /// world) if the present is in the past, else live, recorded into the
+  /// history. A re-run that differs from the live run ends every robot's
+  /// history at the cycle before (endHistoryAt).
+  BehaviorSession::Outcome runRobotCycle(unsigned K, bool &FromHistory);
+  /// Robot K's history->restore, keeping the session's user pointer; the
+  /// copy's cycle.
+  uint32_t restoreFromHistory(unsigned K, uint32_t Cycle, bool Before);
+  /// Puts robot K back as the live run left `Cycle` and forgets the cycles
+  /// after it.
+  void endHistoryAt(unsigned K, uint32_t Cycle);
   /// A cycle that ran live outside runNextCycle (`:replay`) enters the
   /// history.
   void recordLiveCycle();
-  /// New inputs from here on (`:replay` in the past): the cycles after the
-  /// present are forgotten.
+  /// New inputs from here on (`:replay` in the past, a line at the prompt):
+  /// every robot's cycles after the present are forgotten, since the world
+  /// they share will run them anew.
   void forgetFuture();
+  /// With a team, keeps the JIT's log of `:why` for robot K, which the
+  /// next robot's cycle overwrites.
+  void keepExplainLog(unsigned K);
   /// The state, input and output bytes (empty without a history), to tell
   /// with noteEdits whether a line at the prompt changed them.
   std::vector<unsigned char> copyBlocks() const;
@@ -208,8 +218,14 @@ private:
   llvm::raw_ostream &OS;
   /// Opts.Frontend and the modules `requires` added at the prompt.
   FrontendOptions Frontend;
-  std::unique_ptr<CycleHistory> History;
+  /// Per robot (none if NoHistory says why), and the shown robot's: the
+  /// robots' cycles are independent given what the histories log, so each
+  /// goes back in time through its own.
+  std::vector<std::unique_ptr<CycleHistory>> Histories;
+  CycleHistory *History = nullptr;
   std::string NoHistory; ///< Why there is no History.
+  /// With a team: each robot's copy of the log of `:why` (keepExplainLog).
+  std::vector<std::vector<unsigned char>> ExplainLogs;
   /// --world-output's file and `:quiet`'s /dev/null (-1: not open).
   int WorldOutputFd = -1, QuietFd = -1;
 

@@ -16,6 +16,14 @@
 // output in the past ends the history there (the cycles after it are
 // forgotten): what follows is another run.
 //
+// A team (`--robots N`) has a history per robot: given what its history
+// logs (its input, its calls, the world's end hook), a robot's cycle
+// depends on nothing of the others, so each goes back through its own and
+// the team then runs live from where the histories end. Whatever ends one
+// robot's history in the past (a re-run that differs, a line at the
+// prompt) ends every robot's there: the world they share runs what follows
+// anew.
+//
 // The copies are of bytes, put back where they were taken: a task local,
 // `input` or `output` of a registered class whose destructor frees memory
 // (a std::vector inside) turns the history off, and the commands say why.
@@ -50,12 +58,10 @@ static std::string whyNotBytes(const NativeClass *NC, const std::string &What) {
 }
 
 void Repl::startHistory() {
-  History.reset();
+  Histories.clear();
+  History = nullptr;
   NoHistory.clear();
-  if (Robots->size() > 1) { // :goto, :back and :history say so (oneRobot).
-    NoHistory = "it runs a team";
-    return;
-  }
+  ExplainLogs.assign(Robots->size() > 1 ? Robots->size() : 0, {});
   for (const BehaviorLayout::Task &T : L->Layout.Tasks)
     for (const BehaviorLayout::FrameField &F : T.Fields)
       if (NoHistory.empty())
@@ -69,84 +75,135 @@ void Repl::startHistory() {
     NoHistory = whyNotBytes(L->OutputClass, "'output'");
   if (!NoHistory.empty())
     return;
-  History = std::make_unique<CycleHistory>(
-      CycleHistory::Sizes{S->getInfo().state_size, L->Input.Size,
-                          L->Output.Size},
-      SnapshotEvery);
-  History->reset(S->getCycle(), getBlocks());
-  S->keepCalls(true);
+  for (unsigned K = 0; K < Robots->size(); ++K) {
+    BehaviorSession &R = (*Robots)[K];
+    Histories.push_back(std::make_unique<CycleHistory>(
+        CycleHistory::Sizes{R.getInfo().state_size, L->Input.Size,
+                            L->Output.Size},
+        SnapshotEvery));
+    Histories.back()->reset(R.getCycle(), getBlocks(R));
+    R.keepCalls(true);
+  }
+  History = Histories[Selected].get();
 }
 
-CycleHistory::Blocks Repl::getBlocks() const {
-  return {S->getState(), S->getInput(), S->getOutput()};
+CycleHistory::Blocks Repl::getBlocks(const BehaviorSession &R) {
+  return {R.getState(), R.getInput(), R.getOutput()};
 }
 
-BehaviorSession::Outcome Repl::runNextCycle(bool &FromHistory) {
-  uint32_t Next = S->getCycle() + 1;
-  FromHistory = History && Next <= History->last();
-  if (!FromHistory) {
-    BehaviorSession::Outcome O = S->runCycle(Opts.CycleLimitMs);
-    if (O.K == BehaviorSession::Outcome::Completed) {
-      recordLiveCycle();
-    } else if (History) {
-      // A crashed cycle cannot be re-run: its moment is the copy.
-      History->recordCycle(S->getLastCalls(), getBlocks());
-      History->keepPresent(Next, getBlocks());
-    }
-    return O;
-  }
-  if (History->isEdited(Next)) {
-    // The prompt changed this moment: it is the copy, not a re-run.
-    restoreFromHistory(Next, /*Before=*/false);
-    return {};
-  }
-  History->applyInput(Next, S->getInput());
-  CycleRecord Calls;
-  History->getCalls(Next, Calls);
-  BehaviorSession::Outcome O = S->replayCycle(Opts.CycleLimitMs, Calls);
-  if (O.K == BehaviorSession::Outcome::Completed) {
-    std::string Why = describeViewDifference(*Values, *L, *S,
-                                             History->liveViewAt(Next));
-    if (!Why.empty()) {
-      O.K = BehaviorSession::Outcome::Diverged;
-      O.Divergence = "the re-run differs from the live run: " + Why;
-    }
-  }
-  if (O.K == BehaviorSession::Outcome::Diverged) {
-    // Back to the last moment both agree on; what follows is forgotten.
-    const std::vector<unsigned char> &View = History->liveViewAt(Next - 1);
-    CycleHistory::Blocks B = getBlocks();
-    size_t Sizes[3];
-    S->getViewSizes(Sizes);
-    void *User = bs_state_user(B.State);
-    std::memcpy(B.State, View.data(), Sizes[0]);
-    bs_state_set_user(B.State, User);
-    if (Sizes[1])
-      std::memcpy(B.Input, View.data() + Sizes[0], Sizes[1]);
-    if (Sizes[2])
-      std::memcpy(B.Output, View.data() + Sizes[0] + Sizes[1], Sizes[2]);
-    History->keepPresent(Next - 1, B);
+BehaviorSession::Outcome Repl::runNextCycle(bool &FromHistory,
+                                            unsigned &Broke) {
+  BehaviorSession::Outcome O;
+  for (Broke = 0; Broke < Robots->size(); ++Broke) {
+    O = runRobotCycle(Broke, FromHistory);
+    if (O.K != BehaviorSession::Outcome::Completed)
+      break;
   }
   return O;
 }
 
-uint32_t Repl::restoreFromHistory(uint32_t Cycle, bool Before) {
+BehaviorSession::Outcome Repl::runRobotCycle(unsigned K, bool &FromHistory) {
+  BehaviorSession &R = (*Robots)[K];
+  CycleHistory *H = Histories.empty() ? nullptr : Histories[K].get();
+  uint32_t Next = R.getCycle() + 1;
+  FromHistory = H && Next <= H->last();
+  BehaviorSession::Outcome O;
+  if (!ExplainLogs.empty())
+    startExplainLog(*L); // Not the robot before's conditions too.
+  if (!FromHistory) {
+    O = R.runCycle(Opts.CycleLimitMs);
+    if (H) {
+      H->recordCycle(R.getLastCalls(), getBlocks(R));
+      // A crashed cycle cannot be re-run: its moment is the copy.
+      if (O.K != BehaviorSession::Outcome::Completed)
+        H->keepPresent(Next, getBlocks(R));
+    }
+  } else if (H->isEdited(Next)) {
+    // The prompt changed this moment: it is the copy, not a re-run.
+    restoreFromHistory(K, Next, /*Before=*/false);
+    return O;
+  } else {
+    H->applyInput(Next, R.getInput());
+    CycleRecord Calls;
+    H->getCalls(Next, Calls);
+    O = R.replayCycle(Opts.CycleLimitMs, Calls);
+    if (O.K == BehaviorSession::Outcome::Completed) {
+      std::string Why =
+          describeViewDifference(*Values, *L, R, H->liveViewAt(Next));
+      if (!Why.empty()) {
+        O.K = BehaviorSession::Outcome::Diverged;
+        O.Divergence = "the re-run differs from the live run: " + Why;
+      }
+    }
+    // Back to the last moment all agree on; what follows is forgotten,
+    // for every robot: the world they share runs it anew.
+    if (O.K == BehaviorSession::Outcome::Diverged)
+      for (unsigned J = 0; J < Robots->size(); ++J)
+        endHistoryAt(J, Next - 1);
+  }
+  keepExplainLog(K);
+  return O;
+}
+
+void Repl::endHistoryAt(unsigned K, uint32_t Cycle) {
+  CycleHistory &H = *Histories[K];
+  if (Cycle < H.first() || Cycle > H.last())
+    return;
+  const std::vector<unsigned char> &View = H.liveViewAt(Cycle);
+  CycleHistory::Blocks B = getBlocks((*Robots)[K]);
+  size_t Sizes[3];
+  (*Robots)[K].getViewSizes(Sizes);
+  void *User = bs_state_user(B.State);
+  std::memcpy(B.State, View.data(), Sizes[0]);
+  bs_state_set_user(B.State, User);
+  if (Sizes[1])
+    std::memcpy(B.Input, View.data() + Sizes[0], Sizes[1]);
+  if (Sizes[2])
+    std::memcpy(B.Output, View.data() + Sizes[0] + Sizes[1], Sizes[2]);
+  H.keepPresent(Cycle, B);
+  if (!ExplainLogs.empty())
+    ExplainLogs[K].clear();
+}
+
+uint32_t Repl::restoreFromHistory(unsigned K, uint32_t Cycle, bool Before) {
   // The user pointer is the session's (its world set it, perhaps after the
   // copy was taken), not the moment's.
-  void *User = bs_state_user(S->getState());
-  uint32_t At = History->restore(Cycle, Before, getBlocks());
-  bs_state_set_user(S->getState(), User);
+  BehaviorSession &R = (*Robots)[K];
+  void *User = bs_state_user(R.getState());
+  uint32_t At = Histories[K]->restore(Cycle, Before, getBlocks(R));
+  bs_state_set_user(R.getState(), User);
+  if (!ExplainLogs.empty()) // Of a cycle that ran before the copy.
+    ExplainLogs[K].clear();
   return At;
 }
 
 void Repl::recordLiveCycle() {
   if (History)
-    History->recordCycle(S->getLastCalls(), getBlocks());
+    History->recordCycle(S->getLastCalls(), getBlocks(*S));
 }
 
 void Repl::forgetFuture() {
-  if (History && S->getCycle() < History->last())
-    History->keepPresent(S->getCycle(), getBlocks());
+  for (unsigned K = 0; K < Histories.size(); ++K) {
+    BehaviorSession &R = (*Robots)[K];
+    if (R.getCycle() < Histories[K]->last())
+      Histories[K]->keepPresent(R.getCycle(), getBlocks(R));
+  }
+}
+
+void Repl::keepExplainLog(unsigned K) {
+  if (ExplainLogs.empty())
+    return;
+  const ExplainLogHeader *Log = L->ExplainLog;
+  std::vector<unsigned char> &Copy = ExplainLogs[K];
+  if (!Log) {
+    Copy.clear();
+    return;
+  }
+  // The header and the records written, not the whole capacity.
+  size_t Size = sizeof(ExplainLogHeader) +
+                std::min(Log->Used, ExplainLogCapacity);
+  const auto *Bytes = reinterpret_cast<const unsigned char *>(Log);
+  Copy.assign(Bytes, Bytes + Size);
 }
 
 std::vector<unsigned char> Repl::copyBlocks() const {
@@ -165,8 +222,10 @@ std::vector<unsigned char> Repl::copyBlocks() const {
 }
 
 void Repl::noteEdits(const std::vector<unsigned char> &Before) {
-  if (History && copyBlocks() != Before)
-    History->keepPresent(S->getCycle(), getBlocks());
+  if (History && copyBlocks() != Before) {
+    History->keepPresent(S->getCycle(), getBlocks(*S));
+    forgetFuture();
+  }
 }
 
 bool Repl::checkHistory(llvm::SMLoc Loc) {
@@ -177,36 +236,55 @@ bool Repl::checkHistory(llvm::SMLoc Loc) {
 }
 
 bool Repl::travelTo(uint32_t Target) {
-  uint32_t Now = S->getCycle();
-  // Forward by a few cycles: on from here. Else from the copy before (the
-  // last one for a cycle past the history, which then runs live).
-  uint32_t Logged = std::min(Target, History->last());
-  if (Target <= Now || (Logged > Now &&
-                        Logged - Now > History->getSnapshotEvery()))
-    restoreFromHistory(Logged, /*Before=*/Target <= History->last());
+  auto Stopped = [&](const BehaviorSession::Outcome &O, uint32_t Cycle,
+                     unsigned Robot) {
+    if (reportOutcome(*C, *L, O, Cycle, Opts.CycleLimitMs))
+      return false;
+    noteRobot(*C, Robot, Robots->size());
+    bool Diverged = O.K == BehaviorSession::Outcome::Diverged;
+    if (Diverged)
+      C->Diags.report(llvm::SMLoc(), diag::note_history_ends) << Cycle - 1;
+    flushDiagnostics();
+    OS << "stopped in cycle " << Cycle << " on the way to cycle " << Target
+       << (Diverged ? "; the state is as the live run left cycle " +
+                          std::to_string(Cycle - 1)
+                    : std::string("; the state is as it left it"))
+       << "\n";
+    return true;
+  };
+  // Each robot through its own history: forward by a few cycles, on from
+  // where it is; else from the copy before (the last one for a cycle past
+  // the history, which then runs live).
+  for (unsigned K = 0; K < Robots->size(); ++K) {
+    BehaviorSession &R = (*Robots)[K];
+    CycleHistory &H = *Histories[K];
+    uint32_t Now = R.getCycle();
+    uint32_t Logged = std::min(Target, H.last());
+    if (Target <= Now ||
+        (Logged > Now && Logged - Now > H.getSnapshotEvery()))
+      restoreFromHistory(K, Logged, /*Before=*/Target <= H.last());
+    while (R.getCycle() < Logged) {
+      uint32_t Cycle = R.getCycle() + 1;
+      bool FromHistory;
+      if (Stopped(runRobotCycle(K, FromHistory), Cycle, K))
+        return false;
+    }
+  }
+  // Past the history, the team runs live, robot by robot.
   while (S->getCycle() < Target) {
     uint32_t Cycle = S->getCycle() + 1;
     bool FromHistory;
-    BehaviorSession::Outcome O = runNextCycle(FromHistory);
-    if (!reportOutcome(*C, *L, O, Cycle, Opts.CycleLimitMs)) {
-      bool Diverged = O.K == BehaviorSession::Outcome::Diverged;
-      if (Diverged)
-        C->Diags.report(llvm::SMLoc(), diag::note_history_ends) << Cycle - 1;
-      flushDiagnostics();
-      OS << "stopped in cycle " << Cycle << " on the way to cycle " << Target
-         << (Diverged ? "; the state is as the live run left cycle " +
-                            std::to_string(Cycle - 1)
-                      : std::string("; the state is as it left it"))
-         << "\n";
+    unsigned Broke;
+    BehaviorSession::Outcome O = runNextCycle(FromHistory, Broke);
+    if (Stopped(O, Cycle, Broke))
       return false;
-    }
   }
   return true;
 }
 
 void Repl::showCycle() {
   uint32_t Cycle = S->getCycle();
-  OS << "cycle " << Cycle << ": ";
+  OS << cycleName(Cycle, Selected) << ": ";
   if (Cycle == 0)
     OS << "before the first cycle\n";
   else
@@ -229,8 +307,6 @@ bool Repl::checkInHistory(long long Cycle, bool Forward, llvm::SMLoc Loc) {
 }
 
 void Repl::cmdGoto(llvm::StringRef Args, llvm::SMLoc Loc) {
-  if (!oneRobot(":goto", Loc))
-    return;
   uint32_t Target;
   if (!parseCycle(Args, Target)) {
     C->Diags.report(Loc, diag::err_repl_missing_argument)
@@ -249,8 +325,6 @@ void Repl::cmdGoto(llvm::StringRef Args, llvm::SMLoc Loc) {
 }
 
 void Repl::cmdBack(llvm::StringRef Args, llvm::SMLoc Loc) {
-  if (!oneRobot(":back", Loc))
-    return;
   unsigned N = parseCount("back", Args, 1, Loc);
   if (!N || !checkHistory(Loc))
     return;
@@ -262,8 +336,6 @@ void Repl::cmdBack(llvm::StringRef Args, llvm::SMLoc Loc) {
 }
 
 void Repl::cmdHistory(llvm::StringRef Args, llvm::SMLoc Loc) {
-  if (!oneRobot(":history", Loc))
-    return;
   if (Args.empty()) {
     C->Diags.report(Loc, diag::err_repl_missing_argument)
         << "history" << "an expression";

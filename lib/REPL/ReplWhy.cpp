@@ -13,10 +13,6 @@ using namespace bsc;
 using namespace bsc::repl;
 
 void Repl::cmdWhy(llvm::StringRef Args, llvm::SMLoc Loc) {
-  // The log of conditions is the JIT's, one for the last cycle run: with
-  // a team, the last robot's.
-  if (!oneRobot(":why", Loc))
-    return;
   // The entry may be a func: its conditions have no task around them.
   bool EntryIsFunc = !llvm::isa<TaskDecl>(L->Entry);
   std::optional<int> Wanted;
@@ -34,22 +30,33 @@ void Repl::cmdWhy(llvm::StringRef Args, llvm::SMLoc Loc) {
   uint32_t Cycle = S->getCycle();
   std::string Text;
   llvm::raw_string_ostream Why(Text);
-  switch (explainLastCycle(*L, *Values, *S, Wanted, Why)) {
+  // The JIT's log is of the last robot's cycle; each robot's is kept.
+  const auto *Log =
+      ExplainLogs.empty() || ExplainLogs[Selected].empty()
+          ? nullptr
+          : reinterpret_cast<const ExplainLogHeader *>(
+                ExplainLogs[Selected].data());
+  if (!ExplainLogs.empty() && !Log) {
+    OS << "the conditions of " << cycleName(Cycle, Selected)
+       << " were not recorded\n";
+    return;
+  }
+  switch (explainLastCycle(*L, *Values, *S, Wanted, Why, Log)) {
   case WhyOutcome::NoCycle:
     OS << "no cycle has run yet\n";
     return;
   case WhyOutcome::NotRecorded:
-    OS << "the conditions of cycle " << Cycle
+    OS << "the conditions of " << cycleName(Cycle, Selected)
        << " were not recorded: the behavior was reloaded, or its state put "
           "back, after it ran\n";
     return;
   case WhyOutcome::DidNotRun:
     OS << (*Wanted < 0 ? L->Entry->getName().Name.str()
                        : L->Tables.Tasks[*Wanted].ShortName)
-       << " did not run in cycle " << Cycle << "\n";
+       << " did not run in " << cycleName(Cycle, Selected) << "\n";
     return;
   case WhyOutcome::Printed:
-    OS << "cycle " << Cycle << ":\n" << Text;
+    OS << cycleName(Cycle, Selected) << ":\n" << Text;
     return;
   }
 }

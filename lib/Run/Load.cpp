@@ -115,6 +115,9 @@ bsc::loadBehavior(Compilation &C, const CallableDecl &Entry,
   if (llvm::Error E = JIT.addModule(std::move(M), std::move(Ctx), Opts.OptLevel))
     return E;
   L->Hash = computeBehaviorHash(C, Entry);
+  if (Opts.Explain)
+    L->ExplainLog =
+        static_cast<ExplainLogHeader *>(JIT.lookup(ExplainLogSymbol));
   if (const NativeModule *World = C.Checked.World) {
     L->InputClass = World->Input;
     L->OutputClass = World->Output;

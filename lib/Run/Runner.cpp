@@ -473,6 +473,8 @@ bool CycleRunner::runCycle(unsigned K, const ReplayLine *Line) {
     return false;
   }
   BehaviorSession::Outcome O;
+  if (Opts.Explain && isTeam())
+    startExplainLog(L); // Not the robot before's conditions too.
   if (Line && Exact) {
     CycleRecord Calls;
     if (Line->Logged) {

@@ -291,12 +291,12 @@ WhyOutcome bsc::explainLastCycle(const LoadedBehavior &L,
                                  debug::ValueIO &Values,
                                  const BehaviorSession &S,
                                  std::optional<int> Task,
-                                 llvm::raw_ostream &OS) {
+                                 llvm::raw_ostream &OS,
+                                 const ExplainLogHeader *Copy) {
   uint32_t Cycle = S.getCycle();
   if (Cycle == 0)
     return WhyOutcome::NoCycle;
-  const auto *Header =
-      static_cast<const ExplainLogHeader *>(L.JIT->lookup(ExplainLogSymbol));
+  const ExplainLogHeader *Header = Copy ? Copy : L.ExplainLog;
   if (!Header || Header->Cycle != Cycle)
     return WhyOutcome::NotRecorded;
   CycleLog Log = decodeLog(L.Layout, *Header,
@@ -320,4 +320,10 @@ WhyOutcome bsc::explainLastCycle(const LoadedBehavior &L,
     OS << "the log of cycle " << Cycle << " was full: " << Log.Overflow
        << " later conditions and task calls were not recorded\n";
   return WhyOutcome::Printed;
+}
+
+void bsc::startExplainLog(const LoadedBehavior &L) {
+  // A state's cycle is 1 or more while its entry runs: 0 is no cycle's.
+  if (L.ExplainLog)
+    L.ExplainLog->Cycle = 0;
 }

@@ -71,6 +71,8 @@ struct LoadedBehavior {
   BehaviorJIT::GlobalObject Input, Output;
   /// computeBehaviorHash: recordings name the behavior that made them.
   std::string Hash;
+  /// The JIT's log of `:why` (LoadOptions::Explain); null without it.
+  ExplainLogHeader *ExplainLog = nullptr;
 };
 
 /// 16 hex digits that change with the behavior's sources, what its binding
@@ -301,9 +303,17 @@ enum class WhyOutcome { Printed, NoCycle, NotRecorded, DidNotRun };
 /// layout; -1: the entry func's own conditions), or of every task that
 /// ran, in the hierarchy's order. NotRecorded if the log is not of that
 /// cycle (another cycle ran since, or the behavior was loaded without it).
+/// `Copy`: a copy of the JIT's log to read instead (one robot's of a team,
+/// whose robots' cycles overwrite each other's).
 WhyOutcome explainLastCycle(const LoadedBehavior &L, debug::ValueIO &Values,
                             const BehaviorSession &S, std::optional<int> Task,
-                            llvm::raw_ostream &OS);
+                            llvm::raw_ostream &OS,
+                            const ExplainLogHeader *Copy = nullptr);
+
+/// Empties the JIT's log of `:why` so that the next entry call starts it
+/// afresh. The log keeps what the entry calls of one cycle wrote, and a
+/// team's robots run the same cycle one after another.
+void startExplainLog(const LoadedBehavior &L);
 
 /// The names a recording gives a task's parameters and locals, in the
 /// frame's order (BehaviorLayout::Task::Fields): locals of one name in
