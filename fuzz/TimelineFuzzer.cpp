@@ -66,8 +66,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *Data, size_t Size) {
           llvm::StringRef(reinterpret_cast<const char *>(Data), Size),
           "fuzz.jsonl"),
       llvm::SMLoc());
-  timeline::Run R;
-  if (!timeline::readRecordingBuffer(C, ID, "fuzz.jsonl", R)) {
+  std::vector<timeline::Run> Runs;
+  if (!timeline::readRecordingBuffer(C, ID, "fuzz.jsonl", Runs)) {
     if (C.Diags.getDiagnostics().size() != 1 || !C.Diags.hasErrors())
       std::abort();
     // Printing it (the line, the caret) is part of the path.
@@ -76,12 +76,27 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *Data, size_t Size) {
     printDiagnostics(C.SM, C.Diags.getDiagnostics(), OS);
     return 0;
   }
-  if (!C.Diags.getDiagnostics().empty() || R.Cycles.empty())
+  if (!C.Diags.getDiagnostics().empty() || Runs.empty())
     std::abort();
-  // A run never differs from itself.
-  if (timeline::findFirstDifference(R, R))
+  // One run, or a team's: a run per robot, numbered in order.
+  std::vector<const timeline::Run *> Drawn;
+  for (size_t K = 0; K < Runs.size(); ++K) {
+    const timeline::Run &R = Runs[K];
+    if (R.Cycles.empty() ||
+        R.Robot != (Runs.front().Robot < 0 ? -1 : int(K)))
+      std::abort();
+    Drawn.push_back(&R);
+  }
+  // A file never differs from itself.
+  std::optional<timeline::Difference> Diff;
+  if (!timeline::compareFiles(C, Runs, Runs, Diff) || Diff)
     std::abort();
-  checkPage({&R}, std::nullopt);
-  checkPage({&R, &R}, std::nullopt);
+  checkPage(Drawn, std::nullopt);
+  std::vector<timeline::Run> Second = Runs;
+  for (timeline::Run &R : Second)
+    R.Record = 1;
+  for (const timeline::Run &R : Second)
+    Drawn.push_back(&R);
+  checkPage(Drawn, std::nullopt);
   return 0;
 }

@@ -217,7 +217,8 @@ int bsc::timelineCommand(Compilation &C, const FrontendOptions &FOpts,
   LoadedBehavior &L = *Loaded;
   // Each log is replayed by robots of its own, from their first cycle.
   llvm::Error Internal = llvm::Error::success();
-  Opts.ReplayLog = [&](llvm::StringRef Path, timeline::CycleSink &Sink) {
+  Opts.ReplayLog = [&](llvm::StringRef Path,
+                       const timeline::TimelineOptions::SinkForRobot &SinkFor) {
     auto Robots = Team::start(C, L, 1);
     if (!Robots) {
       Internal = Robots.takeError();
@@ -225,17 +226,18 @@ int bsc::timelineCommand(Compilation &C, const FrontendOptions &FOpts,
     }
     if (!*Robots)
       return false;
-    TimelineFeed Feed(L, Sink);
+    // A feed per robot: each keeps its robot's cycle before. The replay
+    // grew the team to the log's robots before the first cycle.
+    std::vector<std::unique_ptr<TimelineFeed>> Feeds;
     RunOptions ROpts;
     ROpts.ReplayPath = Path.str();
     ROpts.RobotsFromRecording = true;
     ROpts.CycleLimitMs = DefaultCycleLimitMs;
     ROpts.TakeCycle = [&](unsigned Robot, BehaviorSession &S) {
-      if (Robot > 0) {
-        C.Diags.report(llvm::SMLoc(), diag::err_timeline_team_log) << Path;
-        return false;
-      }
-      Feed.take(S);
+      while (Feeds.size() <= Robot)
+        Feeds.push_back(std::make_unique<TimelineFeed>(
+            L, SinkFor(Feeds.size(), (*Robots)->size())));
+      Feeds[Robot]->take(S);
       return true;
     };
     return runTeam(C, L, **Robots, ROpts, llvm::nulls()) &&

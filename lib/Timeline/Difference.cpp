@@ -10,6 +10,7 @@
 //===----------------------------------------------------------------------===//
 #include "TimelineImpl.h"
 #include "bsc/Debug/Values.h"
+#include "bsc/Frontend/Frontend.h"
 #include "llvm/ADT/STLExtras.h"
 #include <map>
 #include <set>
@@ -144,4 +145,41 @@ std::optional<Difference> timeline::findFirstDifference(const Run &A,
       return Difference{Cycle, std::move(Notes)};
   }
   return std::nullopt;
+}
+
+bool timeline::compareFiles(Compilation &C, llvm::ArrayRef<Run> A,
+                            llvm::ArrayRef<Run> B,
+                            std::optional<Difference> &Diff) {
+  // One robot's run has Robot -1; a team's file has two runs or more, or
+  // one of a team of one.
+  auto RobotsOf = [](llvm::ArrayRef<Run> F) {
+    return F.front().Robot < 0 ? 0 : F.size();
+  };
+  if (RobotsOf(A) != RobotsOf(B)) {
+    auto Describe = [&](llvm::ArrayRef<Run> F) {
+      return F.front().Robot < 0
+                 ? "'" + F.front().Name + "' is one robot's run"
+                 : "'" + F.front().Name + "' is a team of " +
+                       std::to_string(F.size());
+    };
+    C.Diags.report(llvm::SMLoc(), diag::err_timeline_teams_differ)
+        << Describe(A) << Describe(B);
+    return false;
+  }
+  // The earliest cycle where any robot differs, with the notes of every
+  // robot that differs in it.
+  Diff.reset();
+  for (size_t K = 0; K < A.size(); ++K) {
+    std::optional<Difference> D = findFirstDifference(A[K], B[K]);
+    if (!D || (Diff && Diff->Cycle < D->Cycle))
+      continue;
+    if (A[K].Robot >= 0)
+      for (std::string &Note : D->Notes)
+        Note = "robot " + std::to_string(K) + ": " + Note;
+    if (Diff && Diff->Cycle == D->Cycle)
+      llvm::append_range(Diff->Notes, D->Notes);
+    else
+      Diff = std::move(D);
+  }
+  return true;
 }

@@ -146,6 +146,9 @@ private:
     J.object([&] {
       J.attribute("name", R.Name);
       J.attribute("kind", R.FromRobotLog ? "robot log" : "record");
+      J.attribute("record", int64_t(R.Record));
+      if (R.Robot >= 0)
+        J.attribute("robot", int64_t(R.Robot));
       J.attributeArray("cycles", [&] {
         for (const auto &[First, Last] : R.Cycles)
           J.array([&] {

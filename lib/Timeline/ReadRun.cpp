@@ -48,20 +48,19 @@ class LineReader {
 public:
   LineReader(Compilation &C, llvm::SMLoc Loc) : C(C), Loc(Loc) {}
 
-  /// Reports what is wrong with the line and returns false.
-  bool read(const llvm::json::Value &Line, std::optional<uint32_t> Previous,
-            uint32_t &Cycle, std::vector<CycleTask> &Tasks) {
+  /// Reports what is wrong with the line and returns false. `Robot`: the
+  /// line's `robot` (`--robots N --record FILE` writes every robot's lines
+  /// into one file).
+  bool read(const llvm::json::Value &Line, uint32_t &Cycle,
+            std::optional<unsigned> &Robot, std::vector<CycleTask> &Tasks) {
     const llvm::json::Object *O = Line.getAsObject();
     if (!O) {
       C.Diags.report(Loc, diag::err_record_not_object);
       return false;
     }
-    if (std::optional<llvm::StringRef> Key =
-            findUnknownKey(*O, {"cycle", "input", "output", "tasks", "calls"})) {
-      if (*Key == "robot") // `--robots N --record FILE`: every robot's lines.
-        C.Diags.report(Loc, diag::err_record_team);
-      else
-        C.Diags.report(Loc, diag::err_record_unknown_key) << *Key;
+    if (std::optional<llvm::StringRef> Key = findUnknownKey(
+            *O, {"cycle", "input", "output", "tasks", "calls", "robot"})) {
+      C.Diags.report(Loc, diag::err_record_unknown_key) << *Key;
       return false;
     }
     const llvm::json::Value *CycleValue = O->get("cycle");
@@ -75,9 +74,12 @@ public:
       return false;
     }
     Cycle = *N;
-    if (Previous && Cycle <= *Previous) {
-      C.Diags.report(Loc, diag::err_record_cycle_order) << Cycle << *Previous;
-      return false;
+    if (const llvm::json::Value *R = O->get("robot")) {
+      std::optional<int64_t> K = R->getAsInteger();
+      if (!K || *K < 0 || *K >= MaxRobots)
+        return bad("robot", "a robot's number, from 0 to " +
+                                std::to_string(MaxRobots - 1));
+      Robot = unsigned(*K);
     }
     for (llvm::StringRef Key : {"input", "output"})
       if (const llvm::json::Value *V = O->get(Key); V && !V->getAsObject())
@@ -159,6 +161,53 @@ private:
 };
 } // namespace
 
+namespace {
+/// The runs of one file as its cycles come: one, or one per robot of a
+/// team's file.
+class FileRuns {
+public:
+  FileRuns(llvm::StringRef Name, bool Team) : Name(Name), Team(Team) {}
+  bool isTeam() const { return Team; }
+  /// Robot K's builder (0 for one robot's file), added with the robots
+  /// before it if new.
+  RunBuilder &robot(unsigned K) {
+    while (Runs.size() <= K) {
+      Runs.push_back(std::make_unique<Run>());
+      Runs.back()->Name = Name;
+      Runs.back()->Robot = Team ? int(Runs.size() - 1) : -1;
+      Builders.push_back(std::make_unique<RunBuilder>(*Runs.back()));
+    }
+    return *Builders[K];
+  }
+  Run &run(unsigned K) { return *Runs[K]; }
+  /// Finishes the runs into `Out`; false after reporting a file without
+  /// cycles, or a robot without any below one with some.
+  bool finish(Compilation &C, std::vector<Run> &Out) {
+    if (Runs.empty() || (!Team && Runs[0]->Cycles.empty())) {
+      C.Diags.report(llvm::SMLoc(), diag::err_record_empty) << Name;
+      return false;
+    }
+    for (size_t K = 0; K < Runs.size(); ++K)
+      if (Runs[K]->Cycles.empty()) {
+        C.Diags.report(llvm::SMLoc(), diag::err_record_team_gap)
+            << Name << Runs.size() - 1 << K;
+        return false;
+      }
+    for (size_t K = 0; K < Runs.size(); ++K) {
+      Builders[K]->finish();
+      Out.push_back(std::move(*Runs[K]));
+    }
+    return true;
+  }
+
+private:
+  std::string Name;
+  bool Team;
+  std::vector<std::unique_ptr<Run>> Runs;
+  std::vector<std::unique_ptr<RunBuilder>> Builders;
+};
+} // namespace
+
 bool timeline::isRecording(llvm::StringRef Path) {
   // Only the bytes that are there: a slice past the end of the file is
   // filled with NULs, which made every recording shorter than the slice a
@@ -171,7 +220,8 @@ bool timeline::isRecording(llvm::StringRef Path) {
   return Head && looksLikeRecording((*Head)->getBuffer());
 }
 
-bool timeline::readRecording(Compilation &C, llvm::StringRef Path, Run &R) {
+bool timeline::readRecording(Compilation &C, llvm::StringRef Path,
+                             std::vector<Run> &Runs) {
   // addSourceFile's message for a directory speaks of b-script files.
   if (llvm::sys::fs::is_directory(Path)) {
     C.Diags.report(llvm::SMLoc(), diag::err_cannot_open_file)
@@ -179,19 +229,19 @@ bool timeline::readRecording(Compilation &C, llvm::StringRef Path, Run &R) {
     return false;
   }
   unsigned ID = addSourceFile(C, Path, MaxRecordingMiB);
-  return ID && readRecordingBuffer(C, ID, Path, R);
+  return ID && readRecordingBuffer(C, ID, Path, Runs);
 }
 
 bool timeline::readRecordingBuffer(Compilation &C, unsigned BufferID,
-                                   llvm::StringRef Name, Run &R) {
+                                   llvm::StringRef Name,
+                                   std::vector<Run> &Runs) {
   llvm::StringRef Text = C.SM.getMemoryBuffer(BufferID)->getBuffer();
   if (!looksLikeRecording(Text)) {
     C.Diags.report(llvm::SMLoc(), diag::err_timeline_not_recording) << Name;
     return false;
   }
-  R.Name = Name.str();
-  RunBuilder Builder(R);
-  std::optional<uint32_t> Previous;
+  std::optional<FileRuns> File;
+  std::vector<std::optional<uint32_t>> Previous; // Per robot.
   while (!Text.empty()) {
     auto [Raw, Rest] = Text.split('\n');
     Text = Rest;
@@ -204,22 +254,41 @@ bool timeline::readRecordingBuffer(Compilation &C, unsigned BufferID,
     // The header names the behavior (docs/repl.md "Recordings"); the page
     // draws what the cycles recorded, calls into C++ included.
     if (const llvm::json::Object *O = V->getAsObject();
-        O && !Previous && O->size() == 1 && O->get("recording"))
+        O && !File && O->size() == 1 && O->get("recording"))
       continue;
     uint32_t Cycle = 0;
+    std::optional<unsigned> Robot;
     std::vector<CycleTask> Tasks;
-    if (!LineReader(C, Loc).read(*V, Previous, Cycle, Tasks))
+    if (!LineReader(C, Loc).read(*V, Cycle, Robot, Tasks))
       return false;
+    // The first line says whether the file is a team's: then every line
+    // names its robot.
+    if (!File)
+      File.emplace(Name, Robot.has_value());
+    if (Robot.has_value() != File->isTeam()) {
+      C.Diags.report(Loc, diag::err_record_team_mixed)
+          << (Robot ? "this line names its robot, but the first line does "
+                      "not"
+                    : "this line does not name its robot, but the first "
+                      "line does");
+      return false;
+    }
+    unsigned K = Robot.value_or(0);
+    if (Previous.size() <= K)
+      Previous.resize(K + 1);
+    if (Previous[K] && Cycle <= *Previous[K]) {
+      C.Diags.report(Loc, diag::err_record_cycle_order) << Cycle << *Previous[K];
+      return false;
+    }
+    Previous[K] = Cycle;
     const llvm::json::Object *O = V->getAsObject();
-    Builder.addCycle(Cycle, O->get("input"), O->get("output"), Tasks);
-    Previous = Cycle;
+    File->robot(K).addCycle(Cycle, O->get("input"), O->get("output"), Tasks);
   }
-  if (!Previous) {
+  if (!File) {
     C.Diags.report(llvm::SMLoc(), diag::err_record_empty) << Name;
     return false;
   }
-  Builder.finish();
-  return true;
+  return File->finish(C, Runs);
 }
 
 bool timeline::isBinaryLogFile(llvm::StringRef Path) {
@@ -228,26 +297,31 @@ bool timeline::isBinaryLogFile(llvm::StringRef Path) {
 }
 
 bool timeline::readReplayedLog(Compilation &C, const TimelineOptions &Opts,
-                               llvm::StringRef Path, Run &R) {
+                               llvm::StringRef Path, std::vector<Run> &Runs) {
   if (!Opts.ReplayLog) {
     C.Diags.report(llvm::SMLoc(), diag::err_timeline_log_needs_behavior)
         << Path;
     return false;
   }
-  R.Name = Path.str();
-  RunBuilder Builder(R);
-  if (!Opts.ReplayLog(Path, Builder))
+  // A log's header says how many robots it has: the replay hands robot
+  // K's cycles to the K-th sink, and names the count first.
+  std::optional<FileRuns> File;
+  auto SinkFor = [&](unsigned Robot, unsigned Robots) -> CycleSink & {
+    if (!File)
+      File.emplace(Path, Robots > 1);
+    return File->robot(Robot);
+  };
+  if (!Opts.ReplayLog(Path, SinkFor))
     return false;
-  if (R.Cycles.empty()) {
+  if (!File) {
     C.Diags.report(llvm::SMLoc(), diag::err_record_empty) << Path;
     return false;
   }
-  Builder.finish();
-  return true;
+  return File->finish(C, Runs);
 }
 
 bool timeline::readRobotLog(Compilation &C, const debug::DebugTables &Tables,
-                            llvm::StringRef LogPath, Run &R) {
+                            llvm::StringRef LogPath, std::vector<Run> &Runs) {
   std::optional<std::vector<debug::LoggedCycle>> Cycles =
       debug::readTraceLog(LogPath, Tables, C.Diags);
   if (!Cycles)
@@ -256,6 +330,7 @@ bool timeline::readRobotLog(Compilation &C, const debug::DebugTables &Tables,
     C.Diags.report(llvm::SMLoc(), diag::err_record_empty) << LogPath;
     return false;
   }
+  Run R;
   R.Name = LogPath.str();
   R.FromRobotLog = true;
   RunBuilder Builder(R);
@@ -280,5 +355,6 @@ bool timeline::readRobotLog(Compilation &C, const debug::DebugTables &Tables,
     Previous = Logged.Cycle;
   }
   Builder.finish();
+  Runs.push_back(std::move(R));
   return true;
 }

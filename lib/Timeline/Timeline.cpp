@@ -34,19 +34,22 @@ bool timeline::writeTimeline(Compilation &C, const TimelineOptions &Opts,
     if (!Tables)
       return false;
   }
-  std::vector<Run> Runs(Opts.Records.size());
-  for (size_t I = 0; I < Runs.size(); ++I) {
+  // Each file's runs: one, or one per robot of a team's.
+  std::vector<std::vector<Run>> Files(Opts.Records.size());
+  for (size_t I = 0; I < Files.size(); ++I) {
     llvm::StringRef Path = Opts.Records[I];
-    bool Read = isBinaryLogFile(Path) ? readReplayedLog(C, Opts, Path, Runs[I])
+    bool Read = isBinaryLogFile(Path) ? readReplayedLog(C, Opts, Path, Files[I])
                 : Tables && !isRecording(Path)
-                    ? readRobotLog(C, *Tables, Path, Runs[I])
-                    : readRecording(C, Path, Runs[I]);
+                    ? readRobotLog(C, *Tables, Path, Files[I])
+                    : readRecording(C, Path, Files[I]);
     if (!Read)
       return false;
+    for (Run &R : Files[I])
+      R.Record = I;
   }
   std::optional<Difference> Diff;
-  if (Runs.size() == 2)
-    Diff = findFirstDifference(Runs[0], Runs[1]);
+  if (Files.size() == 2 && !compareFiles(C, Files[0], Files[1], Diff))
+    return false;
 
   std::string Output = Opts.OutputPath.empty()
                            ? defaultOutput(Opts.Records.front())
@@ -63,13 +66,14 @@ bool timeline::writeTimeline(Compilation &C, const TimelineOptions &Opts,
   if (!Page)
     return false;
   std::vector<const Run *> Drawn;
-  for (const Run &R : Runs)
-    Drawn.push_back(&R);
+  for (const std::vector<Run> &File : Files)
+    for (const Run &R : File)
+      Drawn.push_back(&R);
   writePage(Page->os(), Drawn, Diff);
   if (!keepOutput(C.Diags, *Page, Output))
     return false;
 
-  if (Runs.size() == 2) {
+  if (Files.size() == 2) {
     if (!Diff) {
       OS << "the runs do not differ\n";
     } else {

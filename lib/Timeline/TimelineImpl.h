@@ -73,6 +73,10 @@ struct TaskLane {
 struct Run {
   std::string Name;         ///< The file as given.
   bool FromRobotLog = false; ///< No input, output or fields.
+  /// Its robot in a team's file (one run per robot); -1 in one robot's.
+  int Robot = -1;
+  /// Which file: 0, or 1 of two compared.
+  unsigned Record = 0;
   /// The cycles present: inclusive ranges, ascending.
   std::vector<std::pair<uint32_t, uint32_t>> Cycles;
   /// In the order they first ran (depth first within a cycle).
@@ -152,23 +156,26 @@ private:
 /// Sets `V` as the series' value from `Cycle` on, if it differs.
 void setValue(Series &S, uint32_t Cycle, const llvm::json::Value &V);
 
+// The readers add a file's runs to `Runs`: one, or one per robot of a
+// team's file. They report a file that cannot be read, is not what they
+// read, or has a malformed line or record, and return false.
+
 /// Whether the file starts as a recording (JSON text), not a robot's log.
 bool isRecording(llvm::StringRef Path);
-/// Reads a recording (JSON lines with `tasks`) into `R`. Reports a file
-/// that cannot be read, is not a recording, or has a malformed line, and
-/// returns false.
-bool readRecording(Compilation &C, llvm::StringRef Path, Run &R);
+/// A recording: JSON lines with `tasks` (and `robot` in a team's).
+bool readRecording(Compilation &C, llvm::StringRef Path,
+                   std::vector<Run> &Runs);
 /// The same for a recording already in C.SM, named `Name`.
 bool readRecordingBuffer(Compilation &C, unsigned BufferID,
-                         llvm::StringRef Name, Run &R);
-/// Reads a binary log by replaying it (TimelineOptions::ReplayLog).
+                         llvm::StringRef Name, std::vector<Run> &Runs);
+/// A binary log, by replaying it (TimelineOptions::ReplayLog).
 bool readReplayedLog(Compilation &C, const TimelineOptions &Opts,
-                     llvm::StringRef Path, Run &R);
+                     llvm::StringRef Path, std::vector<Run> &Runs);
 /// Whether the file starts as a binary log does.
 bool isBinaryLogFile(llvm::StringRef Path);
-/// Reads a robot's trace log with the tables of an instrumented object.
+/// A robot's trace log, with the tables of an instrumented object.
 bool readRobotLog(Compilation &C, const debug::DebugTables &Tables,
-                  llvm::StringRef LogPath, Run &R);
+                  llvm::StringRef LogPath, std::vector<Run> &Runs);
 
 /// The first cycle where two runs differ, and each thing that differs in
 /// it (`output.motion: A "walk", B "kick"`). A robot's log has only tasks:
@@ -178,6 +185,11 @@ struct Difference {
   std::vector<std::string> Notes;
 };
 std::optional<Difference> findFirstDifference(const Run &A, const Run &B);
+/// The same for two files' runs, robot by robot in teams' (notes name the
+/// robot); false after reporting files that cannot compare (a team and one
+/// robot, teams of different sizes).
+bool compareFiles(Compilation &C, llvm::ArrayRef<Run> A, llvm::ArrayRef<Run> B,
+                  std::optional<Difference> &Diff);
 
 /// Writes the page drawing `Runs`.
 void writePage(llvm::raw_ostream &OS, llvm::ArrayRef<const Run *> Runs,

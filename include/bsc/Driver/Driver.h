@@ -52,8 +52,6 @@ constexpr unsigned MaxCycles = 100000000;
 /// Limit of --cycle-limit in milliseconds: a day. Anything longer is a
 /// typo, and itimer values must stay small.
 constexpr unsigned MaxCycleLimitMs = 86400000;
-/// The most robots `--robots` runs in one process.
-constexpr unsigned MaxRobots = 1000;
 
 /// Prints the diagnostics of `C` (with `Verify`, checks them against the
 /// sources' `# expected-...` comments instead) and returns the exit status.

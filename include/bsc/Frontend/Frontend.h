@@ -31,6 +31,9 @@ constexpr unsigned MaxSourceFileMiB = 64;
 /// A recording read whole (`--replay`, `bsc timeline`): 100,000 cycles of a
 /// behavior with its tasks are some 70 MiB.
 constexpr unsigned MaxRecordingMiB = 1024;
+/// The most robots `--robots` runs in one process, and a team's recording
+/// or log names.
+constexpr unsigned MaxRobots = 1000;
 
 /// The modules every target with a runtime provides (FrontendOptions::
 /// StandardModules); named for the message when a target has none.

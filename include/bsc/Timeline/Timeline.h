@@ -5,8 +5,10 @@
 // `:record` (whose lines carry each cycle's active tasks), or a robot's
 // trace log with the tables of an `--instrument` object, and writes one
 // self-contained page that draws it: a lane per task, a cursor over the
-// cycles, plots and search. Given two recordings, it aligns them by cycle
-// and marks the first cycle where they differ.
+// cycles, plots and search. A team's recording (`--robots N`) is drawn as
+// a group of lanes per robot under one cursor. Given two recordings, it
+// aligns them by cycle (teams robot by robot) and marks the first cycle
+// where they differ.
 //
 // The page's script and markup are lib/Timeline/page/, embedded at build
 // time; the data it draws is docs/repl.md's "The timeline's data".
@@ -74,10 +76,15 @@ struct TimelineOptions {
   std::vector<std::string> BehaviorFiles;
   /// --entry, with BehaviorFiles.
   std::string EntryName;
+  /// Where a replay hands robot `Robot`'s cycles (of `Robots`, 1 for one
+  /// robot's log).
+  using SinkForRobot =
+      std::function<CycleSink &(unsigned Robot, unsigned Robots)>;
   /// Set by the driver when BehaviorFiles are given: replays the binary
-  /// log at the path and hands each cycle to `Sink`; false after
-  /// reporting.
-  std::function<bool(llvm::StringRef Path, CycleSink &Sink)> ReplayLog;
+  /// log at the path and hands each robot's cycles to its sink; false
+  /// after reporting.
+  std::function<bool(llvm::StringRef Path, const SinkForRobot &SinkFor)>
+      ReplayLog;
 };
 
 /// Writes the page. With two records, prints their first difference (or

@@ -28,7 +28,10 @@ const STATE_COLORS = { running: '#4a86d8', done: '#34a853', failure: '#d93025' }
 // Blue, green and red are left to running, done and failure.
 const PALETTE = ['#9c6ade', '#e8a33d', '#12a4a0', '#d45fa0', '#8a9a2c',
   '#c9743f', '#5c6bc0', '#a1887f', '#6d8a96', '#b15dc9', '#c8a600', '#2e7d6b'];
-const RUN_COLORS = ['#1a73e8', '#e37400'];
+// A run's colour in plots and the overview: A and B of two runs, or each
+// robot of a team.
+const RUN_COLORS = ['#1a73e8', '#e37400', '#0b8043', '#8e24aa', '#c2185b',
+  '#00838f', '#6d4c41', '#546e7a'];
 const CURSOR = '#e8710a';
 const DIFF = '#c5221f';
 
@@ -36,7 +39,8 @@ const $ = (id) => document.getElementById(id);
 
 // All mutable state of the page.
 const S = {
-  runs: [],            // prepared runs (see prepareRun)
+  runs: [],            // prepared runs (see prepareRun): a team's file is one per robot
+  records: 1,          // the files drawn: 1, or 2 to compare
   strings: [],
   difference: null,
   first: 0, last: 0,   // cycle domain over all runs, inclusive
@@ -80,3 +84,26 @@ function el(tag, className, text) {
 function str(i) { return i >= 0 && i < S.strings.length ? String(S.strings[i]) : '?'; }
 
 function runLetter(r) { return r === 0 ? 'A' : 'B'; }
+
+// How a run is named where several are drawn: its file's letter when two
+// files compare, its name, and its robot in a team's file.
+function runLabel(run) {
+  return (S.records > 1 ? runLetter(run.record) + ': ' : '') + run.name +
+    (run.robot !== null ? ', robot ' + run.robot : '');
+}
+
+// A short form beside plotted values: `A`, `robot 1`, `B robot 1`.
+function runTag(run) {
+  const parts = [];
+  if (S.records > 1) parts.push(runLetter(run.record));
+  if (run.robot !== null) parts.push('robot ' + run.robot);
+  return parts.join(' ');
+}
+
+// The run a run compares with: the same robot in the other file.
+function partnerOf(run) {
+  if (S.records < 2) return null;
+  return S.runs.find((o) => o.record !== run.record && o.robot === run.robot) || null;
+}
+
+function runColor(run) { return RUN_COLORS[run.index % RUN_COLORS.length]; }

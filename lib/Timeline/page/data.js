@@ -22,6 +22,9 @@ function prepareRun(raw, index) {
     index,
     name: String(raw.name || 'run'),
     kind: raw.kind || 'record',
+    // A team's file is a run per robot; `record` says which file.
+    robot: Number.isInteger(raw.robot) && raw.robot >= 0 ? raw.robot : null,
+    record: raw.record === 1 || (raw.record === undefined && index === 1) ? 1 : 0,
     cycles: Array.isArray(raw.cycles) ? raw.cycles : [],
     tasks: Array.isArray(raw.tasks) ? raw.tasks : [],
     series: Array.isArray(raw.series) ? raw.series : [],

@@ -77,7 +77,7 @@ function buildLaneLabels() {
 function laneLabel(row) {
   const two = S.runs.length > 1;
   if (row.kind === 'header') {
-    const h = el('div', 'run-header', runLetter(row.run.index) + ': ' + row.run.name);
+    const h = el('div', 'run-header', runLabel(row.run));
     h.title = row.run.name + ' (' + row.run.kind + ')';
     return h;
   }
@@ -86,7 +86,7 @@ function laneLabel(row) {
   d.dataset.task = row.task.name;
   d.dataset.run = String(row.run.index);
   d.style.paddingLeft = (8 + row.task.depth * 14) + 'px';
-  d.title = (two ? runLetter(row.run.index) + ': ' : '') + row.task.name;
+  d.title = (two ? runLabel(row.run) + ': ' : '') + row.task.name;
   d.textContent = row.task.short;
   row.label = d;
   return d;
@@ -227,7 +227,7 @@ function drawOverviewBase() {
   g.fillRect(0, 0, cv.w, cv.h);
   const bandH = Math.floor((cv.h - 6) / S.runs.length);
   S.runs.forEach((run, r) => {
-    g.fillStyle = S.runs.length > 1 ? RUN_COLORS[r] + '66' : '#c4cad2';
+    g.fillStyle = S.runs.length > 1 ? runColor(run) + '66' : '#c4cad2';
     for (const [x0, x1] of presentColumns(run.cycles, map, cv.w)) g.fillRect(x0, 3 + r * bandH, x1 - x0, bandH - 1);
   });
   if (S.difference) {
@@ -273,7 +273,7 @@ function tooltipLines(row, c) {
   const task = row.task, run = row.run;
   const line = (cls, text) => el('div', cls, text);
   const out = [line('t-name', task.short), line('t-dim', task.name)];
-  out.push(line('', 'cycle ' + c + (S.runs.length > 1 ? ' \u00b7 ' + runLetter(run.index) + ': ' + run.name : '')));
+  out.push(line('', 'cycle ' + c + (S.runs.length > 1 ? ' \u00b7 ' + runLabel(run) : '')));
   const s = segmentAt(task, c);
   if (s < 0) { out.push(line('t-dim', isPresent(run, c) ? 'not active' : 'no such cycle in this run')); return out; }
   const segs = task.segments, at = segs[5 * s + 3], parent = segs[5 * s + 4];

@@ -150,7 +150,7 @@ function wireButtons() {
 
 function runByKey(key) {
   if (typeof key === 'number') return S.runs[key];
-  if (key === 'A' || key === 'B') return S.runs[key === 'A' ? 0 : 1];
+  if (key === 'A' || key === 'B') return S.runs.find((r) => r.record === (key === 'A' ? 0 : 1));
   return S.runs.find((r) => r.name === key) || S.runs[Number(key)];
 }
 
@@ -203,10 +203,14 @@ function init(data) {
   S.strings = Array.isArray(data.strings) ? data.strings : [];
   S.difference = data.difference && typeof data.difference.cycle === 'number' ? data.difference : null;
   S.runs = data.runs.map(prepareRun);
+  S.records = S.runs.some((r) => r.record === 1) ? 2 : 1;
   computeDomain();
   assignStateColors();
-  document.title = document.title || S.runs.map((r) => r.name).join(' vs ');
-  const names = S.runs.map((r, i) => (S.runs.length > 1 ? runLetter(i) + ': ' : '') + r.name);
+  // The files drawn: a team's is one, whatever its robots.
+  const files = S.runs.filter((r, i) => i === 0 || r.record !== S.runs[i - 1].record);
+  document.title = document.title || files.map((r) => r.name).join(' vs ');
+  const names = files.map((r) => (S.records > 1 ? runLetter(r.record) + ': ' : '') + r.name +
+    (r.robot !== null ? ' (' + S.runs.filter((o) => o.record === r.record).length + ' robots)' : ''));
   $('title-text').textContent = names.join('  \u00b7  ');
   buildRows();
   buildLaneLabels();

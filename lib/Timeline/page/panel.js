@@ -16,7 +16,7 @@ function updateCycleHeader() {
   S.runs.forEach((run, r) => {
     if (r) box.appendChild(document.createTextNode(', '));
     else box.appendChild(document.createTextNode(' '));
-    const name = (S.runs.length > 1 ? runLetter(r) + ': ' : '') + run.name;
+    const name = S.runs.length > 1 ? runLabel(run) : run.name;
     box.appendChild(el('span', isPresent(run, S.cursor) ? 'run' : 'run absent',
       name + (isPresent(run, S.cursor) ? '' : ' (no such cycle)')));
   });
@@ -28,7 +28,7 @@ function updateHierarchy() {
   for (const run of S.runs) {
     const wrap = el('div', 'run-tree');
     wrap.dataset.run = String(run.index);
-    if (S.runs.length > 1) wrap.appendChild(el('h3', '', runLetter(run.index) + ': ' + run.name));
+    if (S.runs.length > 1) wrap.appendChild(el('h3', '', runLabel(run)));
     wrap.appendChild(runTree(run));
     box.appendChild(wrap);
   }
@@ -48,7 +48,7 @@ function runTree(run) {
     children.get(key).push({ i, s });
   });
   if (children.size === 0) return el('div', 'none', 'no task active');
-  const otherRun = S.runs.length > 1 ? S.runs[1 - run.index] : null;   // to mark differing fields
+  const otherRun = partnerOf(run);   // to mark differing fields
   return taskList(run, children, -1, otherRun, new Set());
 }
 
@@ -100,7 +100,7 @@ function updateIO() {
   const box = $('io');
   box.textContent = '';
   for (const run of S.runs) {
-    if (S.runs.length > 1) box.appendChild(el('h3', '', runLetter(run.index) + ': ' + run.name));
+    if (S.runs.length > 1) box.appendChild(el('h3', '', runLabel(run)));
     if (run.series.length === 0) {
       const why = run.kind === 'robot log' ? 'a robot log has no input or output' : 'no input or output';
       box.appendChild(el('div', 'none', why));
@@ -115,7 +115,7 @@ function updateIO() {
 }
 
 function appendLeaves(box, run) {
-  const other = S.runs.length > 1 ? S.runs[1 - run.index] : null;
+  const other = partnerOf(run);
   let group = '';
   for (const s of run.series) {
     const top = s.path.split(/[.[]/)[0];

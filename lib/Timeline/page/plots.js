@@ -93,10 +93,10 @@ function plotRow(path) {
   label.appendChild(el('div', 'range', formatNum(lo) + ' \u2026 ' + formatNum(hi)));
   if (S.runs.length > 1) {
     const key = el('div', 'key');
-    S.runs.forEach((run, r) => {
-      const k = el('span', '', runLetter(r));
+    S.runs.forEach((run) => {
+      const k = el('span', '', runTag(run));
       const sw = el('i');
-      sw.style.background = RUN_COLORS[r];
+      sw.style.background = runColor(run);
       k.prepend(sw);
       key.appendChild(k);
     });
@@ -138,9 +138,9 @@ function drawPlotBase(cv) {
     g.moveTo(0, y); g.lineTo(cv.w, y);
   }
   g.stroke();
-  S.runs.forEach((run, r) => {
+  S.runs.forEach((run) => {
     const pd = plotData(run, cv.path);
-    if (pd) drawPlotLine(g, cv, pd, S.runs.length > 1 ? RUN_COLORS[r] : RUN_COLORS[0]);
+    if (pd) drawPlotLine(g, cv, pd, runColor(run));
   });
   if (S.difference) drawDiffLine(g, cv.h);
 }
@@ -175,7 +175,7 @@ function drawPlotOverlay(cv) {
   const x = xOf(S.cursor + 0.5);
   const parts = S.runs.map((run) => {
     const v = valueAt(run.seriesByPath.get(cv.path), S.cursor);
-    return (S.runs.length > 1 ? runLetter(run.index) + ' ' : '') + formatValue(v);
+    return (S.runs.length > 1 ? runTag(run) + ' ' : '') + formatValue(v);
   });
   const text = parts.join('   ');
   g.font = '11px ui-monospace, "DejaVu Sans Mono", Menlo, monospace';
