@@ -9,9 +9,15 @@
 // input changed get the input of the cycle before, halving the chunks,
 // while the log still fails the same way. "The same way": the replay's
 // first failure is at the log's last cycle with the same output members
-// differing. Every candidate is replayed as `bsc replay` would. The shrunk
-// log has no header and no calls: it is no run of any behavior, and
-// replays in regression mode.
+// differing. Every candidate is replayed as `bsc replay` would.
+//
+// A log that replays exactly (it is of this behavior, with its calls into
+// C++) is shrunk exactly: each candidate keeps the header and its cycles'
+// calls, so a random number or a sensor read by C++ is what the robot
+// got, and a window whose calls part from the log's (the tasks started
+// afresh call otherwise) is no candidate. A log replayed in regression
+// mode is shrunk so, without header and calls. A binary log is shrunk as
+// the JSON-lines recording it converts to, header and calls and all.
 //
 //===----------------------------------------------------------------------===//
 #include "ReplayLog.h"
@@ -38,9 +44,10 @@ public:
            std::string Temp)
       : C(C), L(L), Opts(Opts), Temp(std::move(Temp)) {}
 
-  /// Reads the log and replays it; false after reporting (also if it does
-  /// not fail on an output).
-  llvm::Expected<bool> start(llvm::StringRef Path);
+  /// Reads the log at `Path` (named `Name` in messages: a binary log's
+  /// conversion is read) and replays it; false after reporting (also if
+  /// it does not fail on an output).
+  llvm::Expected<bool> start(llvm::StringRef Path, llvm::StringRef Name);
   /// Shrinks it; Window and Keep say what is left.
   llvm::Expected<bool> shrink();
   /// Writes the shrunk log; false after reporting.
@@ -61,16 +68,17 @@ private:
   std::string Temp;
   std::vector<llvm::json::Value> Cycles; ///< Each cycle's line.
   std::vector<bool> Keep; ///< Per cycle: its input change stays.
+  /// The log replays exactly: candidates keep its header and calls.
+  bool Exact = false;
+  std::optional<llvm::json::Value> Header;
 };
 } // namespace
 
-llvm::Expected<bool> Shrinker::start(llvm::StringRef Path) {
-  if (isBinaryLogPath(Path)) {
-    C.Diags.report(llvm::SMLoc(), diag::err_shrink_binary) << Path;
-    return false;
-  }
+llvm::Expected<bool> Shrinker::start(llvm::StringRef Path,
+                                     llvm::StringRef Name) {
   RunOptions Run;
   Run.Failed = &Original;
+  Run.ReplayedExactly = &Exact;
   uint32_t Count = 0;
   llvm::Expected<bool> Passed = replayLog(C, L, Opts, Path.str(), Run, Count);
   if (!Passed)
@@ -83,7 +91,7 @@ llvm::Expected<bool> Shrinker::start(llvm::StringRef Path) {
     printDiagnostics(C.SM, C.Diags.getDiagnostics(), llvm::errs());
     C.Diags.clear();
     C.Diags.report(llvm::SMLoc(), diag::err_shrink_passes)
-        << Path << (*Passed ? "replays as recorded" : "fails otherwise");
+        << Name << (*Passed ? "replays as recorded" : "fails otherwise");
     return false;
   }
   C.Diags.clear();
@@ -102,10 +110,12 @@ llvm::Expected<bool> Shrinker::start(llvm::StringRef Path) {
     if (!V)
       return V.takeError(); // The replay took it.
     const llvm::json::Object *O = V->getAsObject();
-    if (O && O->get("recording"))
-      continue; // The header: the shrunk log has none (render).
+    if (O && O->get("recording")) {
+      Header = std::move(*V);
+      continue;
+    }
     if (O && O->get("robot")) {
-      C.Diags.report(llvm::SMLoc(), diag::err_shrink_team) << Path;
+      C.Diags.report(llvm::SMLoc(), diag::err_shrink_team) << Name;
       return false;
     }
     Cycles.push_back(std::move(*V));
@@ -118,10 +128,12 @@ llvm::Expected<bool> Shrinker::start(llvm::StringRef Path) {
 }
 
 std::string Shrinker::render(size_t From, const std::vector<bool> &Keep) const {
-  // No header and no calls: cut and edited, the log is no longer a run of
-  // any behavior, so it replays in regression mode (an exact replay would
-  // part from calls made in cycles that are gone).
+  // Replayed exactly, the log's header and calls stay: the candidate
+  // replays exactly too, and parts from its calls where the tasks started
+  // afresh call otherwise. Else neither: it replays in regression mode.
   std::string Text;
+  if (Exact && Header)
+    Text += debug::toJSONString(*Header) + "\n";
   // Each cycle's input: its own if its change stays, else the one before's.
   const llvm::json::Value *Input = nullptr;
   for (size_t I = From; I < End; ++I) {
@@ -132,7 +144,8 @@ std::string Shrinker::render(size_t From, const std::vector<bool> &Keep) const {
     if (Input)
       Line["input"] = *Input;
     Line["cycle"] = int64_t(I - From + 1);
-    Line.erase("calls");
+    if (!Exact)
+      Line.erase("calls");
     Text += debug::toJSONString(llvm::json::Value(std::move(Line))) + "\n";
   }
   return Text;
@@ -240,15 +253,34 @@ llvm::Expected<int> bsc::shrinkLog(Compilation &C, LoadedBehavior &L,
       return 1;
     }
   }
-  Shrinker S(C, L, Opts, Temp.str().str());
-  llvm::Expected<bool> Started = S.start(Log);
-  if (!Started || !*Started)
+  // A binary log is read as the recording it converts to, beside the
+  // candidates.
+  std::string Source = Log.str();
+  if (isBinaryLogPath(Log)) {
+    Source = (Temp + ".source.jsonl").str();
+    auto Session = startSession(C, L);
+    if (!Session)
+      return Session.takeError();
+    if (!*Session || !convertRecording(C, L, **Session, Log, Source)) {
+      llvm::sys::fs::remove(Temp);
+      llvm::sys::fs::remove(Source);
+      return 1;
+    }
+  }
+  auto RemoveTemporaries = [&] {
     llvm::sys::fs::remove(Temp);
+    if (Source != Log)
+      llvm::sys::fs::remove(Source);
+  };
+  Shrinker S(C, L, Opts, Temp.str().str());
+  llvm::Expected<bool> Started = S.start(Source, Log);
+  if (!Started || !*Started)
+    RemoveTemporaries();
   if (!Started || !*Started)
     return Started ? llvm::Expected<int>(1) : Started.takeError();
   size_t Before = S.End;
   llvm::Expected<bool> Shrunk = S.shrink();
-  llvm::sys::fs::remove(Temp);
+  RemoveTemporaries();
   if (!Shrunk)
     return Shrunk.takeError();
   if (!S.write(Out))

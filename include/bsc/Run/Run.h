@@ -271,9 +271,9 @@ llvm::Expected<int> replayLogs(Compilation &C, LoadedBehavior &L,
                                llvm::raw_ostream &OS);
 
 /// `bsc replay --shrink LOG -o OUT`: the shortest recording that fails as
-/// the JSON recording `Log` does (lib/Run/Shrink.cpp), written to `Out`,
-/// with the sizes before and after printed to `OS`. Returns the exit
-/// status; an llvm::Error is an internal error.
+/// the recording or binary log `Log` does (lib/Run/Shrink.cpp), written as
+/// JSON lines to `Out`, with the sizes before and after printed to `OS`.
+/// Returns the exit status; an llvm::Error is an internal error.
 llvm::Expected<int> shrinkLog(Compilation &C, LoadedBehavior &L,
                               const ReplayLogsOptions &Opts,
                               llvm::StringRef Log, llvm::StringRef Out,
