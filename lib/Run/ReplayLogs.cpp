@@ -133,6 +133,7 @@ explainFailedLog(Compilation &C, LoadedBehavior &Explaining,
     if (D.Kind == diag::note_replay_first_task ||
         D.Kind == diag::note_replay_why ||
         D.Kind == diag::note_replay_tasks_as_recorded ||
+        D.Kind == diag::note_replay_no_tasks ||
         D.Kind == diag::note_replay_not_explained ||
         (D.Kind == diag::note_team_robot && !Notes.empty()))
       Notes.push_back(D);

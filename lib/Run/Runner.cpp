@@ -608,10 +608,17 @@ bool CycleRunner::explainFailure(unsigned K, BehaviorSession &S,
     return false;
   }
   if (!First.Cycle) {
-    // Without the recording's tasks there is nothing to say of them.
+    // Without the recording's tasks there is nothing to compare them with:
+    // the replay's are what can be said.
     if (Recorded)
       C.Diags.report(Line.Loc, diag::note_replay_tasks_as_recorded)
           << Cycle << NoSourceLine();
+    else
+      C.Diags.report(Line.Loc, diag::note_replay_no_tasks)
+          << Cycle
+          << debug::formatTraceLine(
+                 L.Tables, debug::takeSnapshot(S.getState(), &S.getInfo()))
+          << NoSourceLine();
     return false;
   }
   C.Diags.report(Line.Loc, diag::note_replay_first_task)
