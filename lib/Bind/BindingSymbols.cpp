@@ -8,6 +8,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "ELFChecks.h"
+#include "ObjectReader.h"
 #include "bsc/AST/Native.h"
 #include "bsc/Bind/Bind.h"
 #include "llvm/ADT/StringSet.h"
@@ -110,4 +111,26 @@ bind::findUndefinedSymbols(ArrayRef<std::string> Paths,
     if (!Defined.count(S))
       Missing.push_back(S);
   return Missing;
+}
+
+std::vector<std::string>
+bind::getBindingImports(ArrayRef<const NativeModule *> Modules,
+                        ArrayRef<std::string> Undefined) {
+  StringSet<> BindingSymbols;
+  for (const std::string &S : getBindingSymbols(Modules))
+    BindingSymbols.insert(S);
+  std::vector<std::string> Imports;
+  for (const std::string &S : Undefined)
+    if (BindingSymbols.contains(S))
+      Imports.push_back(S);
+  return Imports;
+}
+
+bool bind::checkBindingImports(DiagnosticEngine &Diags,
+                               ArrayRef<std::string> Imports,
+                               ArrayRef<std::string> Paths) {
+  std::vector<std::string> Missing = findUndefinedSymbols(Paths, Imports);
+  for (const std::string &S : Missing)
+    Diags.report(SMLoc(), diag::err_stale_binding_symbol) << demangled(S);
+  return Missing.empty();
 }

@@ -317,3 +317,11 @@ std::unique_ptr<llvm::Module> bsc::emitLLVM(const Behavior &B,
   ModuleEmitter(B, *M, Named, Layout).run();
   return M;
 }
+
+std::vector<std::string> bsc::getUndefinedSymbols(const llvm::Module &M) {
+  std::vector<std::string> Names;
+  for (const llvm::GlobalValue &GV : M.global_values())
+    if (GV.isDeclaration())
+      Names.push_back(GV.getName().str());
+  return Names;
+}

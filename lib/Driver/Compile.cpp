@@ -13,7 +13,7 @@
 #include "bsc/CodeGen/EmitHeader.h"
 #include "bsc/Debug/Values.h"
 #include "bsc/Parse/Lexer.h"
-#include "bsc/Run/Run.h"
+#include "bsc/Bind/Bind.h"
 #include "bsc/Sema/CallGraph.h"
 #include "llvm/ADT/ScopeExit.h"
 #include "llvm/ADT/StringExtras.h"
@@ -293,7 +293,11 @@ bool CompileJob::writeProgram() {
                          C.Diags))
       return false;
   }
-  if (!checkBindingImports(C, *M, FOpts.BindObjects) ||
+  if (!bind::checkBindingImports(
+          C.Diags,
+          bind::getBindingImports(C.Checked.BindingModules,
+                                  getUndefinedSymbols(*M)),
+          FOpts.BindObjects) ||
       !linkProgram(C.Diags, TC, ObjPath, Path, FOpts.BindObjects)) {
     llvm::sys::fs::remove(Path);
     return false;

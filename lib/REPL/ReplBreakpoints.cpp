@@ -7,8 +7,8 @@
 // `LOC if EXPR` also needs EXPR true after that cycle. `:until EXPR` stops
 // the first cycle after which EXPR is true.
 //
-// Expressions here are probes: REPL lines compiled once, run under the
-// session's guard after each cycle.
+// Expressions here are probes (ReplProbes.cpp): REPL lines compiled once,
+// run under the session's guard after each cycle.
 //
 //===----------------------------------------------------------------------===//
 #include "ReplImpl.h"
@@ -16,41 +16,6 @@
 
 using namespace bsc;
 using namespace bsc::repl;
-
-//===----------------------------------------------------------------------===//
-// Probes
-//===----------------------------------------------------------------------===//
-
-std::optional<Probe> Repl::compileProbe(llvm::StringRef Text,
-                                        llvm::StringRef Cmd, bool Bool,
-                                        llvm::SMLoc Loc) {
-  std::optional<CompiledLine> R = compileLine(Text);
-  if (!R)
-    return std::nullopt;
-  if (!R->Result.Ptr || (Bool && !R->Result.Ty->isBool())) {
-    if (Bool)
-      C->Diags.report(Loc, diag::err_repl_not_a_condition)
-          << Cmd << Text
-          << (R->Result.Ptr ? R->Result.Ty->getName() : "void");
-    else
-      C->Diags.report(Loc, diag::err_repl_watch_void) << Cmd;
-    destroySlot(R->Result);
-    return std::nullopt;
-  }
-  return Probe{Text.str(), R->Fn, R->Result};
-}
-
-std::optional<llvm::json::Value> Repl::evalProbe(Probe &P) {
-  BehaviorSession::Outcome O = S->runGuarded(P.Eval, Opts.CycleLimitMs);
-  if (!reportOutcome(*C, *L, O, S->getCycle(), Opts.CycleLimitMs))
-    return std::nullopt;
-  return Values->read(P.Result.Ty, P.Result.Ptr);
-}
-
-bool Repl::isTrue(Probe &P) {
-  std::optional<llvm::json::Value> V = evalProbe(P);
-  return V && V->getAsBoolean().value_or(false);
-}
 
 //===----------------------------------------------------------------------===//
 // Checking
@@ -255,16 +220,6 @@ void Repl::cmdDelete(llvm::StringRef Args, llvm::SMLoc Loc) {
   destroyProbe(It->If);
   Breakpoints.erase(It);
   OS << "deleted " << Args << "\n";
-}
-
-std::pair<llvm::StringRef, llvm::StringRef>
-bsc::repl::splitCount(llvm::StringRef Args) {
-  auto [Head, Last] = Args.rsplit(' ');
-  Head = Head.rtrim();
-  if (Last.empty() || Head.empty() || !llvm::all_of(Last, llvm::isDigit) ||
-      llvm::StringRef("=<>!+-*/%&|(,").contains(Head.back()))
-    return {Args, ""};
-  return {Head, Last};
 }
 
 void Repl::cmdUntil(llvm::StringRef Args, llvm::SMLoc Loc) {

@@ -3,8 +3,9 @@
 // The REPL (Repl.h, docs/repl.md) as one class whose jobs live in their own
 // files: Repl.cpp loads the behavior and runs lines of b-script,
 // ReplCommands.cpp dispatches the `:` commands and steps cycles,
-// ReplBreakpoints.cpp decides when a run stops (breakpoints, probes,
-// `:until`), ReplTime.cpp goes back in time (`:goto`, `:back`, `:history`
+// ReplBreakpoints.cpp decides when a run stops (breakpoints, watches,
+// `:until`), ReplProbes.cpp evaluates their expressions between cycles,
+// ReplTime.cpp goes back in time (`:goto`, `:back`, `:history`
 // over a CycleHistory), ReplWhy.cpp explains a cycle's conditions.
 //
 //===----------------------------------------------------------------------===//

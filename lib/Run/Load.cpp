@@ -17,29 +17,6 @@
 
 using namespace bsc;
 
-/// The thunks and descriptors `M` imports from the binding modules.
-static std::vector<std::string> getBindingImports(Compilation &C,
-                                                  const llvm::Module &M) {
-  llvm::StringSet<> BindingSymbols;
-  for (const std::string &S : bind::getBindingSymbols(C.Checked.BindingModules))
-    BindingSymbols.insert(S);
-  std::vector<std::string> Imports;
-  for (const llvm::GlobalValue &GV : M.global_values())
-    if (GV.isDeclaration() && BindingSymbols.contains(GV.getName()))
-      Imports.push_back(GV.getName().str());
-  return Imports;
-}
-
-bool bsc::checkBindingImports(Compilation &C, const llvm::Module &M,
-                                llvm::ArrayRef<std::string> BindObjects) {
-  std::vector<std::string> Missing =
-      bind::findUndefinedSymbols(BindObjects, getBindingImports(C, M));
-  for (const std::string &S : Missing)
-    C.Diags.report(llvm::SMLoc(), diag::err_stale_binding_symbol)
-        << llvm::demangle(S);
-  return Missing.empty();
-}
-
 /// Reports the link errors that are the user's to fix (a library the loader
 /// refuses, a function no --bind file defines) and returns the rest.
 static llvm::Error reportBindingLinkErrors(Compilation &C, llvm::Error E) {
@@ -90,7 +67,9 @@ bsc::loadBehavior(Compilation &C, const CallableDecl &Entry,
   L->Entry = &Entry;
   L->EntrySymbol = getEntrySymbol(CGOpts.BehaviorName, Entry);
   L->Tables = debug::buildDebugTables(C.Checked, L->Layout, C.SM);
-  if (!checkBindingImports(C, *M, Opts.BindObjects))
+  std::vector<std::string> Imports = bind::getBindingImports(
+      C.Checked.BindingModules, getUndefinedSymbols(*M));
+  if (!bind::checkBindingImports(C.Diags, Imports, Opts.BindObjects))
     return nullptr;
   // The standard modules' thunks from the host runtime archive, then the
   // --bind objects, as a program links them.
@@ -107,7 +86,7 @@ bsc::loadBehavior(Compilation &C, const CallableDecl &Entry,
   // that a binding object calls and no --bind file defines (it is in
   // another object of the robot build) is the user's to fix, and the
   // behavior must never run with it unresolved.
-  if (llvm::Error E = JIT.link(getBindingImports(C, *M))) {
+  if (llvm::Error E = JIT.link(Imports)) {
     if (llvm::Error Internal = reportBindingLinkErrors(C, std::move(E)))
       return Internal;
     return nullptr;
@@ -128,79 +107,6 @@ bsc::loadBehavior(Compilation &C, const CallableDecl &Entry,
                 Class->TriviallyDestructible ? "" : Class->Destroy};
   }
   return L;
-}
-
-/// A registered type as the behavior sees it.
-static void describeType(const NativeType &T, std::string &Text) {
-  Text += std::to_string(T.TheCode) + T.Name + (T.MutableRef ? "&" : "") +
-          (T.Unsigned ? "u" : "");
-  for (uint32_t E : T.Extents)
-    Text += "[" + std::to_string(E) + "]";
-}
-
-/// A registered function or member as the behavior sees it: its name,
-/// kind, types and flags, not its thunk or where its bytes lie.
-static void describeFunction(const NativeFunction &F, std::string &Text) {
-  Text += std::to_string(F.Kind) + " " + F.Name + "(";
-  for (const NativeType &P : F.Params) {
-    describeType(P, Text);
-    Text += ",";
-  }
-  Text += ")";
-  describeType(F.Result, Text);
-  for (const NativeDefault &D : F.Defaults)
-    Text += D.IsFloat ? " =" + std::to_string(D.Float)
-                      : " =" + std::to_string(D.Int);
-  Text += std::string(" ") + char('0' + F.ConstSelf) + char('0' + F.ReadOnly) +
-          char('0' + F.ResultViaOut) + char('0' + F.TakesContext) +
-          char('0' + F.Pure) + "\n";
-}
-
-/// What a binding module registers, the same on every target (a
-/// descriptor's own hash sees its sizes and offsets, which differ between
-/// the robot's i586 object and the workstation's): the robot's log and the
-/// workstation's build of the same bindings name one behavior.
-static void describeModule(const NativeModule &M, std::string &Text) {
-  Text += "module " + M.Name + "\n";
-  for (const NativeConstant &K : M.Constants) {
-    Text += "const " + K.Name + " ";
-    describeType(K.Type, Text);
-    Text += " " + std::to_string(K.Int) + " " + std::to_string(K.Float) + "\n";
-  }
-  for (const NativeEnum &E : M.Enums) {
-    Text += "enum " + E.Name;
-    for (const NativeEnum::Value &V : E.Values)
-      Text += " " + V.Name + "=" + std::to_string(V.Number);
-    Text += "\n";
-  }
-  for (const NativeFunction &F : M.Functions)
-    describeFunction(F, Text);
-  for (const NativeClass &K : M.Classes) {
-    Text += "class " + K.Name + " " + char('0' + K.DefaultConstructible) +
-            char('0' + K.TriviallyDestructible) + char('0' + K.CopiesAsBytes) +
-            "\n";
-    for (const NativeFunction &F : K.Members)
-      describeFunction(F, Text);
-    for (const NativeFunction &F : K.Constructors)
-      describeFunction(F, Text);
-  }
-  Text += std::string("world ") + (M.Input ? M.Input->Name : "") + " " +
-          (M.Output ? M.Output->Name : "") + "\n";
-}
-
-std::string bsc::computeBehaviorHash(const Compilation &C,
-                                    const CallableDecl &Entry) {
-  // The sources as read, what the binding modules register and the entry:
-  // what decides the calls a cycle makes, on any target.
-  std::string Text = "bsc-behavior-2\n" + Entry.getQualifiedName() + "\n";
-  for (const ModuleAST *M : C.Modules) {
-    Text += M->Name + "\n";
-    Text += C.SM.getMemoryBuffer(M->BufferID)->getBuffer().str();
-    Text += "\n";
-  }
-  for (const NativeModule *NM : C.Checked.NativeModules)
-    describeModule(*NM, Text);
-  return llvm::utohexstr(llvm::xxh3_64bits(Text), /*LowerCase=*/true, 16);
 }
 
 llvm::Expected<std::unique_ptr<BehaviorSession>>

@@ -14,6 +14,9 @@
 //   bsc timeline REC [REC2] -o P.html a run drawn (lib/Timeline)
 //   bsc format [-i|--check] FILE.bs... the canonical layout (lib/Format)
 //   bsc lsp                           the language server (lib/LSP)
+//   bsc convert FROM -o TO            a recording in the other format
+//
+// Every subcommand is a row of one table (Subcommands below).
 //
 // Everything the user can get wrong on the command line (a bad option value,
 // a missing entry, an unknown target, an unwritable output, a missing
@@ -42,13 +45,60 @@ void printBscVersion(llvm::raw_ostream &OS) {
                     Argv0ForVersion});
 }
 
+/// A subcommand: its options' subcommand, whether it runs on the host
+/// whatever -target says (the JIT's commands), and what it runs.
+struct Subcommand {
+  cl::SubCommand *Cmd;
+  bool OnHost;
+  int (*Run)(Compilation &C, CommandLine &CL, const char *Argv0);
+};
+
+/// Every subcommand: dispatch, the check of their options and the hiding of
+/// the others' in `--help` go through this table. Without one, bsc
+/// compiles (Driver.h's compile).
+const Subcommand Subcommands[] = {
+    {&RunCmd, true,
+     [](Compilation &C, CommandLine &CL, const char *) {
+       return runCommand(C, CL.Frontend, CL.Run);
+     }},
+    {&ReplCmd, true,
+     [](Compilation &C, CommandLine &CL, const char *) {
+       return replCommand(C, CL.Frontend, CL.Repl);
+     }},
+    {&ReplayCmd, true,
+     [](Compilation &C, CommandLine &CL, const char *) {
+       return replayCommand(C, CL.Frontend, CL.Replay);
+     }},
+    {&TimelineCmd, true,
+     [](Compilation &C, CommandLine &CL, const char *) {
+       return timelineCommand(C, CL.Frontend, CL.Timeline);
+     }},
+    {&ConvertCmd, true,
+     [](Compilation &C, CommandLine &CL, const char *) {
+       return convertCommand(C, CL.Frontend, CL.Convert);
+     }},
+    {&TraceDecodeCmd, false,
+     [](Compilation &C, CommandLine &CL, const char *) {
+       debug::decodeTraceLog(CL.TraceDecode, C.Diags, llvm::outs());
+       return finish(C);
+     }},
+    {&FormatCmd, false,
+     [](Compilation &C, CommandLine &CL, const char *) {
+       return formatCommand(C, CL.Format, llvm::outs());
+     }},
+    {&LspCmd, false,
+     [](Compilation &, CommandLine &CL, const char *Argv0) {
+       return lspCommand(CL.RuntimeDir, Argv0);
+     }},
+};
+
 /// The command after the command line is parsed and -W applied.
 int dispatch(Compilation &C, CommandLine &CL, const char *Argv0) {
-  // `run` and `repl` are for the host's JIT, whatever -target says.
-  ToolChain TC = getToolChain(RunCmd || ReplCmd || ReplayCmd || TimelineCmd ||
-                                      ConvertCmd
-                                  ? ""
-                                  : CL.TargetName,
+  const Subcommand *Sub = nullptr;
+  for (const Subcommand &S : Subcommands)
+    if (*S.Cmd)
+      Sub = &S;
+  ToolChain TC = getToolChain(Sub && Sub->OnHost ? "" : CL.TargetName,
                               CL.RuntimeDir, Argv0);
   FrontendOptions &Opts = CL.Frontend;
   Opts.Target = TC.getTriple();
@@ -59,48 +109,19 @@ int dispatch(Compilation &C, CommandLine &CL, const char *Argv0) {
       bind::dumpBindings(C.Bindings, llvm::outs());
     return finish(C);
   }
-  if (RunCmd)
-    return checkSubcommandOptions(C.Diags, RunCmd)
-               ? runCommand(C, Opts, CL.Run)
-               : finish(C);
-  if (ReplCmd)
-    return checkSubcommandOptions(C.Diags, ReplCmd)
-               ? replCommand(C, Opts, CL.Repl)
-               : finish(C);
-  if (TimelineCmd)
-    return checkSubcommandOptions(C.Diags, TimelineCmd)
-               ? timelineCommand(C, Opts, CL.Timeline)
-               : finish(C);
-  if (ReplayCmd)
-    return checkSubcommandOptions(C.Diags, ReplayCmd)
-               ? replayCommand(C, Opts, CL.Replay)
-               : finish(C);
-  if (ConvertCmd)
-    return checkSubcommandOptions(C.Diags, ConvertCmd)
-               ? convertCommand(C, Opts, CL.Convert)
-               : finish(C);
-  if (LspCmd)
-    return checkSubcommandOptions(C.Diags, LspCmd)
-               ? lspCommand(CL.RuntimeDir, Argv0)
-               : finish(C);
-  if (FormatCmd)
-    return checkSubcommandOptions(C.Diags, FormatCmd)
-               ? formatCommand(C, CL.Format, llvm::outs())
-               : finish(C);
-  if (TraceDecodeCmd) {
-    debug::decodeTraceLog(CL.TraceDecode, C.Diags, llvm::outs());
+  if (!Sub)
+    return compile(C, Opts, CL.Compile, TC);
+  if (!checkSubcommandOptions(C.Diags, *Sub->Cmd))
     return finish(C);
-  }
-  return compile(C, Opts, CL.Compile, TC);
+  return Sub->Run(C, CL, Argv0);
 }
 } // namespace
 
 int main(int argc, char **argv) {
   llvm::InitLLVM X(argc, argv);
-  for (cl::SubCommand *Sub :
-       {&cl::SubCommand::getTopLevel(), &RunCmd, &TraceDecodeCmd, &ReplCmd,
-        &TimelineCmd, &FormatCmd, &LspCmd, &ReplayCmd, &ConvertCmd})
-    cl::HideUnrelatedOptions(BscCategory, *Sub);
+  cl::HideUnrelatedOptions(BscCategory, cl::SubCommand::getTopLevel());
+  for (const Subcommand &Sub : Subcommands)
+    cl::HideUnrelatedOptions(BscCategory, *Sub.Cmd);
   Argv0ForVersion = argv[0];
   cl::SetVersionPrinter(printBscVersion);
   Compilation C;

@@ -6,13 +6,13 @@
 // test/Bindings and for debugging a binding build without a b-script
 // program at hand. The target is bsc's: `-target` as bsc takes it, the
 // host by default, the process's own triple as for bsc, --version and the
-// JIT (resolveTargetTriple: ToolChain.h, the one target policy).
+// JIT (resolveTargetTriple: Basic/TargetName.h, the one spelling of targets).
 //
 //   bsread [-target i586|x86_64|TRIPLE] OBJ...
 //
 //===----------------------------------------------------------------------===//
 #include "bsc/Bind/Bind.h"
-#include "bsc/Driver/ToolChain.h"
+#include "bsc/Basic/TargetName.h"
 #include "llvm/Support/CommandLine.h"
 #include "llvm/Support/InitLLVM.h"
 #include "llvm/Support/WithColor.h"

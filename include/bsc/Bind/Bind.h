@@ -303,6 +303,21 @@ std::vector<std::string>
 findUndefinedSymbols(llvm::ArrayRef<std::string> Paths,
                      llvm::ArrayRef<std::string> Wanted);
 
+/// Those of `Undefined` (the symbols a compiled behavior leaves undefined)
+/// that are thunks or descriptors of `Modules`: what the behavior imports
+/// from the binding objects.
+std::vector<std::string>
+getBindingImports(llvm::ArrayRef<const NativeModule *> Modules,
+                  llvm::ArrayRef<std::string> Undefined);
+
+/// Reports each of `Imports` (getBindingImports) that no file of `Paths`
+/// defines: the behavior was compiled against a binding header newer than
+/// its objects, and a linker or the JIT would fail on it with a bare
+/// "undefined symbol". False if there is one.
+bool checkBindingImports(DiagnosticEngine &Diags,
+                         llvm::ArrayRef<std::string> Imports,
+                         llvm::ArrayRef<std::string> Paths);
+
 } // namespace bind
 } // namespace bsc
 

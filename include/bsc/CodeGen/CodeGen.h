@@ -193,6 +193,10 @@ std::unique_ptr<llvm::Module> emitLLVM(const Behavior &B, llvm::LLVMContext &Ctx
 /// robot's log").
 std::string getIOLayoutHash(const Behavior &B);
 
+/// The symbols `M` declares but does not define: what its object imports
+/// (the binding objects' thunks and descriptors among them).
+std::vector<std::string> getUndefinedSymbols(const llvm::Module &M);
+
 /// `bs_<Behavior>__<Module>__<name>`.
 std::string getEntrySymbol(llvm::StringRef BehaviorName, const CallableDecl &D);
 

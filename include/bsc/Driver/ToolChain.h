@@ -1,7 +1,8 @@
 //===- ToolChain.h - what bsc needs to know about a target -----*- C++ -*-===//
 //
 // The one place of target policy outside the code generator (as clang's
-// ToolChain): how a `-target` spelling becomes a triple, which runtime
+// ToolChain): how a `-target` spelling becomes a triple (its function,
+// resolveTargetTriple, sits in Basic/TargetName.h for bsread), which runtime
 // shim a target has (and with it the standard module `io` and standalone
 // programs), where an installed or built bsc finds that runtime, and how a
 // program is linked. The code generator's own target facts (the default
@@ -24,6 +25,7 @@
 #ifndef BSC_DRIVER_TOOLCHAIN_H
 #define BSC_DRIVER_TOOLCHAIN_H
 
+#include "bsc/Basic/TargetName.h"
 #include "llvm/ADT/ArrayRef.h"
 #include "llvm/ADT/StringRef.h"
 #include "llvm/TargetParser/Triple.h"
@@ -32,16 +34,6 @@
 #include <vector>
 
 namespace bsc {
-
-/// The host: the triple of the running process (sys::getProcessTriple), the
-/// one the host runtime is built for and the JIT runs.
-llvm::Triple getHostTriple();
-
-/// The triple `-target Name` stands for: "i586" is i586-unknown-linux-gnu,
-/// "x86_64" is x86_64-unknown-linux-gnu, the empty string is the host, and
-/// anything else is normalised as an LLVM triple. Does not check that LLVM
-/// supports it (createTargetMachine does).
-llvm::Triple resolveTargetTriple(llvm::StringRef Name);
 
 /// Where the runtime archives are looked for: the folder given with
 /// --runtime-dir or $BSCRIPT_RUNTIME_DIR if any, else beside bsc's own

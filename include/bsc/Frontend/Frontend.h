@@ -139,6 +139,14 @@ bool verifyDiagnostics(const llvm::SourceMgr &SM,
                        llvm::ArrayRef<Diagnostic> Diags,
                        llvm::raw_ostream &OS);
 
+/// 16 hex digits that change with the behavior's sources, what its binding
+/// modules register (the same on every target: a robot's log names the
+/// workstation's build of its behavior) and its entry: a recording whose
+/// hash is the loaded behavior's replays exactly (docs/repl.md
+/// "Recordings").
+std::string computeBehaviorHash(const Compilation &C,
+                                const CallableDecl &Entry);
+
 } // namespace bsc
 
 #endif

@@ -52,13 +52,6 @@ struct LoadOptions {
   bool Coverage = false;
 };
 
-/// Reports every thunk or descriptor that `M` imports from the binding
-/// modules but no object of `BindObjects` defines: a linker or the JIT
-/// would fail on it with a bare "undefined symbol". Returns false if there
-/// was one.
-bool checkBindingImports(Compilation &C, const llvm::Module &M,
-                         llvm::ArrayRef<std::string> BindObjects);
-
 /// A behavior compiled into its own JIT, ready for a session.
 struct LoadedBehavior {
   std::unique_ptr<BehaviorJIT> JIT;
@@ -74,14 +67,6 @@ struct LoadedBehavior {
   /// The JIT's log of `:why` (LoadOptions::Explain); null without it.
   ExplainLogHeader *ExplainLog = nullptr;
 };
-
-/// 16 hex digits that change with the behavior's sources, what its binding
-/// modules register (the same on every target: a robot's log names the
-/// workstation's build of its behavior) and its entry: a recording whose
-/// hash is the loaded behavior's replays exactly (docs/repl.md
-/// "Recordings").
-std::string computeBehaviorHash(const Compilation &C,
-                                const CallableDecl &Entry);
 
 /// Compiles `C.Checked` for the host with debugging probes into a new JIT
 /// and links the standard modules and bindings. Returns null after
