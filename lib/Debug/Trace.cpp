@@ -6,8 +6,8 @@
 //===----------------------------------------------------------------------===//
 #include "bsc/Debug/Trace.h"
 #include "bsc/Basic/JSON.h"
-#include "bsc/CodeGen/Layout.h"
-#include "bsc/Sema/Sema.h"
+#include "bsc/AST/Layout.h"
+#include "bsc/AST/Behavior.h"
 #include "llvm/ADT/DenseMap.h"
 #include "llvm/ADT/Sequence.h"
 #include "llvm/ADT/SetVector.h"

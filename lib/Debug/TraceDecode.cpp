@@ -1,6 +1,6 @@
 //===- TraceDecode.cpp - a robot's trace log as trace lines ---------------===//
 #include "bsc/Debug/TraceDecode.h"
-#include "bsc/CodeGen/Layout.h"
+#include "bsc/AST/Layout.h"
 #include "bsc/Debug/Trace.h"
 #include "llvm/Object/ObjectFile.h"
 #include "llvm/Support/MemoryBuffer.h"

@@ -16,7 +16,7 @@
 #ifndef BSC_CODEGEN_CODEGEN_H
 #define BSC_CODEGEN_CODEGEN_H
 
-#include "bsc/CodeGen/Layout.h"
+#include "bsc/AST/Layout.h"
 #include "bsc/Sema/Sema.h"
 #include "llvm/ADT/DenseMap.h"
 #include "llvm/IR/DataLayout.h"

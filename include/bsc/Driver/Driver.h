@@ -26,7 +26,7 @@
 #define BSC_DRIVER_DRIVER_H
 
 #include "bsc/Basic/Output.h"
-#include "bsc/CodeGen/Layout.h"
+#include "bsc/AST/Layout.h"
 #include "bsc/CodeGen/Target.h"
 #include "bsc/Debug/Trace.h"
 #include "bsc/Driver/ToolChain.h"

@@ -15,6 +15,7 @@
 #define BSC_SEMA_SEMA_H
 
 #include "bsc/AST/AST.h"
+#include "bsc/AST/Behavior.h"
 #include "bsc/Basic/Diagnostic.h"
 #include "llvm/ADT/DenseSet.h"
 #include "llvm/ADT/STLFunctionalExtras.h"
@@ -22,51 +23,6 @@
 #include <optional>
 
 namespace bsc {
-
-/// One call of a func or task in the body of another func or task: an edge
-/// of the static call graph (`bsc --emit=graph`, the cycle check). Calls of
-/// registered C++ functions and methods are not call sites here.
-struct CallSite {
-  /// The func or task whose body holds the call (a nested func, not its
-  /// task, for a call in a nested func's body).
-  const CallableDecl *Caller;
-  const CallableDecl *Callee;
-  /// The callee's name in the call, in the caller's file.
-  llvm::SMLoc Loc;
-};
-
-/// A checked behavior: every module compiled together (whole program) and
-/// what later phases need without walking the tree again.
-struct Behavior {
-  std::vector<ModuleAST *> Modules;
-  /// Every task of every module, in module then source order.
-  std::vector<TaskDecl *> Tasks;
-  /// Every func, nested ones included, in module then source order.
-  std::vector<FuncDecl *> Funcs;
-  /// Every call of a func or task, grouped by caller in module and source
-  /// order (a task, then its nested funcs), each caller's calls in source
-  /// order. A call whose callee did not resolve is left out.
-  std::vector<CallSite> Calls;
-  /// Every `assert`, with the func or task whose body holds it, in module
-  /// and source order: assertion k's counter with --assertions=count.
-  struct Assertion {
-    const AssertStmt *S;
-    const CallableDecl *Owner;
-  };
-  std::vector<Assertion> Assertions;
-  /// The native modules some module requires.
-  std::vector<const NativeModule *> NativeModules;
-  /// The module declaring `input`/`output`, if the registry has one.
-  const NativeModule *World = nullptr;
-  /// Every module read from a binding object (NativeModule::File is set)
-  /// that the behavior was checked against, required or not: the object
-  /// records their descriptor hashes for the load-time staleness check.
-  std::vector<const NativeModule *> BindingModules;
-  /// Whether some local, parameter, result or expression has a registered
-  /// class type (`input` and `output` included): the back end must then
-  /// lay out and call class values.
-  bool UsesClasses = false;
-};
 
 /// A name that only a binding object can define (`input`, `output`, a
 /// required module or a qualifier no script declares), used in a behavior

@@ -3,12 +3,13 @@
 // What code generation decides and the tools around it read: the state's
 // and frames' layout (BehaviorLayout), the probes' sites, the conditions
 // `:why` logs and the log's format, the section of the debug tables. Only
-// data, no code: lib/Debug, lib/Timeline and the REPL read it without
+// data, no code, beside the AST it points into (and the checked Behavior,
+// AST/Behavior.h): lib/Debug, lib/Timeline and the REPL read it without
 // linking the code generator and its LLVM back ends.
 //
 //===----------------------------------------------------------------------===//
-#ifndef BSC_CODEGEN_LAYOUT_H
-#define BSC_CODEGEN_LAYOUT_H
+#ifndef BSC_AST_LAYOUT_H
+#define BSC_AST_LAYOUT_H
 
 #include "bsc/AST/AST.h"
 #include "llvm/Support/SMLoc.h"
