@@ -107,3 +107,91 @@ std::vector<ModuleAST *> ASTContext::getModules() const {
     Result.push_back(M.get());
   return Result;
 }
+
+//===----------------------------------------------------------------------===//
+// Children
+//===----------------------------------------------------------------------===//
+
+namespace {
+using ChildFn = llvm::function_ref<void(const Node &)>;
+
+/// Calls Fn on each of `Children` that is there.
+void visit(ChildFn Fn, std::initializer_list<const Node *> Children) {
+  for (const Node *C : Children)
+    if (C)
+      Fn(*C);
+}
+template <typename T> void visitAll(ChildFn Fn, const std::vector<T *> &Nodes) {
+  for (const T *C : Nodes)
+    if (C)
+      Fn(*C);
+}
+
+// One overload per node class: forEachChild's switch, generated from
+// ASTNodes.def, calls the one of each kind.
+void childrenOf(const CallableDecl &D, ChildFn Fn) {
+  visitAll(Fn, D.Params);
+  visit(Fn, {D.Body});
+}
+void childrenOf(const FuncDecl &D, ChildFn Fn) {
+  childrenOf(static_cast<const CallableDecl &>(D), Fn);
+}
+void childrenOf(const TaskDecl &D, ChildFn Fn) {
+  childrenOf(static_cast<const CallableDecl &>(D), Fn);
+}
+void childrenOf(const ParamDecl &D, ChildFn Fn) { visit(Fn, {D.Default}); }
+void childrenOf(const VarDecl &D, ChildFn Fn) { visit(Fn, {D.Init}); }
+void childrenOf(const ConstDecl &D, ChildFn Fn) { visit(Fn, {D.Init}); }
+void childrenOf(const EnumDecl &, ChildFn) {}
+void childrenOf(const BlockStmt &S, ChildFn Fn) { visitAll(Fn, S.Stmts); }
+void childrenOf(const DeclStmt &S, ChildFn Fn) { visit(Fn, {S.Var}); }
+void childrenOf(const FuncDeclStmt &S, ChildFn Fn) { visit(Fn, {S.Func}); }
+void childrenOf(const AssignStmt &S, ChildFn Fn) {
+  visit(Fn, {S.Target, S.Value});
+}
+void childrenOf(const ExprStmt &S, ChildFn Fn) { visit(Fn, {S.E}); }
+void childrenOf(const IfStmt &S, ChildFn Fn) {
+  visit(Fn, {S.Cond, S.Then, S.Else});
+}
+void childrenOf(const ForStmt &S, ChildFn Fn) {
+  visit(Fn, {S.Init, S.Cond, S.Step, S.Body});
+}
+void childrenOf(const BreakStmt &, ChildFn) {}
+void childrenOf(const ContinueStmt &, ChildFn) {}
+void childrenOf(const ReturnStmt &S, ChildFn Fn) { visit(Fn, {S.Value}); }
+void childrenOf(const YieldStmt &S, ChildFn Fn) { visit(Fn, {S.Value}); }
+void childrenOf(const AssertStmt &S, ChildFn Fn) {
+  visit(Fn, {S.Cond, S.Message});
+}
+void childrenOf(const ErrorStmt &, ChildFn) {}
+void childrenOf(const IntLiteralExpr &, ChildFn) {}
+void childrenOf(const FloatLiteralExpr &, ChildFn) {}
+void childrenOf(const BoolLiteralExpr &, ChildFn) {}
+void childrenOf(const StringLiteralExpr &, ChildFn) {}
+void childrenOf(const NameExpr &, ChildFn) {}
+void childrenOf(const MemberExpr &E, ChildFn Fn) { visit(Fn, {E.Base}); }
+void childrenOf(const IndexExpr &E, ChildFn Fn) {
+  visit(Fn, {E.Base, E.Index});
+}
+void childrenOf(const CallExpr &E, ChildFn Fn) {
+  visit(Fn, {E.Callee});
+  visitAll(Fn, E.Args);
+}
+void childrenOf(const UnaryExpr &E, ChildFn Fn) { visit(Fn, {E.Operand}); }
+void childrenOf(const BinaryExpr &E, ChildFn Fn) { visit(Fn, {E.LHS, E.RHS}); }
+void childrenOf(const TaskStateExpr &, ChildFn) {}
+void childrenOf(const ConversionExpr &E, ChildFn Fn) {
+  visit(Fn, {E.Operand});
+}
+void childrenOf(const ErrorExpr &, ChildFn) {}
+} // namespace
+
+void bsc::forEachChild(const Node &N, ChildFn Fn) {
+  switch (N.getKind()) {
+#define NODE(Class)                                                            \
+  case NodeKind::Class:                                                        \
+    return childrenOf(llvm::cast<Class>(N), Fn);
+#include "bsc/AST/ASTNodes.def"
+  }
+  llvm_unreachable("unknown node kind");
+}

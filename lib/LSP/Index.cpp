@@ -126,61 +126,24 @@ void IndexBuilder::param(const ParamDecl &P) {
 void IndexBuilder::stmt(const Stmt *S) {
   if (!S)
     return;
-  switch (S->getKind()) {
-  case NodeKind::BlockStmt:
-    for (const Stmt *C : llvm::cast<BlockStmt>(S)->Stmts)
-      stmt(C);
-    return;
-  case NodeKind::DeclStmt: {
-    const VarDecl *V = llvm::cast<DeclStmt>(S)->Var;
+  if (const auto *D = llvm::dyn_cast<DeclStmt>(S)) {
+    const VarDecl *V = D->Var;
     add(V->getName(), decl(V), true);
     qualified(V->TypeName, typeSymbol(V->Ty));
     expr(V->Init);
     return;
   }
-  case NodeKind::FuncDeclStmt:
-    callable(*llvm::cast<FuncDeclStmt>(S)->Func);
-    return;
-  case NodeKind::AssignStmt:
-    expr(llvm::cast<AssignStmt>(S)->Target);
-    expr(llvm::cast<AssignStmt>(S)->Value);
-    return;
-  case NodeKind::ExprStmt:
-    expr(llvm::cast<ExprStmt>(S)->E);
-    return;
-  case NodeKind::IfStmt: {
-    const auto *If = llvm::cast<IfStmt>(S);
-    expr(If->Cond);
-    stmt(If->Then);
-    stmt(If->Else);
+  if (const auto *F = llvm::dyn_cast<FuncDeclStmt>(S)) {
+    callable(*F->Func);
     return;
   }
-  case NodeKind::ForStmt: {
-    const auto *F = llvm::cast<ForStmt>(S);
-    stmt(F->Init);
-    expr(F->Cond);
-    stmt(F->Step);
-    stmt(F->Body);
-    return;
-  }
-  case NodeKind::ReturnStmt:
-    expr(llvm::cast<ReturnStmt>(S)->Value);
-    return;
-  case NodeKind::YieldStmt:
-    expr(llvm::cast<YieldStmt>(S)->Value);
-    return;
-  case NodeKind::AssertStmt:
-    expr(llvm::cast<AssertStmt>(S)->Cond);
-    return;
-  case NodeKind::BreakStmt:
-  case NodeKind::ContinueStmt:
-  case NodeKind::ErrorStmt:
-    return;
-#define STMT(Class)
-#define NODE(Class) case NodeKind::Class:
-#include "bsc/AST/ASTNodes.def"
-    llvm_unreachable("not a statement");
-  }
+  // Every other statement only holds statements and expressions.
+  forEachChild(*S, [&](const Node &C) {
+    if (const auto *E = llvm::dyn_cast<Expr>(&C))
+      expr(E);
+    else
+      stmt(llvm::cast<Stmt>(&C));
+  });
 }
 
 void IndexBuilder::name(const NameExpr &N) {

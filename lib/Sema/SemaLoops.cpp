@@ -133,40 +133,17 @@ std::optional<uint64_t> countPasses(Sema &S, const ForStmt *F);
 bool runsFirstPass(Sema &S, const ForStmt *F);
 bool assigns(const Stmt *S, const VarDecl *V);
 
-/// Whether any statement in S is a `yield` (of the task being checked;
-/// statements never hold another task's yields).
-bool containsYield(const Stmt *S) {
-  if (!S)
+/// Whether any statement in S is a `yield` of the task being checked:
+/// expressions hold none, and a nested func's body (under a declaration)
+/// is not the task's.
+bool containsYield(const Node *N) {
+  if (!N || llvm::isa<Expr>(N) || llvm::isa<Decl>(N))
     return false;
-  switch (S->getKind()) {
-  case NodeKind::YieldStmt:
+  if (llvm::isa<YieldStmt>(N))
     return true;
-  case NodeKind::BlockStmt:
-    return llvm::any_of(llvm::cast<BlockStmt>(S)->Stmts, containsYield);
-  case NodeKind::IfStmt: {
-    const auto *If = llvm::cast<IfStmt>(S);
-    return containsYield(If->Then) || containsYield(If->Else);
-  }
-  case NodeKind::ForStmt: {
-    const auto *F = llvm::cast<ForStmt>(S);
-    return containsYield(F->Step) || containsYield(F->Body);
-  }
-  case NodeKind::DeclStmt:
-  case NodeKind::FuncDeclStmt:
-  case NodeKind::AssignStmt:
-  case NodeKind::ExprStmt:
-  case NodeKind::AssertStmt:
-  case NodeKind::BreakStmt:
-  case NodeKind::ContinueStmt:
-  case NodeKind::ReturnStmt:
-  case NodeKind::ErrorStmt:
-    return false;
-#define STMT(Class)
-#define NODE(Class) case NodeKind::Class:
-#include "bsc/AST/ASTNodes.def"
-    llvm_unreachable("not a statement");
-  }
-  llvm_unreachable("unknown node kind");
+  bool Found = false;
+  forEachChild(*N, [&](const Node &C) { Found = Found || containsYield(&C); });
+  return Found;
 }
 
 /// The paths through S that pass no `yield`.
@@ -283,38 +260,17 @@ private:
 bool assigns(const Stmt *S, const VarDecl *V) {
   if (!S)
     return false;
-  switch (S->getKind()) {
-  case NodeKind::AssignStmt: {
-    const auto *N = llvm::dyn_cast<NameExpr>(llvm::cast<AssignStmt>(S)->Target);
+  if (const auto *A = llvm::dyn_cast<AssignStmt>(S)) {
+    const auto *N = llvm::dyn_cast<NameExpr>(A->Target);
     return N && N->Kind == NameKind::Local && N->Local == V;
   }
-  case NodeKind::BlockStmt:
-    return llvm::any_of(llvm::cast<BlockStmt>(S)->Stmts,
-                        [&](const Stmt *C) { return assigns(C, V); });
-  case NodeKind::IfStmt: {
-    const auto *If = llvm::cast<IfStmt>(S);
-    return assigns(If->Then, V) || assigns(If->Else, V);
-  }
-  case NodeKind::ForStmt: {
-    const auto *F = llvm::cast<ForStmt>(S);
-    return assigns(F->Init, V) || assigns(F->Step, V) || assigns(F->Body, V);
-  }
-  case NodeKind::DeclStmt:
-  case NodeKind::FuncDeclStmt:
-  case NodeKind::ExprStmt:
-  case NodeKind::AssertStmt:
-  case NodeKind::BreakStmt:
-  case NodeKind::ContinueStmt:
-  case NodeKind::ReturnStmt:
-  case NodeKind::YieldStmt:
-  case NodeKind::ErrorStmt:
-    return false;
-#define STMT(Class)
-#define NODE(Class) case NodeKind::Class:
-#include "bsc/AST/ASTNodes.def"
-    llvm_unreachable("not a statement");
-  }
-  llvm_unreachable("unknown node kind");
+  // Assignments are statements: only statements hold them.
+  bool Found = false;
+  forEachChild(*S, [&](const Node &C) {
+    if (const auto *Child = llvm::dyn_cast<Stmt>(&C))
+      Found = Found || assigns(Child, V);
+  });
+  return Found;
 }
 
 /// `for(int i = A; i OP B; ...)` with A and B constant (the counter on

@@ -3,6 +3,7 @@
 #include "llvm/Support/MemoryBuffer.h"
 #include "llvm/Support/raw_ostream.h"
 #include "gtest/gtest.h"
+#include <functional>
 
 using namespace bsc;
 using llvm::cast;
@@ -225,4 +226,32 @@ TEST(ParserTest, GarbageIsReportedInsideTheText) {
     }
     EXPECT_FALSE(P.dump().empty());
   }
+}
+
+// forEachChild (AST.h) visits every child in source order; a walk that only
+// recurses sees the whole tree.
+TEST(ParserTest, ForEachChildWalksTheTreeInSourceOrder) {
+  Parsed P("task t(int a = 2)\n"
+           "    int x = a + 1\n"
+           "    if(x > 0)\n"
+           "        x = -x\n"
+           "    else\n"
+           "        yield\n"
+           "    assert(x != 3, \"not three\")\n");
+  ASSERT_TRUE(P.diags().empty());
+  std::vector<std::string> Kinds;
+  std::function<void(const Node &)> Walk = [&](const Node &N) {
+    Kinds.push_back(getNodeKindName(N.getKind()).str());
+    forEachChild(N, Walk);
+  };
+  Walk(*P.M->Decls.at(0));
+  std::vector<std::string> Want = {
+      "TaskDecl",     "ParamDecl",     "IntLiteralExpr",   "BlockStmt",
+      "DeclStmt",     "VarDecl",       "BinaryExpr",       "NameExpr",
+      "IntLiteralExpr", "IfStmt",      "BinaryExpr",       "NameExpr",
+      "IntLiteralExpr", "BlockStmt",   "AssignStmt",       "NameExpr",
+      "UnaryExpr",    "NameExpr",      "BlockStmt",        "YieldStmt",
+      "AssertStmt",   "BinaryExpr",    "NameExpr",         "IntLiteralExpr",
+      "StringLiteralExpr"};
+  EXPECT_EQ(Kinds, Want);
 }

@@ -16,6 +16,7 @@
 #include "bsc/AST/Native.h"
 #include "bsc/AST/Type.h"
 #include "llvm/ADT/SmallVector.h"
+#include "llvm/ADT/STLFunctionalExtras.h"
 #include "llvm/ADT/StringRef.h"
 #include "llvm/Support/Casting.h"
 #include "llvm/Support/SMLoc.h"
@@ -756,6 +757,15 @@ private:
 /// Prints a module as an indented tree (`bsc --emit=ast`); types and
 /// resolutions are shown when Sema has run.
 void dumpAST(const ModuleAST &M, llvm::raw_ostream &OS);
+
+/// Calls `Fn` on each child of `N` that is there, in source order: a
+/// callable's parameters and body, a variable's initialiser, a
+/// statement's statements and expressions, an expression's operands (a
+/// call's arguments include those Sema appended from defaults, the
+/// parameter's own default expressions). For walks that only recurse; a
+/// walk that decides per node keeps an exhaustive switch. Generated from
+/// ASTNodes.def: a node kind without its children does not compile.
+void forEachChild(const Node &N, llvm::function_ref<void(const Node &)> Fn);
 
 } // namespace bsc
 
