@@ -3,18 +3,17 @@
 // Runs cycles of a session, or of each robot of a team in index order,
 // under its guard. Everything printed about the behavior (traces, outputs,
 // recordings) goes through bsc/Debug; a replay (ReplayReader.h) writes
-// each line's inputs before the cycle and compares its outputs after it.
+// each line's inputs before the cycle and compares its outputs after it
+// (RunnerCheck.cpp).
 // A team's lines carry `robot` (docs/repl.md "A team in one process"):
 // a recording has one line per robot and cycle, robots in index order.
 //
 //===----------------------------------------------------------------------===//
-#include "FailureCause.h"
-#include "ReplayReader.h"
+#include "RunnerImpl.h"
 #include "bsc/Basic/JSON.h"
 #include "bsc/Basic/Output.h"
 #include "llvm/Support/FileSystem.h"
 #include "llvm/Support/ToolOutputFile.h"
-#include <cmath>
 
 using namespace bsc;
 
@@ -33,167 +32,6 @@ static void reportBudgetRanOut(Compilation &C, const LoadedBehavior &L,
   if (RanOut > 1)
     C.Diags.report(Where.Loc, diag::note_budget_ran_out_count) << RanOut;
 }
-
-/// The differences of `Got` from `Recorded` that count (--ignore,
-/// --tolerance).
-static std::vector<debug::Difference>
-countedDifferences(const llvm::json::Value &Recorded,
-                   const llvm::json::Value &Got,
-                   const OutputComparison &Compare) {
-  std::vector<debug::Difference> Ds;
-  for (debug::Difference &D : debug::findDifferences(Recorded, Got, "output"))
-    if (Compare.counts(D))
-      Ds.push_back(std::move(D));
-  return Ds;
-}
-
-/// Each difference as a failure's note says it.
-static std::vector<std::string>
-describeDifferences(llvm::ArrayRef<debug::Difference> Ds) {
-  std::vector<std::string> Text;
-  for (const debug::Difference &D : Ds)
-    Text.push_back(D.Path + ": recorded " + D.Recorded + ", got " + D.Got);
-  return Text;
-}
-
-/// A replayed cycle whose output differs from the line's: one error, then
-/// a note per field that differs, at the line. Neither echoes it: a
-/// recording fills it with every output member. Returns whether it
-/// reported (and then sets `Failed`, if given).
-static bool reportMismatch(Compilation &C, const ReplayLine &Line,
-                           uint32_t Cycle, const llvm::json::Value &Recorded,
-                           const llvm::json::Value &Got,
-                           const OutputComparison &Compare,
-                           ReplayFailure *Failed) {
-  std::vector<debug::Difference> Ds =
-      countedDifferences(Recorded, Got, Compare);
-  if (Ds.empty())
-    return false;
-  C.Diags.report(Line.Loc, diag::err_replay_mismatch) << Cycle << NoSourceLine();
-  for (const debug::Difference &D : Ds)
-    C.Diags.report(Line.Loc, diag::note_replay_difference)
-        << D.Path << D.Recorded << D.Got << NoSourceLine();
-  if (Failed)
-    *Failed = {Cycle, describeDifferences(Ds)};
-  return true;
-}
-
-namespace {
-/// What a run follows of one robot.
-struct RobotRun {
-  explicit RobotRun(BehaviorSession *S, debug::TraceMode Mode)
-      : S(S), Traces(Mode) {}
-  BehaviorSession *S;
-  debug::TraceFilter Traces;
-  /// `--record` with `%r`: the robot's own file, and its binary log if
-  /// it is one.
-  std::unique_ptr<llvm::ToolOutputFile> Record;
-  std::unique_ptr<BinaryLogWriter> Log;
-  bool ReportedFailure = false;
-  /// `--cycle-budget`: the first cycle that ran out, and how many did.
-  std::optional<std::pair<uint32_t, const bs_loop_info *>> FirstRanOut;
-  unsigned RanOut = 0;
-};
-
-/// One `bsc run` of one robot or a team: its replay lines and recording
-/// files, and what it has seen of each robot so far (the first cycle a
-/// budget ran out in, the entry's failure).
-class CycleRunner {
-public:
-  /// `T`, if given, can grow to the size of a team recording.
-  CycleRunner(Compilation &C, LoadedBehavior &L, Team *T,
-              llvm::ArrayRef<BehaviorSession *> Sessions,
-              const RunOptions &Opts, llvm::raw_ostream &OS)
-      : C(C), L(L), T(T), Opts(Opts), OS(OS),
-        Values([&L](llvm::StringRef Sym) { return L.JIT->lookup(Sym); }) {
-    for (BehaviorSession *S : Sessions)
-      Robots.emplace_back(S, Opts.Trace);
-  }
-
-  /// Opens the replay file and the recordings. False after reporting.
-  bool open();
-  /// Runs the cycles the options ask for. False after reporting.
-  bool run();
-
-private:
-  bool openReplay();
-  bool openRecordings();
-  /// `--cycles N`: every robot N cycles.
-  bool runCycles();
-  /// Every line of the replay, each robot's in turn.
-  bool replay();
-  /// Runs one cycle of robot `K`, fed by `Line` if replaying. False after
-  /// reporting.
-  bool runCycle(unsigned K, const ReplayLine *Line);
-  /// The line's input into `S`'s input object. False after reporting.
-  bool writeInput(BehaviorSession &S, const ReplayLine &Line);
-  /// Whether `S`'s output object holds the line's output; if not, reports
-  /// the differences.
-  bool checkOutput(BehaviorSession &S, const ReplayLine &Line,
-                   uint32_t Cycle);
-  /// The same for a binary log's cycle: its bytes, and only where they
-  /// differ its members, read as the recording's JSON would be.
-  bool checkLoggedOutput(BehaviorSession &S, const BinaryLogCycle &Logged,
-                         uint32_t Cycle);
-  /// Whether the tasks `S` left active are those of the robot's trace
-  /// record in `Logged` (a log of an object built with --instrument); if
-  /// not, reports both.
-  bool checkLoggedTasks(BehaviorSession &S, const BinaryLogCycle &Logged,
-                        uint32_t Cycle);
-  /// How `S`'s output differs from the line's, as a failure's notes say
-  /// it (--ignore and --tolerance applied), reporting nothing.
-  std::vector<std::string> outputDifferences(BehaviorSession &S,
-                                             const ReplayLine &Line);
-  /// RunOptions::Explain's look at the cycle robot `K` just ran:
-  /// true to go on; false once it has noted what it found.
-  bool explainFailure(unsigned K, BehaviorSession &S, const ReplayLine &Line,
-                      uint32_t Cycle);
-  /// The trace line, the output line and the recording of the cycle robot
-  /// `K` just ran, each only if asked for.
-  void writeCycle(unsigned K, llvm::json::Value Rec,
-                  const llvm::json::Value &Out);
-  /// Warns once per robot, at the first cycle its entry task ends in
-  /// failure.
-  void checkEntryFailed(unsigned K, uint32_t Cycle);
-  /// `--record`: keeps the files (even after a mismatch, to compare).
-  void keepRecordings();
-  bool isTeam() const { return Robots.size() > 1; }
-  bool recording() const {
-    return Record || (!Robots.empty() && Robots[0].Record);
-  }
-
-  Compilation &C;
-  LoadedBehavior &L;
-  Team *T;
-  const RunOptions &Opts;
-  llvm::raw_ostream &OS;
-  debug::ValueIO Values;
-  std::vector<RobotRun> Robots;
-  std::optional<ReplayReader> Replay;
-  /// `--record` without `%r`: every robot's lines, or cycles of a binary
-  /// log.
-  std::unique_ptr<llvm::ToolOutputFile> Record;
-  std::unique_ptr<BinaryLogWriter> Log;
-  /// The entry task's place in the task table, whose state tells a failure.
-  std::optional<unsigned> EntryIndex;
-  /// `--trace=TASK`'s place in the debug tables.
-  std::optional<unsigned> TraceSubtree;
-  /// A cycle broke off (a crash, a hang, input it could not take): its
-  /// recording is not kept.
-  bool Broken = false;
-  /// The replay takes every call into C++ from the recording (its
-  /// behavior is this one), rather than calling the C++.
-  bool Exact = false;
-  /// RunOptions::Explain: the first cycle whose tasks differed from the
-  /// recording's, the difference, and `:why` of the task that explains it.
-  struct {
-    uint32_t Cycle = 0;
-    std::optional<unsigned> Robot;
-    TaskDifference Difference;
-    std::string Why;
-  } FirstTaskDifference;
-};
-} // namespace
 
 bool CycleRunner::openReplay() {
   if (Opts.CyclesGiven) {
@@ -399,71 +237,6 @@ bool CycleRunner::writeInput(BehaviorSession &S, const ReplayLine &Line) {
   return true;
 }
 
-bool CycleRunner::checkOutput(BehaviorSession &S, const ReplayLine &Line,
-                              uint32_t Cycle) {
-  if (Line.Logged)
-    return checkLoggedOutput(S, *Line.Logged, Cycle);
-  // Compared member by member along the text; only a difference (or text
-  // of another form) builds trees, which name the differences.
-  if (Values.matchesClassText(*L.OutputClass, S.getOutput(), Line.Output))
-    return true;
-  // (With --ignore or --tolerance a difference may not count.)
-  std::optional<llvm::json::Value> Recorded =
-      parseJSONLine(C.Diags, Line.Output);
-  if (Recorded && Opts.Changed) { // --update: counted, not reported.
-    for (const debug::Difference &D : countedDifferences(
-             *Recorded, Values.readClass(*L.OutputClass, S.getOutput()),
-             Opts.Compare))
-      ++(*Opts.Changed)[D.Path];
-    return true;
-  }
-  return Recorded &&
-         !reportMismatch(C, Line, Cycle, *Recorded,
-                         Values.readClass(*L.OutputClass, S.getOutput()),
-                         Opts.Compare, Opts.Failed);
-}
-
-bool CycleRunner::checkLoggedOutput(BehaviorSession &S,
-                                    const BinaryLogCycle &Logged,
-                                    uint32_t Cycle) {
-  llvm::ArrayRef<unsigned char> Out = Logged.Output;
-  if (Out.empty() ||
-      std::memcmp(S.getOutput(), Out.data(), Out.size()) == 0)
-    return true;
-  // Padding or a float's -0 may differ where the members do not: compare
-  // the members, as a JSON recording's are.
-  std::vector<unsigned char> Copy(Out.begin(), Out.end());
-  llvm::json::Value Recorded = Values.readClass(*L.OutputClass, Copy.data());
-  llvm::json::Value Got = Values.readClass(*L.OutputClass, S.getOutput());
-  if (Opts.Changed) { // --update: counted, not reported.
-    for (const debug::Difference &D :
-         countedDifferences(Recorded, Got, Opts.Compare))
-      ++(*Opts.Changed)[D.Path];
-    return true;
-  }
-  ReplayLine Line;
-  return !reportMismatch(C, Line, Cycle, Recorded, Got, Opts.Compare,
-                         Opts.Failed);
-}
-
-bool CycleRunner::checkLoggedTasks(BehaviorSession &S,
-                                   const BinaryLogCycle &Logged,
-                                   uint32_t Cycle) {
-  llvm::Expected<std::vector<debug::Activation>> Robot =
-      debug::decodeTraceRecord(L.Tables, Logged.Trace);
-  std::string Want = Robot ? debug::formatTraceLine(L.Tables, *Robot)
-                           : "a record that does not fit the behavior: " +
-                                 llvm::toString(Robot.takeError());
-  std::string Got = debug::formatTraceLine(
-      L.Tables, debug::takeSnapshot(S.getState(), &S.getInfo()));
-  if (Want == Got)
-    return true;
-  C.Diags.report(llvm::SMLoc(), diag::err_replay_tasks_differ) << Cycle;
-  C.Diags.report(llvm::SMLoc(), diag::note_replay_tasks) << "robot" << Want;
-  C.Diags.report(llvm::SMLoc(), diag::note_replay_tasks) << "replay" << Got;
-  return false;
-}
-
 bool CycleRunner::runCycle(unsigned K, const ReplayLine *Line) {
   BehaviorSession &S = *Robots[K].S;
   uint32_t Cycle = S.getCycle() + 1;
@@ -543,96 +316,6 @@ bool CycleRunner::runCycle(unsigned K, const ReplayLine *Line) {
   return true;
 }
 
-std::vector<std::string> CycleRunner::outputDifferences(BehaviorSession &S,
-                                                       const ReplayLine &Line) {
-  if (!L.OutputClass)
-    return {};
-  llvm::json::Value Recorded = nullptr;
-  if (Line.Logged) {
-    llvm::ArrayRef<unsigned char> Out = Line.Logged->Output;
-    if (Out.empty() || std::memcmp(S.getOutput(), Out.data(), Out.size()) == 0)
-      return {};
-    std::vector<unsigned char> Copy(Out.begin(), Out.end());
-    Recorded = Values.readClass(*L.OutputClass, Copy.data());
-  } else {
-    if (Line.Output.empty() ||
-        Values.matchesClassText(*L.OutputClass, S.getOutput(), Line.Output))
-      return {};
-    llvm::Expected<llvm::json::Value> Parsed = llvm::json::parse(Line.Output);
-    if (!Parsed) { // The first replay said so.
-      llvm::consumeError(Parsed.takeError());
-      return {"the recorded output cannot be read"};
-    }
-    Recorded = std::move(*Parsed);
-  }
-  return describeDifferences(countedDifferences(
-      Recorded, Values.readClass(*L.OutputClass, S.getOutput()), Opts.Compare));
-}
-
-bool CycleRunner::explainFailure(unsigned K, BehaviorSession &S,
-                                 const ReplayLine &Line, uint32_t Cycle) {
-  auto &First = FirstTaskDifference;
-  std::optional<std::vector<ActiveTaskView>> Recorded =
-      recordedTasks(L, Line);
-  if (!First.Cycle && Recorded)
-    if (std::optional<TaskDifference> D =
-            findTaskDifference(*Recorded, replayedTasks(L, S))) {
-      First.Cycle = Cycle;
-      if (isTeam())
-        First.Robot = K;
-      First.Difference = *D;
-      // The conditions are of this cycle only: kept now, shown if the
-      // replay fails where the first did.
-      for (unsigned T = 0; T < L.Tables.Tasks.size(); ++T)
-        if (L.Tables.Tasks[T].Name == D->Explains) {
-          llvm::raw_string_ostream Why(First.Why);
-          if (explainLastCycle(L, Values, S, int(T), Why) !=
-              WhyOutcome::Printed)
-            First.Why.clear();
-        }
-    }
-  // (A team's other robots may run the failing cycle as recorded.)
-  std::vector<std::string> Differences = outputDifferences(S, Line);
-  uint32_t FailedAt = Opts.Explain->Cycle;
-  if (Differences.empty() && Cycle <= FailedAt)
-    return true;
-  if (Cycle != FailedAt || Differences != Opts.Explain->Differences) {
-    C.Diags.report(Line.Loc, diag::note_replay_not_explained)
-        << (Differences.empty()
-                ? "did not fail at cycle " + std::to_string(FailedAt)
-            : Cycle != FailedAt
-                ? "failed at cycle " + std::to_string(Cycle)
-                : "failed otherwise at cycle " + std::to_string(Cycle) +
-                      " (" + Differences.front() + ")")
-        << NoSourceLine();
-    return false;
-  }
-  if (!First.Cycle) {
-    // Without the recording's tasks there is nothing to compare them with:
-    // the replay's are what can be said.
-    if (Recorded)
-      C.Diags.report(Line.Loc, diag::note_replay_tasks_as_recorded)
-          << Cycle << NoSourceLine();
-    else
-      C.Diags.report(Line.Loc, diag::note_replay_no_tasks)
-          << Cycle
-          << debug::formatTraceLine(
-                 L.Tables, debug::takeSnapshot(S.getState(), &S.getInfo()))
-          << NoSourceLine();
-    return false;
-  }
-  C.Diags.report(Line.Loc, diag::note_replay_first_task)
-      << First.Cycle << First.Difference.Task << First.Difference.Recorded
-      << First.Difference.Replayed << NoSourceLine();
-  if (First.Robot)
-    noteRobot(C, *First.Robot, Robots.size());
-  if (!First.Why.empty())
-    C.Diags.report(Line.Loc, diag::note_replay_why)
-        << First.Difference.Explains << First.Cycle
-        << ("\n" + llvm::StringRef(First.Why).rtrim()).str() << NoSourceLine();
-  return false;
-}
-
 void CycleRunner::writeCycle(unsigned K, llvm::json::Value Rec,
                              const llvm::json::Value &Out) {
   RobotRun &R = Robots[K];
@@ -694,31 +377,6 @@ void CycleRunner::keepRecordings() {
   for (RobotRun &R : Robots)
     if (R.Record)
       R.Record->keep();
-}
-
-/// Whether `Path` is `Member` or lies under it (`output.a` is under
-/// `output`, not under `output.ab`). A member may leave out `output.`.
-static bool isUnder(llvm::StringRef Path, llvm::StringRef Member) {
-  std::string Full = Member.starts_with("output") ? Member.str()
-                                                  : "output." + Member.str();
-  if (!Path.starts_with(Full))
-    return false;
-  llvm::StringRef Rest = Path.drop_front(Full.size());
-  return Rest.empty() || Rest.front() == '.' || Rest.front() == '[';
-}
-
-bool OutputComparison::counts(const debug::Difference &D) const {
-  for (const std::string &Member : Ignore)
-    if (isUnder(D.Path, Member))
-      return false;
-  double Recorded, Got;
-  if (llvm::StringRef(D.Recorded).getAsDouble(Recorded) ||
-      llvm::StringRef(D.Got).getAsDouble(Got))
-    return true; // Not two numbers.
-  for (const auto &[Member, Abs] : Tolerance)
-    if (isUnder(D.Path, Member) && std::fabs(Recorded - Got) <= Abs)
-      return false;
-  return true;
 }
 
 bool bsc::runBehavior(Compilation &C, LoadedBehavior &L, BehaviorSession &S,
