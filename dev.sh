@@ -18,6 +18,7 @@ PACKAGES=(cmake ninja-build g++ gcc-multilib g++-multilib python3 file
           llvm-19-dev llvm-19-tools clang-19 lld-19 libgtest-dev
           libeigen3-dev libedit-dev zlib1g-dev libzstd-dev qemu-user gdb
           chromium fonts-dejavu-core  # chromium: the timeline page's tests
+          neovim  # docs/editors.md's Neovim 0.7 recipe, run in the tests
           lcov  # genhtml reads the tracefiles of --coverage in the tests
           nodejs)  # nodejs, npm: the VS Code extension's build and tests
 # NodeSource's nodejs has npm inside, and apt refuses Debian's npm beside it.

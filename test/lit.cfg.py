@@ -77,6 +77,9 @@ if not shutil.which("genhtml"):
 if not shutil.which("chromium"):
     lit_config.fatal("chromium not found: the timeline page's tests need it "
                      "(dev.sh installs it)")
+if not shutil.which("nvim"):
+    lit_config.fatal("nvim not found: docs/editors.md's Neovim recipe is run "
+                     "in the tests (dev.sh installs neovim)")
 config.substitutions.append(
     ("%browser", config.python_executable + " " +
      os.path.join(config.bsc_src_root, "utils", "browser.py")))

@@ -144,6 +144,10 @@ async function startClient() {
     options: { cwd: baseFolder() },
   };
   const clientOptions = {
+    // Read by the server at initialize (docs/editors.md).
+    initializationOptions: {
+      parameterNameHints: vscode.workspace.getConfiguration('bscript').get('inlayHints.parameterNames') === true,
+    },
     documentSelector: [
       { scheme: 'file', language: 'bscript' },
       { scheme: 'untitled', language: 'bscript' },
@@ -202,7 +206,8 @@ function activate(context) {
     watcher,
     vscode.commands.registerCommand('bscript.restartServer', () => restart()),
     vscode.workspace.onDidChangeConfiguration((event) => {
-      if (event.affectsConfiguration('bscript.server')) {
+      if (event.affectsConfiguration('bscript.server') ||
+          event.affectsConfiguration('bscript.inlayHints')) {
         void restart();
       }
     }),

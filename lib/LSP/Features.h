@@ -30,6 +30,21 @@ struct Location {
 std::vector<Location> findOccurrences(llvm::ArrayRef<const Analysis *> All,
                                       const Analysis &A, llvm::SMLoc Loc,
                                       bool IncludeDeclaration);
+/// The occurrences in the document (`Buffer`) of the name at `Loc`, its
+/// declaration among them.
+llvm::json::Value documentHighlights(const Analysis &A, unsigned Buffer,
+                                     llvm::SMLoc Loc);
+/// `textDocument/prepareCallHierarchy`: the task or func named at `Loc`.
+llvm::json::Value prepareCallHierarchy(const Analysis &A, llvm::SMLoc Loc);
+/// `callHierarchy/incomingCalls` (`Incoming`) or `outgoingCalls` of the
+/// item whose name is at `Loc` of `A`, over the analyses `All`.
+llvm::json::Value hierarchyCalls(llvm::ArrayRef<const Analysis *> All,
+                                 const Analysis &A, llvm::SMLoc Loc,
+                                 bool Incoming);
+/// `textDocument/inlayHint`: the parameter names at the literal arguments
+/// of calls with two or more, in `Range` of the document (InlayHints.cpp).
+llvm::json::Value inlayHints(const Analysis &A, unsigned Buffer,
+                             llvm::SMRange Range);
 llvm::json::Value references(llvm::ArrayRef<const Analysis *> All,
                              const Analysis &A, llvm::SMLoc Loc,
                              bool IncludeDeclaration);

@@ -219,6 +219,18 @@ llvm::json::Value lsp::references(llvm::ArrayRef<const Analysis *> All,
   return Result;
 }
 
+llvm::json::Value lsp::documentHighlights(const Analysis &A, unsigned Buffer,
+                                          llvm::SMLoc Loc) {
+  // Without a kind (Text): the index does not tell an assignment's target
+  // from a read.
+  llvm::json::Array Result;
+  std::string Path = A.getPath(Buffer);
+  for (Location &L : findOccurrences({&A}, A, Loc, true))
+    if (L.Path == Path)
+      Result.push_back(llvm::json::Object{{"range", std::move(L.Range)}});
+  return Result;
+}
+
 /// A renamable symbol under the cursor, or an error saying why not.
 static llvm::Expected<const Occurrence *> renamable(const Analysis &A,
                                                     llvm::SMLoc Loc) {

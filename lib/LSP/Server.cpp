@@ -88,6 +88,10 @@ private:
   void didChange(const std::string &Path, const llvm::json::Array &Changes);
   /// Analyses the dirty documents and publishes their diagnostics.
   void analyzeDirty();
+  /// `Path`'s text changed (an edit, an open or a close that is not its
+  /// file's text): every other open document whose last analysis read it,
+  /// as a module it requires directly or not, is checked again.
+  void markDependents(const std::string &Path);
   /// The analysis of a document, up to date (analysed now if dirty).
   const Analysis *analysisOf(const std::string &Path);
   void publish(const Analysis &A);
@@ -100,6 +104,16 @@ private:
               const Analysis *&A, unsigned &Buffer, llvm::SMLoc &Loc);
   llvm::json::Value format(const std::string &Path,
                            const llvm::json::Object *Range);
+  /// Why renaming the occurrences (the cursor's at `Loc` among them) to
+  /// `NewName` would change the behavior beyond the name, or empty: each
+  /// edited file, checked again with the edited texts, reports an error
+  /// it did not before (`All`: the name is declared there already), or
+  /// the name reaches other places than before (it shadows, or is
+  /// shadowed by, another declaration).
+  std::string checkRename(llvm::ArrayRef<const Analysis *> All,
+                          const Analysis &A, llvm::SMLoc Loc,
+                          llvm::ArrayRef<Location> Occurrences,
+                          llvm::StringRef NewName);
   void request(const llvm::json::Value &Id, llvm::StringRef Method,
                const llvm::json::Object *Params);
 
@@ -107,6 +121,8 @@ private:
   Transport T;
   Workspace W;
   bool Initialized = false, ShutDown = false, Exited = false;
+  /// initializationOptions' parameterNameHints: inlay hints are given.
+  bool ParameterNameHints = false;
   std::set<std::string> Dirty;
   std::map<std::string, std::unique_ptr<Analysis>> Analyses;
 };
@@ -167,9 +183,15 @@ void Server::handle(const llvm::json::Object &Message) {
   std::string Path = pathOf(Params);
   if (*Method == "textDocument/didOpen" && !Path.empty()) {
     const llvm::json::Object *Doc = Params->getObject("textDocument");
-    W.open(Path, Doc->getString("text").value_or("").str(),
-           Doc->getInteger("version").value_or(0));
+    std::string Text = Doc->getString("text").value_or("").str();
+    // An editor's text that is not the file's (a buffer restored unsaved)
+    // changes what the documents requiring it read.
+    auto OnDisk = llvm::MemoryBuffer::getFile(Path);
+    bool Differs = !OnDisk || (*OnDisk)->getBuffer() != Text;
+    W.open(Path, std::move(Text), Doc->getInteger("version").value_or(0));
     Dirty.insert(Path);
+    if (Differs)
+      markDependents(Path);
   } else if (*Method == "textDocument/didChange" && !Path.empty()) {
     if (const llvm::json::Array *Changes = Params->getArray("contentChanges"))
       didChange(Path, *Changes);
@@ -180,6 +202,7 @@ void Server::handle(const llvm::json::Object &Message) {
     W.close(Path);
     Dirty.erase(Path);
     Analyses.erase(Path);
+    markDependents(Path); // They read the file on disk from now on.
     // Its diagnostics go with it: the file is no longer being edited.
     notify("textDocument/publishDiagnostics",
            llvm::json::Object{{"uri", pathToURI(Path)},
@@ -216,6 +239,13 @@ void Server::didChange(const std::string &Path,
     Text->replace(From, To - From, New);
   }
   Dirty.insert(Path);
+  markDependents(Path);
+}
+
+void Server::markDependents(const std::string &Path) {
+  for (const auto &[Doc, A] : Analyses)
+    if (Doc != Path && A && W.getText(Doc) && A->getBuffer(Path))
+      Dirty.insert(Doc);
 }
 
 void Server::publish(const Analysis &A) {
@@ -351,6 +381,8 @@ static llvm::json::Object capabilities() {
       {"hoverProvider", true},
       {"definitionProvider", true},
       {"referencesProvider", true},
+      {"documentHighlightProvider", true},
+      {"callHierarchyProvider", true},
       {"documentSymbolProvider", true},
       {"workspaceSymbolProvider", true},
       {"completionProvider",
@@ -380,8 +412,16 @@ void Server::request(const llvm::json::Value &Id, llvm::StringRef Method,
     if (Initialized)
       return replyError(Id, InvalidRequest, "initialize was already sent");
     Initialized = true;
+    // Inlay hints are off unless the client asks for them.
+    const llvm::json::Object *Init =
+        Params ? Params->getObject("initializationOptions") : nullptr;
+    ParameterNameHints =
+        Init && Init->getBoolean("parameterNameHints").value_or(false);
+    llvm::json::Object Capabilities = capabilities();
+    if (ParameterNameHints)
+      Capabilities["inlayHintProvider"] = true;
     return reply(Id, llvm::json::Object{
-                         {"capabilities", capabilities()},
+                         {"capabilities", std::move(Capabilities)},
                          {"serverInfo", llvm::json::Object{{"name", "bsc"}}}});
   }
   if (!Initialized)
@@ -408,6 +448,28 @@ void Server::request(const llvm::json::Value &Id, llvm::StringRef Method,
         Params ? Params->getString("query") : std::nullopt;
     return reply(Id, workspaceSymbols(All, Query.value_or("")));
   }
+  if (Method == "callHierarchy/incomingCalls" ||
+      Method == "callHierarchy/outgoingCalls") {
+    const llvm::json::Object *Item = Params ? Params->getObject("item") : nullptr;
+    std::optional<llvm::StringRef> URI = Item ? Item->getString("uri") : std::nullopt;
+    std::string Path = URI ? uriToPath(*URI) : "";
+    if (Path.empty())
+      return replyError(Id, InvalidParams,
+                        "the request needs the item prepareCallHierarchy gave");
+    const Analysis *A = analysisOf(Path);
+    unsigned Buffer = A->getBuffer(Path);
+    const llvm::json::Object *Range = Item->getObject("selectionRange");
+    if (!Buffer || !Range)
+      return replyError(Id, InvalidParams,
+                        "the item names no task or func of a b-script file");
+    llvm::SMLoc Loc = A->getLoc(Buffer, Range->get("start"));
+    std::vector<std::unique_ptr<Analysis>> Others = relatedAnalyses(*A);
+    std::vector<const Analysis *> All{A};
+    for (const auto &O : Others)
+      All.push_back(O.get());
+    return reply(Id, hierarchyCalls(All, *A, Loc,
+                                    Method == "callHierarchy/incomingCalls"));
+  }
   if (!Method.starts_with("textDocument/"))
     return replyError(Id, MethodNotFound, "no method '" + Method.str() + "'");
   llvm::StringRef What = Method.drop_front(strlen("textDocument/"));
@@ -422,7 +484,8 @@ void Server::request(const llvm::json::Value &Id, llvm::StringRef Method,
   static const std::set<std::string> Known = {
       "hover",          "definition",   "references",     "documentSymbol",
       "completion",     "signatureHelp", "rename",        "prepareRename",
-      "codeAction",     "foldingRange", "semanticTokens/full"};
+      "codeAction",     "foldingRange", "semanticTokens/full",
+      "documentHighlight", "prepareCallHierarchy", "inlayHint"};
   if (!Known.count(What.str()))
     return replyError(Id, MethodNotFound, "no method '" + Method.str() + "'");
   const Analysis *A;
@@ -434,6 +497,20 @@ void Server::request(const llvm::json::Value &Id, llvm::StringRef Method,
     return reply(Id, hover(*A, Loc));
   if (What == "definition")
     return reply(Id, definition(*A, Loc));
+  if (What == "documentHighlight")
+    return reply(Id, documentHighlights(*A, Buffer, Loc));
+  if (What == "prepareCallHierarchy")
+    return reply(Id, prepareCallHierarchy(*A, Loc));
+  if (What == "inlayHint") {
+    if (!ParameterNameHints)
+      return reply(Id, llvm::json::Array());
+    const llvm::json::Object *R = Params->getObject("range");
+    llvm::SMLoc From = A->getLoc(Buffer, R ? R->get("start") : nullptr);
+    llvm::SMLoc To = R ? A->getLoc(Buffer, R->get("end"))
+                       : llvm::SMLoc::getFromPointer(
+                             A->C->SM.getMemoryBuffer(Buffer)->getBufferEnd());
+    return reply(Id, inlayHints(*A, Buffer, {From, To}));
+  }
   if (What == "documentSymbol")
     return reply(Id, documentSymbols(*A, Buffer));
   if (What == "completion")
@@ -469,7 +546,114 @@ void Server::request(const llvm::json::Value &Id, llvm::StringRef Method,
   llvm::Expected<llvm::json::Value> Edit = rename(All, *A, Loc, *NewName);
   if (!Edit)
     return replyError(Id, RequestFailed, llvm::toString(Edit.takeError()));
+  std::string Why =
+      checkRename(All, *A, Loc, findOccurrences(All, *A, Loc, true), *NewName);
+  if (!Why.empty())
+    return replyError(Id, RequestFailed, Why);
   reply(Id, std::move(*Edit));
+}
+
+std::string Server::checkRename(llvm::ArrayRef<const Analysis *> All,
+                                const Analysis &A, llvm::SMLoc Loc,
+                                llvm::ArrayRef<Location> Occurrences,
+                                llvm::StringRef NewName) {
+  // The renamed texts stand in for the documents while the behavior is
+  // checked again, then the documents are as they were.
+  std::map<std::string, std::vector<const Location *>> ByPath;
+  for (const Location &L : Occurrences)
+    ByPath[L.Path].push_back(&L);
+  struct Saved {
+    std::string Path;
+    std::optional<std::string> Text;
+    int64_t Version;
+  };
+  std::vector<Saved> Restore;
+  for (auto &[Path, Places] : ByPath) {
+    std::string Text;
+    std::string *Open = W.getText(Path);
+    if (Open)
+      Text = *Open;
+    else if (auto Buf = llvm::MemoryBuffer::getFile(Path))
+      Text = (*Buf)->getBuffer().str();
+    else
+      continue;
+    Restore.push_back({Path, Open ? std::optional(*Open) : std::nullopt,
+                       W.getVersion(Path).value_or(0)});
+    // From the end, so that the offsets before stay true.
+    llvm::sort(Places, [](const Location *X, const Location *Y) {
+      return X->Begin > Y->Begin;
+    });
+    for (const Location *L : Places)
+      if (L->End <= Text.size() && L->Begin <= L->End)
+        Text.replace(L->Begin, L->End - L->Begin, NewName.str());
+    W.open(Path, std::move(Text), 0);
+  }
+  // Each edited file checked as its behavior, before (All) and after.
+  std::unique_ptr<Analysis> After = W.analyze(A.Path);
+  std::vector<std::pair<const Analysis *, std::unique_ptr<Analysis>>> Checked;
+  for (const auto &[Path, Places] : ByPath)
+    if (Path != A.Path)
+      for (const Analysis *Old : All)
+        if (Old->Path == Path)
+          Checked.push_back({Old, W.analyze(Path)});
+  for (Saved &S : Restore) {
+    if (S.Text)
+      W.open(S.Path, std::move(*S.Text), S.Version);
+    else
+      W.close(S.Path);
+  }
+
+  auto NewError = [](const Analysis &Old, const Analysis &New) {
+    std::set<std::string> Before;
+    for (const Diagnostic &D : Old.C->Diags.getDiagnostics())
+      if (D.Sev == Severity::Error)
+        Before.insert(D.Message);
+    for (const Diagnostic &D : New.C->Diags.getDiagnostics())
+      if (D.Sev == Severity::Error && !Before.count(D.Message))
+        return D.Message;
+    return std::string();
+  };
+  std::string Error = NewError(A, *After);
+  for (const auto &[Old, New] : Checked)
+    if (Error.empty())
+      Error = NewError(*Old, *New);
+  if (!Error.empty())
+    return "renaming to '" + NewName.str() +
+           "' would make the behavior wrong: " + Error;
+
+  // The cursor's place in the renamed text: moved by the renamed places
+  // before it in its file.
+  unsigned Buffer = A.C->SM.FindBufferContainingLoc(Loc);
+  if (!Buffer)
+    return "";
+  std::string CursorPath = A.getPath(Buffer);
+  int64_t Offset =
+      Loc.getPointer() - A.C->SM.getMemoryBuffer(Buffer)->getBufferStart();
+  const Location *Cursor = nullptr;
+  for (const Location &L : Occurrences)
+    if (L.Path == CursorPath && L.Begin <= Offset && Offset <= L.End)
+      Cursor = &L;
+  if (!Cursor)
+    return "";
+  int64_t NewOffset = Cursor->Begin;
+  for (const Location &L : Occurrences)
+    if (L.Path == CursorPath && L.End <= Cursor->Begin)
+      NewOffset += int64_t(NewName.size()) - int64_t(L.End - L.Begin);
+  unsigned NewBuffer = After->getBuffer(CursorPath);
+  if (!NewBuffer ||
+      size_t(NewOffset) > After->C->SM.getMemoryBuffer(NewBuffer)->getBufferSize())
+    return "";
+  llvm::SMLoc NewLoc = llvm::SMLoc::getFromPointer(
+      After->C->SM.getMemoryBuffer(NewBuffer)->getBufferStart() + NewOffset);
+  size_t Was = findOccurrences({&A}, A, Loc, true).size();
+  size_t Is = findOccurrences({After.get()}, *After, NewLoc, true).size();
+  if (Was != Is)
+    return "renaming to '" + NewName.str() + "' would change what names " +
+           "refer to: the name would be written in " + std::to_string(Is) +
+           (Is == 1 ? " place" : " places") + " of this behavior instead of " +
+           std::to_string(Was) +
+           " (it would shadow, or be shadowed by, another declaration)";
+  return "";
 }
 
 int lsp::runServer(const ServerOptions &Opts, int InFd, int OutFd) {

@@ -319,8 +319,9 @@ struct FormatCommandOptions {
 
 /// `bsc format`: prints each file in the canonical layout (Format.h),
 /// rewrites it (-i), or names the files that would change (--check, exit
-/// status 1 if any). A file with syntax errors is reported and left alone;
-/// the others are still formatted. Returns the exit status.
+/// status 1 if any, 2 after an error). `-` is standard input (`<stdin>`).
+/// A file with syntax errors is reported and left alone; the others are
+/// still formatted. Returns the exit status.
 int formatCommand(Compilation &C, const FormatCommandOptions &Opts,
                   llvm::raw_ostream &OS);
 

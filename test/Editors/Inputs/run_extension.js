@@ -276,11 +276,15 @@ async function main() {
   changeSettings(['bscript.server.args']);
   await until('the server with new arguments', () => count(serverSaid(), 'got: initialized') === 3);
   say('server restarted after a change of bscript.server.args');
+  settings['bscript.inlayHints.parameterNames'] = true;
+  changeSettings(['bscript.inlayHints.parameterNames']);
+  await until('the server with inlay hints', () => count(serverSaid(), 'got: initialized') === 4);
+  say('server restarted after a change of bscript.inlayHints.parameterNames');
   changeSettings(['editor.tabSize', 'bscript.trace.server']);
   await new Promise((r) => setTimeout(r, 300));
   say('deactivate');
   await extension.deactivate();
-  await until('the server to exit', () => count(serverSaid(), 'exited') === 3);
+  await until('the server to exit', () => count(serverSaid(), 'exited') === 4);
   say(`server's log:\n${serverSaid()}`);
   process.exit(0);
 }
