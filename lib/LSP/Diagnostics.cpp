@@ -31,6 +31,25 @@ static llvm::SMRange underline(const Analysis &A, const Diagnostic &D) {
   return {D.Loc, llvm::SMLoc::getFromPointer(Q)};
 }
 
+/// The editor's way to give what a message asks of the command line: a
+/// missing binding object is `"bind"` in the behavior's bscript.json, not
+/// `--bind`.
+static std::string inEditor(const Analysis &A, const Diagnostic &D) {
+  bool AsksForBind = llvm::is_contained(
+      {diag::err_needs_binding, diag::err_no_input_type,
+       diag::err_no_output_type, diag::err_unknown_module,
+       diag::note_maybe_unbound},
+      D.Kind);
+  if (!AsksForBind || !A.Config.Bind.empty())
+    return D.Message;
+  return D.Message + "; in the editor, list the binding objects under " +
+         "\"bind\" in " +
+         (A.Config.File.empty()
+              ? std::string("a bscript.json in the behavior's folder or "
+                            "above (docs/editors.md)")
+              : "'" + A.Config.File + "'");
+}
+
 std::map<std::string, llvm::json::Array> lsp::diagnostics(const Analysis &A) {
   std::map<std::string, llvm::json::Array> ByURI;
   for (const ModuleAST *M : A.C->Modules)
@@ -55,7 +74,8 @@ std::map<std::string, llvm::json::Array> lsp::diagnostics(const Analysis &A) {
     bool Placed = D.Loc.isValid() && A.C->SM.FindBufferContainingLoc(D.Loc);
     if (D.Sev == Severity::Note && Last) {
       if (!Placed) {
-        (*Last)["message"] = (*Last->getString("message") + "\n" + D.Message).str();
+        (*Last)["message"] =
+            (*Last->getString("message") + "\n" + inEditor(A, D)).str();
         continue;
       }
       llvm::json::Array *Related = Last->getArray("relatedInformation");
@@ -65,7 +85,7 @@ std::map<std::string, llvm::json::Array> lsp::diagnostics(const Analysis &A) {
       }
       Related->push_back(llvm::json::Object{
           {"location", A.getLocation(underline(A, D))},
-          {"message", D.Message}});
+          {"message", inEditor(A, D)}});
       continue;
     }
     int Severity = D.Sev == Severity::Error     ? 1
@@ -74,7 +94,7 @@ std::map<std::string, llvm::json::Array> lsp::diagnostics(const Analysis &A) {
     llvm::json::Object Entry{{"severity", Severity},
                              {"source", "bsc"},
                              {"code", getIdName(D.Kind)},
-                             {"message", D.Message}};
+                             {"message", inEditor(A, D)}};
     std::string URI = Checked;
     if (Placed) {
       URI = pathToURI(A.getPath(A.C->SM.FindBufferContainingLoc(D.Loc)));
