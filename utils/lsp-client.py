@@ -16,6 +16,8 @@ script):
     initialize [JSON]            the initialize request (JSON: params to
                                  merge) and the initialized notification
     open PATH                    textDocument/didOpen with the file's text
+    open-text PATH TEXT          didOpen with TEXT (\\n, \\t, \\\\); PATH may be
+                                 `untitled:NAME`, a buffer never saved
     change PATH TEXT             didChange: the whole text (\\n, \\t, \\\\)
     change-file PATH FILE        didChange: the whole text of FILE
     edit PATH L C L C TEXT       didChange: an incremental edit of a range
@@ -126,6 +128,8 @@ class Client:
 
     # --- steps ------------------------------------------------------------
     def uri(self, path):
+        if path.startswith('untitled:'):  # a buffer the editor has not saved
+            return path
         return 'file://' + os.path.join(self.root, path)
 
     def expand(self, text):
@@ -180,6 +184,12 @@ class Client:
             self.notify('textDocument/didOpen', {'textDocument': {
                 'uri': self.uri(rest), 'languageId': 'bscript', 'version': 1,
                 'text': self.read(rest)}})
+        elif word == 'open-text':
+            path, _, text = rest.partition(' ')
+            self.versions[path] = 1
+            self.notify('textDocument/didOpen', {'textDocument': {
+                'uri': self.uri(path), 'languageId': 'bscript', 'version': 1,
+                'text': text.encode().decode('unicode_escape')}})
         elif word == 'change':
             path, _, text = rest.partition(' ')
             text = text.encode().decode('unicode_escape')

@@ -17,7 +17,36 @@
 using namespace bsc;
 using namespace bsc::lsp;
 
+/// An `untitled:` document (a buffer the editor has not saved yet) is
+/// checked under a path no file has: the folder below, which cannot exist
+/// (a name with a colon at the root), so that nothing is read beside it.
+static constexpr llvm::StringLiteral UntitledFolder = "/untitled:/";
+
+/// The file name each untitled document got -> its URI as the editor
+/// wrote it (one server, one thread: the table lives as long as it).
+static std::map<std::string, std::string> &untitledNames() {
+  static std::map<std::string, std::string> Names;
+  return Names;
+}
+
 std::string lsp::uriToPath(llvm::StringRef URI) {
+  if (URI.consume_front("untitled:")) {
+    // A module is named by its file: the name as a b-script name.
+    std::string Name;
+    for (char C : URI)
+      Name += llvm::isAlnum(C) || C == '_' ? C : '_';
+    if (Name.empty() || llvm::isDigit(Name[0]))
+      Name = "Untitled" + Name;
+    std::string Full = ("untitled:" + URI).str();
+    std::string File = Name + ".bs";
+    // Two documents whose names differ only in punctuation get two files.
+    for (unsigned N = 2; untitledNames().count(File) &&
+                         untitledNames()[File] != Full;
+         ++N)
+      File = Name + "_" + std::to_string(N) + ".bs";
+    untitledNames()[File] = Full;
+    return (UntitledFolder + File).str();
+  }
   if (!URI.consume_front("file://"))
     return "";
   std::string Path;
@@ -37,6 +66,12 @@ std::string lsp::uriToPath(llvm::StringRef URI) {
 }
 
 std::string lsp::pathToURI(llvm::StringRef Path) {
+  if (Path.consume_front(UntitledFolder)) {
+    // Back to the editor's name (uriToPath kept it but for punctuation).
+    auto It = untitledNames().find(Path.str());
+    return It != untitledNames().end() ? It->second
+                                       : "untitled:" + Path.drop_back(3).str();
+  }
   std::string URI = "file://";
   for (char C : Path) {
     if (llvm::isAlnum(C) || llvm::StringRef("/-._~").contains(C))
@@ -167,11 +202,18 @@ BehaviorConfig lsp::findConfig(llvm::StringRef Path) {
 std::unique_ptr<Analysis> Workspace::analyze(llvm::StringRef Path) {
   auto A = std::make_unique<Analysis>();
   A->Path = Path.str();
-  A->Config = findConfig(Path);
+  // An untitled document belongs to no folder: it is checked as a file of
+  // the server's (the editor's workspace), its settings and modules.
+  bool Untitled = Path.starts_with(UntitledFolder);
+  llvm::SmallString<256> Here;
+  llvm::sys::fs::current_path(Here);
+  A->Config = findConfig(Untitled ? (Here + "/Untitled.bs").str() : Path);
   A->C = std::make_unique<Compilation>();
   FrontendOptions FOpts = Opts.BaseOptions(A->Config.Target);
   FOpts.Inputs = {Path.str()};
   FOpts.IncludeDirs = A->Config.Include;
+  if (Untitled)
+    FOpts.IncludeDirs.insert(FOpts.IncludeDirs.begin(), std::string(Here));
   FOpts.BindObjects = A->Config.Bind;
   FOpts.Unsaved = &Unsaved;
   runFrontend(*A->C, FOpts);
