@@ -45,6 +45,13 @@ llvm::json::Value hierarchyCalls(llvm::ArrayRef<const Analysis *> All,
 /// of calls with two or more, in `Range` of the document (InlayHints.cpp).
 llvm::json::Value inlayHints(const Analysis &A, unsigned Buffer,
                              llvm::SMRange Range);
+/// `workspace/willRenameFiles` of one module file: the edits that make
+/// every `requires "Old"` and `Old::name` of the analyses `All` name the
+/// new file's module; null if there are none (or the new name is no
+/// module's).
+llvm::json::Value renameModuleFile(llvm::ArrayRef<const Analysis *> All,
+                                   llvm::StringRef OldPath,
+                                   llvm::StringRef NewPath);
 llvm::json::Value references(llvm::ArrayRef<const Analysis *> All,
                              const Analysis &A, llvm::SMLoc Loc,
                              bool IncludeDeclaration);

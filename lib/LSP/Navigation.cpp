@@ -15,6 +15,7 @@
 #include "llvm/Support/FileSystem.h"
 #include "llvm/Support/MemoryBuffer.h"
 #include "llvm/Support/Path.h"
+#include <map>
 
 using namespace bsc;
 using namespace bsc::lsp;
@@ -286,6 +287,48 @@ lsp::rename(llvm::ArrayRef<const Analysis *> All, const Analysis &A,
   for (Location &L : findOccurrences(All, A, Loc, true))
     Edits[pathToURI(L.Path)].push_back(llvm::json::Object{
         {"range", std::move(L.Range)}, {"newText", NewName.str()}});
+  llvm::json::Object Changes;
+  for (auto &[URI, List] : Edits)
+    Changes[URI] = std::move(List);
+  return llvm::json::Object{{"changes", std::move(Changes)}};
+}
+
+llvm::json::Value lsp::renameModuleFile(llvm::ArrayRef<const Analysis *> All,
+                                        llvm::StringRef OldPath,
+                                        llvm::StringRef NewPath) {
+  llvm::StringRef OldName = llvm::sys::path::stem(OldPath);
+  llvm::StringRef NewName = llvm::sys::path::stem(NewPath);
+  // A file that is no module before or after: nothing names it.
+  if (llvm::sys::path::extension(OldPath) != ".bs" ||
+      llvm::sys::path::extension(NewPath) != ".bs" || !isNewName(NewName) ||
+      OldName == NewName)
+    return nullptr;
+  std::map<std::string, llvm::json::Array> Edits;
+  llvm::StringSet<> Seen;
+  for (const Analysis *A : All)
+    for (const Occurrence &O : A->Idx.Occurrences) {
+      if (O.Sym.K != Symbol::ScriptModule)
+        continue;
+      const auto *M = static_cast<const ModuleAST *>(O.Sym.Ptr);
+      if (M->Name != OldName || A->getPath(M->BufferID) != OldPath)
+        continue;
+      unsigned ID = A->C->SM.FindBufferContainingLoc(O.Range.Start);
+      if (!ID)
+        continue;
+      std::string Path = A->getPath(ID);
+      const char *Start = A->C->SM.getMemoryBuffer(ID)->getBufferStart();
+      if (!Seen.insert(Path + ":" +
+                       std::to_string(O.Range.Start.getPointer() - Start))
+               .second)
+        continue;
+      // `requires "Moves"` names it in a string; `Moves::step` bare.
+      bool Quoted = *O.Range.Start.getPointer() == '"';
+      Edits[pathToURI(Path)].push_back(llvm::json::Object{
+          {"range", A->getRange(O.Range)},
+          {"newText", Quoted ? "\"" + NewName.str() + "\"" : NewName.str()}});
+    }
+  if (Edits.empty())
+    return nullptr;
   llvm::json::Object Changes;
   for (auto &[URI, List] : Edits)
     Changes[URI] = std::move(List);

@@ -383,6 +383,17 @@ static llvm::json::Object capabilities() {
       {"referencesProvider", true},
       {"documentHighlightProvider", true},
       {"callHierarchyProvider", true},
+      {"workspace",
+       llvm::json::Object{
+           {"fileOperations",
+            llvm::json::Object{
+                {"willRename",
+                 llvm::json::Object{
+                     {"filters",
+                      llvm::json::Array{llvm::json::Object{
+                          {"scheme", "file"},
+                          {"pattern",
+                           llvm::json::Object{{"glob", "**/*.bs"}}}}}}}}}}}},
       {"documentSymbolProvider", true},
       {"workspaceSymbolProvider", true},
       {"completionProvider",
@@ -447,6 +458,38 @@ void Server::request(const llvm::json::Value &Id, llvm::StringRef Method,
     std::optional<llvm::StringRef> Query =
         Params ? Params->getString("query") : std::nullopt;
     return reply(Id, workspaceSymbols(All, Query.value_or("")));
+  }
+  if (Method == "workspace/willRenameFiles") {
+    // Each renamed module's `requires` and qualifiers, in every module of
+    // the folders around it; the edits of several files merged.
+    llvm::json::Object Changes;
+    const llvm::json::Array *Files = Params ? Params->getArray("files") : nullptr;
+    for (const llvm::json::Value &F : Files ? *Files : llvm::json::Array()) {
+      const llvm::json::Object *File = F.getAsObject();
+      std::optional<llvm::StringRef> Old = File ? File->getString("oldUri") : std::nullopt;
+      std::optional<llvm::StringRef> New = File ? File->getString("newUri") : std::nullopt;
+      if (!Old || !New)
+        continue;
+      std::string OldPath = uriToPath(*Old);
+      if (OldPath.empty())
+        continue;
+      std::unique_ptr<Analysis> A = W.analyze(OldPath);
+      std::vector<std::unique_ptr<Analysis>> Others = relatedAnalyses(*A);
+      std::vector<const Analysis *> All{A.get()};
+      for (const auto &O : Others)
+        All.push_back(O.get());
+      llvm::json::Value Edit = renameModuleFile(All, OldPath, uriToPath(*New));
+      if (const llvm::json::Object *E = Edit.getAsObject())
+        for (const auto &[URI, List] : *E->getObject("changes"))
+          for (const llvm::json::Value &Item : *List.getAsArray()) {
+            if (!Changes.get(URI))
+              Changes[URI] = llvm::json::Array();
+            Changes.getArray(URI)->push_back(Item);
+          }
+    }
+    if (Changes.empty())
+      return reply(Id, nullptr);
+    return reply(Id, llvm::json::Object{{"changes", std::move(Changes)}});
   }
   if (Method == "callHierarchy/incomingCalls" ||
       Method == "callHierarchy/outgoingCalls") {
