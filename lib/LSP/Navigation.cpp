@@ -174,6 +174,36 @@ llvm::json::Value lsp::definition(const Analysis &A, llvm::SMLoc Loc) {
   return A.getLocation(R);
 }
 
+/// Registered C++'s identity across analyses (each reads the binding
+/// objects anew): its module, class or enum and name; empty for what has
+/// none here (a constant).
+static std::string nativeKey(const Analysis &A, const Symbol &S) {
+  switch (S.K) {
+  case Symbol::NativeFunction: {
+    const auto *F = static_cast<const NativeFunction *>(S.Ptr);
+    return "fn " + moduleOf(*A.C, *F) + "::" +
+           (F->Owner ? F->Owner->Name + "." : "") + F->Name;
+  }
+  case Symbol::NativeClass:
+    return "class " + static_cast<const NativeClass *>(S.Ptr)->QualifiedName;
+  case Symbol::NativeEnum:
+  case Symbol::NativeEnumValue: {
+    const auto *E = static_cast<const NativeEnum *>(S.Ptr);
+    std::string Key =
+        "enum " + (E->Module ? E->Module->Name : std::string()) + "::" + E->Name;
+    if (S.K == Symbol::NativeEnumValue && S.Index < E->Values.size())
+      Key += "::" + E->Values[S.Index].Name;
+    return Key;
+  }
+  case Symbol::NativeModule:
+    return "native module " + static_cast<const NativeModule *>(S.Ptr)->Name;
+  case Symbol::Global:
+    return "global " + std::to_string(S.Index);
+  default:
+    return "";
+  }
+}
+
 std::vector<Location>
 lsp::findOccurrences(llvm::ArrayRef<const Analysis *> All, const Analysis &A,
                      llvm::SMLoc Loc, bool IncludeDeclaration) {
@@ -197,10 +227,20 @@ lsp::findOccurrences(llvm::ArrayRef<const Analysis *> All, const Analysis &A,
     if (Seen.insert(L.Path + ":" + std::to_string(L.Begin)).second)
       Out.push_back(std::move(L));
   };
-  if (Key.empty()) { // Registered C++: this analysis's uses.
-    for (const Occurrence &Occ : A.Idx.Occurrences)
-      if (Occ.Sym == O->Sym)
-        AddFrom(A, Occ);
+  if (Key.empty()) {
+    // Registered C++: its uses in every analysis, by its name there.
+    std::string Native = nativeKey(A, O->Sym);
+    if (Native.empty()) {
+      for (const Occurrence &Occ : A.Idx.Occurrences)
+        if (Occ.Sym == O->Sym)
+          AddFrom(A, Occ);
+      return Out;
+    }
+    for (const Analysis *From : All)
+      for (const Occurrence &Occ : From->Idx.Occurrences)
+        if (!Occ.Sym.isScript() && Occ.Sym.K == O->Sym.K &&
+            nativeKey(*From, Occ.Sym) == Native)
+          AddFrom(*From, Occ);
     return Out;
   }
   for (const Analysis *From : All)
@@ -343,6 +383,8 @@ namespace {
 /// LSP's SymbolKind numbers.
 enum SymbolKind {
   Module = 2,
+  Class = 5,
+  Method = 6,
   Enum = 10,
   Function = 12,
   Variable = 13,
@@ -467,6 +509,32 @@ llvm::json::Value lsp::workspaceSymbols(llvm::ArrayRef<const Analysis *> All,
         Add(*A, *M, *K, Constant);
       for (const CallableDecl *C : M->Decls)
         Add(*A, *M, *C, llvm::isa<TaskDecl>(C) ? Event : Function);
+    }
+  // Registered C++ of the binding objects, where each is registered.
+  auto AddNative = [&](const NativeModule &M, llvm::StringRef Container,
+                       llvm::StringRef Owner, llvm::StringRef Name, int Kind) {
+    if (!Name.contains_insensitive(Query) ||
+        !Seen.insert("native " + Container.str() + "::" + Name.str()).second)
+      return;
+    llvm::json::Value Place = registrationPlace(M, Owner, Name);
+    if (Place.kind() == llvm::json::Value::Null)
+      return;
+    Result.push_back(llvm::json::Object{{"name", Name.str()},
+                                        {"containerName", Container.str()},
+                                        {"kind", Kind},
+                                        {"location", std::move(Place)}});
+  };
+  for (const Analysis *A : All)
+    for (const NativeModule *M : A->C->Checked.BindingModules) {
+      for (const NativeFunction &F : M->Functions)
+        AddNative(*M, M->Name, "", F.Name, Function);
+      for (const NativeEnum &E : M->Enums)
+        AddNative(*M, M->Name, "", E.Name, Enum);
+      for (const NativeClass &K : M->Classes) {
+        AddNative(*M, M->Name, "", K.Name, Class);
+        for (const NativeFunction &F : K.Members)
+          AddNative(*M, K.QualifiedName, K.Name, F.Name, Method);
+      }
     }
   return Result;
 }
