@@ -42,7 +42,7 @@ struct Toy {
 /// no calls into C++.
 CycleRecord entryOf(const Toy &T) {
   CycleRecord R;
-  R.EntryInput.assign(T.Input.begin(), T.Input.end());
+  R.EntryInput = std::vector<unsigned char>(T.Input.begin(), T.Input.end());
   return R;
 }
 
