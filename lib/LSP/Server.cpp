@@ -9,9 +9,7 @@
 // `shutdown`).
 //
 //===----------------------------------------------------------------------===//
-#include "bsc/LSP/Server.h"
-#include "Features.h"
-#include "Transport.h"
+#include "ServerImpl.h"
 #include "bsc/Format/Format.h"
 #include "llvm/Support/FileSystem.h"
 #include "llvm/Support/MemoryBuffer.h"
@@ -21,19 +19,8 @@
 using namespace bsc;
 using namespace bsc::lsp;
 
-namespace {
-/// JSON-RPC and LSP error codes.
-enum ErrorCode {
-  ParseError = -32700,
-  InvalidRequest = -32600,
-  MethodNotFound = -32601,
-  InvalidParams = -32602,
-  ServerNotInitialized = -32002,
-  RequestFailed = -32803,
-};
-
-/// The byte offset of an LSP position in `Text` (clamped to the text).
-size_t offsetOf(llvm::StringRef Text, const llvm::json::Object *Position) {
+size_t lsp::offsetOf(llvm::StringRef Text,
+                     const llvm::json::Object *Position) {
   int64_t Line = Position ? Position->getInteger("line").value_or(0) : 0;
   int64_t Char = Position ? Position->getInteger("character").value_or(0) : 0;
   size_t Start = 0;
@@ -54,81 +41,15 @@ size_t offsetOf(llvm::StringRef Text, const llvm::json::Object *Position) {
   return Byte;
 }
 
-/// The LSP position just past the end of `Text`.
-llvm::json::Object endOf(llvm::StringRef Text) {
+llvm::json::Object lsp::endOf(llvm::StringRef Text) {
   int64_t Lines = Text.count('\n');
   llvm::StringRef Last = Text.substr(Text.rfind('\n') + 1);
   return llvm::json::Object{{"line", Lines},
                             {"character", int64_t(Last.size())}};
 }
 
-class Server {
-public:
-  Server(const ServerOptions &Opts, int InFd, int OutFd)
-      : Opts(Opts), T(InFd, OutFd), W(Opts) {}
-  int run();
 
-private:
-  void handle(const llvm::json::Object &Message);
-  void reply(const llvm::json::Value &Id, llvm::json::Value Result) {
-    T.write(llvm::json::Object{
-        {"jsonrpc", "2.0"}, {"id", Id}, {"result", std::move(Result)}});
-  }
-  void replyError(const llvm::json::Value &Id, int Code, llvm::StringRef Msg) {
-    T.write(llvm::json::Object{
-        {"jsonrpc", "2.0"},
-        {"id", Id},
-        {"error", llvm::json::Object{{"code", Code}, {"message", Msg.str()}}}});
-  }
-  void notify(llvm::StringRef Method, llvm::json::Value Params) {
-    T.write(llvm::json::Object{
-        {"jsonrpc", "2.0"}, {"method", Method.str()}, {"params", std::move(Params)}});
-  }
-
-  void didChange(const std::string &Path, const llvm::json::Array &Changes);
-  /// Analyses the dirty documents and publishes their diagnostics.
-  void analyzeDirty();
-  /// `Path`'s text changed (an edit, an open or a close that is not its
-  /// file's text): every other open document whose last analysis read it,
-  /// as a module it requires directly or not, is checked again.
-  void markDependents(const std::string &Path);
-  /// The analysis of a document, up to date (analysed now if dirty).
-  const Analysis *analysisOf(const std::string &Path);
-  void publish(const Analysis &A);
-  /// Analyses of every file of the behaviors around `A`: its folder's and
-  /// include folders' .bs files and the open documents.
-  std::vector<std::unique_ptr<Analysis>> relatedAnalyses(const Analysis &A);
-  /// A request on a document at a position: the analysis, its buffer and
-  /// the place; false after replying with an error.
-  bool locate(const llvm::json::Value &Id, const llvm::json::Object *Params,
-              const Analysis *&A, unsigned &Buffer, llvm::SMLoc &Loc);
-  llvm::json::Value format(const std::string &Path,
-                           const llvm::json::Object *Range);
-  /// Why renaming the occurrences (the cursor's at `Loc` among them) to
-  /// `NewName` would change the behavior beyond the name, or empty: each
-  /// edited file, checked again with the edited texts, reports an error
-  /// it did not before (`All`: the name is declared there already), or
-  /// the name reaches other places than before (it shadows, or is
-  /// shadowed by, another declaration).
-  std::string checkRename(llvm::ArrayRef<const Analysis *> All,
-                          const Analysis &A, llvm::SMLoc Loc,
-                          llvm::ArrayRef<Location> Occurrences,
-                          llvm::StringRef NewName);
-  void request(const llvm::json::Value &Id, llvm::StringRef Method,
-               const llvm::json::Object *Params);
-
-  const ServerOptions &Opts;
-  Transport T;
-  Workspace W;
-  bool Initialized = false, ShutDown = false, Exited = false;
-  /// initializationOptions' parameterNameHints: inlay hints are given.
-  bool ParameterNameHints = false;
-  std::set<std::string> Dirty;
-  std::map<std::string, std::unique_ptr<Analysis>> Analyses;
-};
-} // namespace
-
-static std::string pathOf(const llvm::json::Object *Params) {
+std::string lsp::pathOf(const llvm::json::Object *Params) {
   const llvm::json::Object *Doc =
       Params ? Params->getObject("textDocument") : nullptr;
   std::optional<llvm::StringRef> URI = Doc ? Doc->getString("uri") : std::nullopt;
@@ -444,75 +365,8 @@ void Server::request(const llvm::json::Value &Id, llvm::StringRef Method,
     ShutDown = true;
     return reply(Id, nullptr);
   }
-  if (Method == "workspace/symbol") {
-    std::vector<std::unique_ptr<Analysis>> Own;
-    for (const auto &[Path, Text] : W.getOpen()) {
-      std::unique_ptr<Analysis> A = W.analyze(Path);
-      for (auto &B : relatedAnalyses(*A))
-        Own.push_back(std::move(B));
-      Own.push_back(std::move(A));
-    }
-    std::vector<const Analysis *> All;
-    for (const auto &A : Own)
-      All.push_back(A.get());
-    std::optional<llvm::StringRef> Query =
-        Params ? Params->getString("query") : std::nullopt;
-    return reply(Id, workspaceSymbols(All, Query.value_or("")));
-  }
-  if (Method == "workspace/willRenameFiles") {
-    // Each renamed module's `requires` and qualifiers, in every module of
-    // the folders around it; the edits of several files merged.
-    llvm::json::Object Changes;
-    const llvm::json::Array *Files = Params ? Params->getArray("files") : nullptr;
-    for (const llvm::json::Value &F : Files ? *Files : llvm::json::Array()) {
-      const llvm::json::Object *File = F.getAsObject();
-      std::optional<llvm::StringRef> Old = File ? File->getString("oldUri") : std::nullopt;
-      std::optional<llvm::StringRef> New = File ? File->getString("newUri") : std::nullopt;
-      if (!Old || !New)
-        continue;
-      std::string OldPath = uriToPath(*Old);
-      if (OldPath.empty())
-        continue;
-      std::unique_ptr<Analysis> A = W.analyze(OldPath);
-      std::vector<std::unique_ptr<Analysis>> Others = relatedAnalyses(*A);
-      std::vector<const Analysis *> All{A.get()};
-      for (const auto &O : Others)
-        All.push_back(O.get());
-      llvm::json::Value Edit = renameModuleFile(All, OldPath, uriToPath(*New));
-      if (const llvm::json::Object *E = Edit.getAsObject())
-        for (const auto &[URI, List] : *E->getObject("changes"))
-          for (const llvm::json::Value &Item : *List.getAsArray()) {
-            if (!Changes.get(URI))
-              Changes[URI] = llvm::json::Array();
-            Changes.getArray(URI)->push_back(Item);
-          }
-    }
-    if (Changes.empty())
-      return reply(Id, nullptr);
-    return reply(Id, llvm::json::Object{{"changes", std::move(Changes)}});
-  }
-  if (Method == "callHierarchy/incomingCalls" ||
-      Method == "callHierarchy/outgoingCalls") {
-    const llvm::json::Object *Item = Params ? Params->getObject("item") : nullptr;
-    std::optional<llvm::StringRef> URI = Item ? Item->getString("uri") : std::nullopt;
-    std::string Path = URI ? uriToPath(*URI) : "";
-    if (Path.empty())
-      return replyError(Id, InvalidParams,
-                        "the request needs the item prepareCallHierarchy gave");
-    const Analysis *A = analysisOf(Path);
-    unsigned Buffer = A->getBuffer(Path);
-    const llvm::json::Object *Range = Item->getObject("selectionRange");
-    if (!Buffer || !Range)
-      return replyError(Id, InvalidParams,
-                        "the item names no task or func of a b-script file");
-    llvm::SMLoc Loc = A->getLoc(Buffer, Range->get("start"));
-    std::vector<std::unique_ptr<Analysis>> Others = relatedAnalyses(*A);
-    std::vector<const Analysis *> All{A};
-    for (const auto &O : Others)
-      All.push_back(O.get());
-    return reply(Id, hierarchyCalls(All, *A, Loc,
-                                    Method == "callHierarchy/incomingCalls"));
-  }
+  if (workspaceRequest(Id, Method, Params))
+    return;
   if (!Method.starts_with("textDocument/"))
     return replyError(Id, MethodNotFound, "no method '" + Method.str() + "'");
   llvm::StringRef What = Method.drop_front(strlen("textDocument/"));
@@ -594,109 +448,6 @@ void Server::request(const llvm::json::Value &Id, llvm::StringRef Method,
   if (!Why.empty())
     return replyError(Id, RequestFailed, Why);
   reply(Id, std::move(*Edit));
-}
-
-std::string Server::checkRename(llvm::ArrayRef<const Analysis *> All,
-                                const Analysis &A, llvm::SMLoc Loc,
-                                llvm::ArrayRef<Location> Occurrences,
-                                llvm::StringRef NewName) {
-  // The renamed texts stand in for the documents while the behavior is
-  // checked again, then the documents are as they were.
-  std::map<std::string, std::vector<const Location *>> ByPath;
-  for (const Location &L : Occurrences)
-    ByPath[L.Path].push_back(&L);
-  struct Saved {
-    std::string Path;
-    std::optional<std::string> Text;
-    int64_t Version;
-  };
-  std::vector<Saved> Restore;
-  for (auto &[Path, Places] : ByPath) {
-    std::string Text;
-    std::string *Open = W.getText(Path);
-    if (Open)
-      Text = *Open;
-    else if (auto Buf = llvm::MemoryBuffer::getFile(Path))
-      Text = (*Buf)->getBuffer().str();
-    else
-      continue;
-    Restore.push_back({Path, Open ? std::optional(*Open) : std::nullopt,
-                       W.getVersion(Path).value_or(0)});
-    // From the end, so that the offsets before stay true.
-    llvm::sort(Places, [](const Location *X, const Location *Y) {
-      return X->Begin > Y->Begin;
-    });
-    for (const Location *L : Places)
-      if (L->End <= Text.size() && L->Begin <= L->End)
-        Text.replace(L->Begin, L->End - L->Begin, NewName.str());
-    W.open(Path, std::move(Text), 0);
-  }
-  // Each edited file checked as its behavior, before (All) and after.
-  std::unique_ptr<Analysis> After = W.analyze(A.Path);
-  std::vector<std::pair<const Analysis *, std::unique_ptr<Analysis>>> Checked;
-  for (const auto &[Path, Places] : ByPath)
-    if (Path != A.Path)
-      for (const Analysis *Old : All)
-        if (Old->Path == Path)
-          Checked.push_back({Old, W.analyze(Path)});
-  for (Saved &S : Restore) {
-    if (S.Text)
-      W.open(S.Path, std::move(*S.Text), S.Version);
-    else
-      W.close(S.Path);
-  }
-
-  auto NewError = [](const Analysis &Old, const Analysis &New) {
-    std::set<std::string> Before;
-    for (const Diagnostic &D : Old.C->Diags.getDiagnostics())
-      if (D.Sev == Severity::Error)
-        Before.insert(D.Message);
-    for (const Diagnostic &D : New.C->Diags.getDiagnostics())
-      if (D.Sev == Severity::Error && !Before.count(D.Message))
-        return D.Message;
-    return std::string();
-  };
-  std::string Error = NewError(A, *After);
-  for (const auto &[Old, New] : Checked)
-    if (Error.empty())
-      Error = NewError(*Old, *New);
-  if (!Error.empty())
-    return "renaming to '" + NewName.str() +
-           "' would make the behavior wrong: " + Error;
-
-  // The cursor's place in the renamed text: moved by the renamed places
-  // before it in its file.
-  unsigned Buffer = A.C->SM.FindBufferContainingLoc(Loc);
-  if (!Buffer)
-    return "";
-  std::string CursorPath = A.getPath(Buffer);
-  int64_t Offset =
-      Loc.getPointer() - A.C->SM.getMemoryBuffer(Buffer)->getBufferStart();
-  const Location *Cursor = nullptr;
-  for (const Location &L : Occurrences)
-    if (L.Path == CursorPath && L.Begin <= Offset && Offset <= L.End)
-      Cursor = &L;
-  if (!Cursor)
-    return "";
-  int64_t NewOffset = Cursor->Begin;
-  for (const Location &L : Occurrences)
-    if (L.Path == CursorPath && L.End <= Cursor->Begin)
-      NewOffset += int64_t(NewName.size()) - int64_t(L.End - L.Begin);
-  unsigned NewBuffer = After->getBuffer(CursorPath);
-  if (!NewBuffer ||
-      size_t(NewOffset) > After->C->SM.getMemoryBuffer(NewBuffer)->getBufferSize())
-    return "";
-  llvm::SMLoc NewLoc = llvm::SMLoc::getFromPointer(
-      After->C->SM.getMemoryBuffer(NewBuffer)->getBufferStart() + NewOffset);
-  size_t Was = findOccurrences({&A}, A, Loc, true).size();
-  size_t Is = findOccurrences({After.get()}, *After, NewLoc, true).size();
-  if (Was != Is)
-    return "renaming to '" + NewName.str() + "' would change what names " +
-           "refer to: the name would be written in " + std::to_string(Is) +
-           (Is == 1 ? " place" : " places") + " of this behavior instead of " +
-           std::to_string(Was) +
-           " (it would shadow, or be shadowed by, another declaration)";
-  return "";
 }
 
 int lsp::runServer(const ServerOptions &Opts, int InFd, int OutFd) {
