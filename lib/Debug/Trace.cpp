@@ -567,6 +567,36 @@ debug::decodeTraceRecord(const DebugTables &T,
   return Records;
 }
 
+llvm::Expected<LoggedCycle>
+debug::decodeLoggedCycle(const DebugTables &T, uint32_t Cycle,
+                         llvm::ArrayRef<uint8_t> Record) {
+  namespace endian = llvm::support::endian;
+  if (Record.size() != T.RecordSize)
+    return llvm::createStringError(
+        llvm::inconvertibleErrorCode(),
+        "cycle " + llvm::Twine(Cycle) + ": a trace record of " +
+            llvm::Twine(Record.size()) + " bytes, but the object's are " +
+            llvm::Twine(T.RecordSize));
+  LoggedCycle C;
+  C.Cycle = Cycle;
+  auto Records = decodeTraceRecord(T, Record);
+  if (!Records)
+    return llvm::createStringError(llvm::inconvertibleErrorCode(),
+                                   "cycle " + llvm::Twine(Cycle) + ": " +
+                                       llvm::toString(Records.takeError()));
+  C.Records = std::move(*Records);
+  if (T.BudgetWord) {
+    C.BudgetLoop = endian::read32le(Record.data() + *T.BudgetWord);
+    if (C.BudgetLoop > T.Loops.size())
+      return llvm::createStringError(
+          llvm::inconvertibleErrorCode(),
+          "cycle " + llvm::Twine(Cycle) + ": the budget ran out in loop " +
+              llvm::Twine(C.BudgetLoop) + ", but there are " +
+              llvm::Twine(T.Loops.size()));
+  }
+  return C;
+}
+
 llvm::Expected<std::vector<LoggedCycle>>
 debug::parseTraceLog(llvm::StringRef Bytes, const DebugTables &T) {
   namespace endian = llvm::support::endian;
@@ -580,24 +610,14 @@ debug::parseTraceLog(llvm::StringRef Bytes, const DebugTables &T) {
     if (Bytes.size() - Pos < 4 + T.RecordSize)
       return Fail("the log ends inside a cycle (a cycle is 4 + " +
                   llvm::Twine(T.RecordSize) + " bytes)");
-    LoggedCycle C;
-    C.Cycle = endian::read32le(Bytes.data() + Pos);
     auto Record = llvm::ArrayRef(
         reinterpret_cast<const uint8_t *>(Bytes.data()) + Pos + 4,
         T.RecordSize);
-    auto Records = decodeTraceRecord(T, Record);
-    if (!Records)
-      return Fail("cycle " + llvm::Twine(C.Cycle) + ": " +
-                  llvm::toString(Records.takeError()));
-    C.Records = std::move(*Records);
-    if (T.BudgetWord) {
-      C.BudgetLoop = endian::read32le(Record.data() + *T.BudgetWord);
-      if (C.BudgetLoop > T.Loops.size())
-        return Fail("cycle " + llvm::Twine(C.Cycle) + ": the budget ran out "
-                    "in loop " + llvm::Twine(C.BudgetLoop) + ", but there are " +
-                    llvm::Twine(T.Loops.size()));
-    }
-    Cycles.push_back(std::move(C));
+    llvm::Expected<LoggedCycle> C =
+        decodeLoggedCycle(T, endian::read32le(Bytes.data() + Pos), Record);
+    if (!C)
+      return Fail(llvm::toString(C.takeError()));
+    Cycles.push_back(std::move(*C));
     Pos += 4 + T.RecordSize;
   }
   return Cycles;

@@ -84,16 +84,27 @@ bool debug::decodeTraceLog(const TraceDecodeOptions &Opts,
   std::optional<DebugTables> Tables = readObjectTables(Opts.ObjectPath, Diags);
   if (!Tables)
     return false;
+  // A flight log starts as every binary log does.
+  auto Head = llvm::MemoryBuffer::getFileSlice(Opts.LogPath, 6, 0);
+  bool Flight = Head && (*Head)->getBuffer() == llvm::StringRef("BSLOG\x1a", 6);
   std::optional<std::vector<LoggedCycle>> Cycles =
-      readTraceLog(Opts.LogPath, *Tables, Diags);
+      Flight && Opts.ReadFlightLog
+          ? Opts.ReadFlightLog(Opts.LogPath, *Tables, Diags)
+          : readTraceLog(Opts.LogPath, *Tables, Diags);
   if (!Cycles)
     return false;
-  TraceFilter Traces(Opts.OnlyChanges ? TraceMode::Changes
-                                      : TraceMode::EveryCycle);
+  // --changes per robot: each robot's line against its own before.
+  std::vector<TraceFilter> Traces;
   for (const LoggedCycle &Cycle : *Cycles) {
+    size_t K = Cycle.Robot < 0 ? 0 : size_t(Cycle.Robot);
+    while (Traces.size() <= K)
+      Traces.emplace_back(Opts.OnlyChanges ? TraceMode::Changes
+                                           : TraceMode::EveryCycle);
     std::string Trace = formatTraceLine(*Tables, Cycle.Records);
-    if (Traces.shouldPrint(Trace))
-      OS << "cycle " << Cycle.Cycle << ": " << Trace << "\n";
+    if (Traces[K].shouldPrint(Trace))
+      OS << "cycle " << Cycle.Cycle
+         << (Cycle.Robot < 0 ? "" : ", robot " + std::to_string(Cycle.Robot))
+         << ": " << Trace << "\n";
     // Printed whether or not its cycle's line is: it names the cycle.
     std::string Budget = formatBudgetLine(*Tables, Cycle);
     if (!Budget.empty())

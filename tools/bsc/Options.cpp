@@ -486,7 +486,9 @@ tool::CommandLine tool::readCommandLine() {
   CL.Compile = getCompileOptions();
   CL.Run = getRunOptions();
   CL.Repl = getReplOptions();
-  CL.TraceDecode = {TraceObject, TraceLog, TraceChangesFlag};
+  CL.TraceDecode.ObjectPath = TraceObject;
+  CL.TraceDecode.LogPath = TraceLog;
+  CL.TraceDecode.OnlyChanges = TraceChangesFlag;
   CL.Timeline = {{TimelineRecords.begin(), TimelineRecords.end()},
                  TimelineObject,
                  TimelineOutput,

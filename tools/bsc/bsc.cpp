@@ -25,6 +25,7 @@
 //===----------------------------------------------------------------------===//
 #include "Options.h"
 #include "bsc/Driver/CommandLine.h"
+#include "bsc/Run/Run.h"
 #include "llvm/Support/InitLLVM.h"
 #include "llvm/Support/raw_ostream.h"
 
@@ -79,6 +80,7 @@ const Subcommand Subcommands[] = {
      }},
     {&TraceDecodeCmd, false,
      [](Compilation &C, CommandLine &CL, const char *) {
+       CL.TraceDecode.ReadFlightLog = readFlightLogTraces;
        debug::decodeTraceLog(CL.TraceDecode, C.Diags, llvm::outs());
        return finish(C);
      }},

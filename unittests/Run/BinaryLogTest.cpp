@@ -9,6 +9,8 @@
 //===----------------------------------------------------------------------===//
 #include "bsc/JIT/Boundary.h"
 #include "bsc/Run/BinaryLog.h"
+#include "bsc/Run/Run.h"
+#include "llvm/Support/FileSystem.h"
 #include "llvm/Support/raw_ostream.h"
 #include "gtest/gtest.h"
 
@@ -172,3 +174,56 @@ TEST(BinaryLogTest, ErrorsNameTheByteAndTheCycle) {
                               " (after cycle 9): a record of unknown kind 90");
 }
 } // namespace
+
+/// A flight log's trace records, as `bsc trace-decode` reads them
+/// (readFlightLogTraces): a team's robots apart; a log without them is an
+/// error.
+TEST(BinaryLogTest, FlightLogTracesDecodeByRobot) {
+  // One task with one yield (line 3): slot 1 waits there, 0 is inactive.
+  debug::DebugTables Tables;
+  debug::DebugTables::Task Task;
+  Task.Name = "M::t";
+  Task.ShortName = "t";
+  Task.File = "M.bs";
+  Task.YieldLines = {3};
+  Task.YieldValues = {1};
+  Tables.Tasks = {Task};
+  Tables.RecordSize = 1;
+
+  llvm::SmallString<128> Path;
+  ASSERT_FALSE(llvm::sys::fs::createTemporaryFile("flight", "bslog", Path));
+  {
+    std::error_code EC;
+    llvm::raw_fd_ostream OS(Path, EC);
+    ASSERT_FALSE(EC);
+    BinaryLogWriter W(OS, header(2), /*Compress=*/true);
+    Bytes In(8), Out(4);
+    for (uint32_t C = 1; C <= 3; ++C)
+      for (unsigned R = 0; R < 2; ++R) // Robot 1 runs from cycle 2 on.
+        W.writeCycle(R, C, In, Out, CycleRecord(), Out,
+                     Bytes{uint8_t(R == 1 && C < 2 ? 0 : 1)});
+  }
+  DiagnosticEngine Diags;
+  auto Cycles = readFlightLogTraces(Path, Tables, Diags);
+  ASSERT_TRUE(Cycles) << Diags.getDiagnostics().size();
+  ASSERT_EQ(Cycles->size(), 6u);
+  EXPECT_EQ((*Cycles)[1].Robot, 1);
+  EXPECT_EQ((*Cycles)[1].Cycle, 1u);
+  EXPECT_TRUE((*Cycles)[1].Records.empty());
+  EXPECT_EQ(debug::formatTraceLine(Tables, (*Cycles)[3].Records),
+            "t [running, M.bs:3]");
+
+  // Without trace records: the error names the cycle.
+  {
+    std::error_code EC;
+    llvm::raw_fd_ostream OS(Path, EC);
+    ASSERT_FALSE(EC);
+    BinaryLogWriter W(OS, header(1), /*Compress=*/false);
+    Bytes In(8), Out(4);
+    W.writeCycle(0, 1, In, Out, CycleRecord(), Out);
+  }
+  EXPECT_FALSE(readFlightLogTraces(Path, Tables, Diags));
+  ASSERT_EQ(Diags.getDiagnostics().size(), 1u);
+  EXPECT_EQ(Diags.getDiagnostics()[0].Kind, diag::err_flight_no_trace);
+  llvm::sys::fs::remove(Path);
+}

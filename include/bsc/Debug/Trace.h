@@ -204,7 +204,14 @@ struct LoggedCycle {
   std::vector<Activation> Records;
   /// With a cycle budget: 1 + the loop that ran out in this cycle; 0: none.
   uint32_t BudgetLoop = 0;
+  /// A team's flight log: the robot (from 0); -1 in one robot's log.
+  int Robot = -1;
 };
+/// One cycle's trace record, decoded as a log's cycle `Cycle` (its
+/// activations and budget word).
+llvm::Expected<LoggedCycle> decodeLoggedCycle(const DebugTables &T,
+                                              uint32_t Cycle,
+                                              llvm::ArrayRef<uint8_t> Record);
 /// `cycle 7 ran out of its budget of 1000 loop passes in the loop of
 /// 'Kick::approach' at Kick.bs:12`: a logged cycle's budget, or "".
 std::string formatBudgetLine(const DebugTables &T, const LoggedCycle &C);

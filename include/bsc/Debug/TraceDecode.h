@@ -11,6 +11,7 @@
 
 #include "bsc/Basic/Diagnostic.h"
 #include "bsc/Debug/Trace.h"
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -28,10 +29,18 @@ struct TraceDecodeOptions {
   std::string LogPath;
   /// --changes: only the cycles whose line differs from the one before.
   bool OnlyChanges = false;
+  /// Set by the driver: reads the trace records of a flight log (a
+  /// binary log, bsc/Run/BinaryLog.h, which this library does not read);
+  /// reports and returns std::nullopt.
+  std::function<std::optional<std::vector<LoggedCycle>>(
+      llvm::StringRef Path, const DebugTables &Tables,
+      DiagnosticEngine &Diags)>
+      ReadFlightLog;
 };
 
-/// Prints each cycle of the log as `cycle N: <trace line>` to `OS`, with
-/// the cycle's budget line if a loop ran out of it. Reports an unreadable
+/// Prints each cycle of the log (a robot's trace log, or the trace records
+/// of a flight log) as `cycle N: <trace line>` (`cycle N, robot K:` in a
+/// team's) to `OS`, with the cycle's budget line if a loop ran out of it. Reports an unreadable
 /// object or log, an object without tables and a malformed log into
 /// `Diags` and returns false.
 bool decodeTraceLog(const TraceDecodeOptions &Opts, DiagnosticEngine &Diags,

@@ -371,6 +371,14 @@ BinaryLogHeader logHeader(const Compilation &C, const LoadedBehavior &L,
 void logCycle(BinaryLogWriter &Log, unsigned Robot, const LoadedBehavior &L,
               const BehaviorSession &S);
 
+/// `bsc trace-decode` of a flight log (TraceDecodeOptions::ReadFlightLog):
+/// each cycle's trace record, every robot's in a team's log. A log without
+/// trace records (an object built without --instrument) or a damaged one
+/// is reported; std::nullopt then.
+std::optional<std::vector<debug::LoggedCycle>>
+readFlightLogTraces(llvm::StringRef Path, const debug::DebugTables &Tables,
+                    DiagnosticEngine &Diags);
+
 /// `bsc convert`: the recording or binary log `From` written to `To` in
 /// the other format (a binary log if `To` ends in `.bslog`), cycle by
 /// cycle, without running a cycle; `S` (a session of `L`) lends its
