@@ -179,7 +179,6 @@ public:
     }
     return *Builders[K];
   }
-  Run &run(unsigned K) { return *Runs[K]; }
   /// Finishes the runs into `Out`; false after reporting a file without
   /// cycles, or a robot without any below one with some.
   bool finish(Compilation &C, std::vector<Run> &Out) {
