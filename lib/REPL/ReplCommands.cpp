@@ -264,8 +264,6 @@ void Repl::cmdRecord(llvm::StringRef Args, llvm::SMLoc Loc) {
 }
 
 void Repl::cmdReplay(llvm::StringRef Args, llvm::SMLoc Loc) {
-  if (!oneRobot(":replay", Loc))
-    return;
   if (Args.empty()) {
     C->Diags.report(Loc, diag::err_repl_missing_argument)
         << "replay" << "a file name";
@@ -275,15 +273,22 @@ void Repl::cmdReplay(llvm::StringRef Args, llvm::SMLoc Loc) {
   R.ReplayPath = Args.str();
   R.CycleLimitMs = Opts.CycleLimitMs;
   std::string Why;
+  // After each cycle of the whole team (a team's recording has a line
+  // per robot and cycle, and as many robots as the session).
   R.StopAfterCycle = [&] {
     recordLiveCycle();
     Why = checkBreakpoints();
     return !Why.empty();
   };
+  // Each robot's conditions, for `:why`, before the next robot's cycle.
+  R.TakeCycle = [&](unsigned K, BehaviorSession &) {
+    keepExplainLog(K);
+    return true;
+  };
   forgetFuture(); // The recording's inputs replace the history's.
   uint32_t Before = S->getCycle();
   rebaseWatches();
-  bool OK = runBehavior(*C, *L, *S, R, OS);
+  bool OK = runTeam(*C, *L, *Robots, R, OS);
   flushDiagnostics();
   if (S->getCycle() == Before) // The file was refused before a cycle ran.
     OS << "replayed no cycle\n";

@@ -127,7 +127,8 @@ private:
   void cmdQuiet(llvm::StringRef Args, llvm::SMLoc Loc);
   void cmdRobot(llvm::StringRef Args, llvm::SMLoc Loc);
   /// Reports command `Name` for a team, which it cannot follow (it loads
-  /// one state: `:reload`, `:replay`); true for one robot.
+  /// one behavior into one state: `:reload`, `requires`); true for one
+  /// robot.
   bool oneRobot(llvm::StringRef Name, llvm::SMLoc Loc);
   /// "cycle N" and, for a team, ", robot K".
   std::string cycleName(uint32_t Cycle, unsigned Robot) const;
@@ -155,8 +156,8 @@ private:
   /// Puts robot K back as the live run left `Cycle` and forgets the cycles
   /// after it.
   void endHistoryAt(unsigned K, uint32_t Cycle);
-  /// A cycle that ran live outside runNextCycle (`:replay`) enters the
-  /// history.
+  /// A cycle of every robot that ran outside runNextCycle (`:replay`)
+  /// enters their histories.
   void recordLiveCycle();
   /// New inputs from here on (`:replay` in the past, a line at the prompt):
   /// every robot's cycles after the present are forgotten, since the world

@@ -178,8 +178,10 @@ uint32_t Repl::restoreFromHistory(unsigned K, uint32_t Cycle, bool Before) {
 }
 
 void Repl::recordLiveCycle() {
-  if (History)
-    History->recordCycle(S->getLastCalls(), getBlocks(*S));
+  for (unsigned K = 0; K < Histories.size(); ++K) {
+    BehaviorSession &R = (*Robots)[K];
+    Histories[K]->recordCycle(R.getLastCalls(), getBlocks(R));
+  }
 }
 
 void Repl::forgetFuture() {

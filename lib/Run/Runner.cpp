@@ -246,7 +246,7 @@ bool CycleRunner::runCycle(unsigned K, const ReplayLine *Line) {
     return false;
   }
   BehaviorSession::Outcome O;
-  if (Opts.Explain && isTeam())
+  if (isTeam())
     startExplainLog(L); // Not the robot before's conditions too.
   if (Line && Exact) {
     CycleRecord Calls;
