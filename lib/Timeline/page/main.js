@@ -209,8 +209,9 @@ function init(data) {
   // The files drawn: a team's is one, whatever its robots.
   const files = S.runs.filter((r, i) => i === 0 || r.record !== S.runs[i - 1].record);
   document.title = document.title || files.map((r) => r.name).join(' vs ');
+  const robots = (r) => S.runs.filter((o) => o.record === r.record).length;
   const names = files.map((r) => (S.records > 1 ? runLetter(r.record) + ': ' : '') + r.name +
-    (r.robot !== null ? ' (' + S.runs.filter((o) => o.record === r.record).length + ' robots)' : ''));
+    (r.robot !== null ? ' (' + robots(r) + (robots(r) === 1 ? ' robot)' : ' robots)') : ''));
   $('title-text').textContent = names.join('  \u00b7  ');
   buildRows();
   buildLaneLabels();
