@@ -30,17 +30,15 @@ void Repl::cmdWhy(llvm::StringRef Args, llvm::SMLoc Loc) {
   uint32_t Cycle = S->getCycle();
   std::string Text;
   llvm::raw_string_ostream Why(Text);
-  // The JIT's log is of the last robot's cycle; each robot's is kept.
-  const auto *Log =
-      ExplainLogs.empty() || ExplainLogs[Selected].empty()
-          ? nullptr
-          : reinterpret_cast<const ExplainLogHeader *>(
-                ExplainLogs[Selected].data());
-  if (!ExplainLogs.empty() && !Log) {
-    OS << "the conditions of " << cycleName(Cycle, Selected)
-       << " were not recorded\n";
-    return;
-  }
+  // The JIT's log is of the last robot's cycle; each robot's is kept (none
+  // kept: a log of no cycle, which is not this one's).
+  static const ExplainLogHeader NoLog{};
+  const ExplainLogHeader *Log = nullptr;
+  if (!ExplainLogs.empty())
+    Log = ExplainLogs[Selected].empty()
+              ? &NoLog
+              : reinterpret_cast<const ExplainLogHeader *>(
+                    ExplainLogs[Selected].data());
   switch (explainLastCycle(*L, *Values, *S, Wanted, Why, Log)) {
   case WhyOutcome::NoCycle:
     OS << "no cycle has run yet\n";

@@ -1,9 +1,11 @@
 """Writes and compares the REPL sessions of test/REPL/boundary.test.
 
-  sessions.py write N DIR
+  sessions.py write N DIR [ROBOT]
       DIR/live.txt steps N cycles one at a time; DIR/travel.txt runs N
       cycles, then goes to every cycle (forwards, then backwards with
-      :back) and asks the same questions there.
+      :back) and asks the same questions there. With ROBOT (a session of
+      `--robots`), both ask robot ROBOT (`:robot`), and the travel leaves
+      out the :until, whose cycle is the one robot's.
   sessions.py compare LIVE.out TRAVEL.out
       Every answer of the travel session about cycle c equals the live
       session's about cycle c; its :history lines equal the changes of the
@@ -24,13 +26,14 @@ def ask(c):
     return "%d + %d\n" % (1000000, c) + "".join(q + "\n" for q in QUESTIONS)
 
 
-def write(n, out):
+def write(n, out, robot=None):
+    start = ":robot %d\n" % robot if robot is not None else ""
     with open(out + "/live.txt", "w") as f:
-        f.write(ask(0))
+        f.write(start + ask(0))
         for c in range(1, n + 1):
             f.write(":step\n" + ask(c))
     with open(out + "/travel.txt", "w") as f:
-        f.write(":run %d\n" % n)
+        f.write(start + ":run %d\n" % n)
         for q in HISTORY:
             f.write(":history %s\n" % q)
         for c in range(1, n + 1):
@@ -39,7 +42,8 @@ def write(n, out):
         for c in range(n - 1, 0, -1):
             f.write(":back\n" + ask(c))
         # :until and :run in the past re-run the history too.
-        f.write(":goto 1\n:until Game::striker.state == 3\n" + ask(14))
+        if robot is None:
+            f.write(":goto 1\n:until Game::striker.state == 3\n" + ask(14))
         f.write(":goto 2\n:run 5\n" + ask(7))
 
 
@@ -55,7 +59,8 @@ def blocks(path):
             found.setdefault(int(m.group(1)), []).append(cur)
         elif cur is None:
             head.append(line)
-        elif not re.match(r"cycle \d+: (output|game \[)|stopped |ran ", line):
+        elif not re.match(r"cycle \d+(, robot \d+)?: (output|game \[)"
+                          r"|stopped |ran |robot \d+ of ", line):
             cur.append(line)
     return found, head
 
@@ -89,6 +94,7 @@ def compare(live_path, travel_path):
 
 if __name__ == "__main__":
     if sys.argv[1] == "write":
-        write(int(sys.argv[2]), sys.argv[3])
+        write(int(sys.argv[2]), sys.argv[3],
+              int(sys.argv[4]) if len(sys.argv) > 4 else None)
     else:
         sys.exit(compare(sys.argv[2], sys.argv[3]))
