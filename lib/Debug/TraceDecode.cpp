@@ -1,6 +1,7 @@
 //===- TraceDecode.cpp - a robot's trace log as trace lines ---------------===//
 #include "bsc/Debug/TraceDecode.h"
 #include "bsc/AST/Layout.h"
+#include "bsc/Basic/ByteCoding.h"
 #include "bsc/Debug/Trace.h"
 #include "llvm/Object/ObjectFile.h"
 #include "llvm/Support/MemoryBuffer.h"
@@ -84,11 +85,8 @@ bool debug::decodeTraceLog(const TraceDecodeOptions &Opts,
   std::optional<DebugTables> Tables = readObjectTables(Opts.ObjectPath, Diags);
   if (!Tables)
     return false;
-  // A flight log starts as every binary log does.
-  auto Head = llvm::MemoryBuffer::getFileSlice(Opts.LogPath, 6, 0);
-  bool Flight = Head && (*Head)->getBuffer() == llvm::StringRef("BSLOG\x1a", 6);
   std::optional<std::vector<LoggedCycle>> Cycles =
-      Flight && Opts.ReadFlightLog
+      isBinaryLogFile(Opts.LogPath) && Opts.ReadFlightLog
           ? Opts.ReadFlightLog(Opts.LogPath, *Tables, Diags)
           : readTraceLog(Opts.LogPath, *Tables, Diags);
   if (!Cycles)

@@ -29,8 +29,8 @@ using namespace bsc::binlog;
 static constexpr uint32_t MaxBlockBytes = 64u << 20;
 
 bool bsc::isBinaryLog(llvm::StringRef Bytes) {
-  return Bytes.size() >= sizeof Magic &&
-         std::memcmp(Bytes.data(), Magic, sizeof Magic) == 0;
+  return Bytes.size() >= sizeof BinaryLogMagic &&
+         std::memcmp(Bytes.data(), BinaryLogMagic, sizeof BinaryLogMagic) == 0;
 }
 
 //===----------------------------------------------------------------------===//
@@ -368,7 +368,7 @@ void putRuns(std::vector<unsigned char> &Out,
 BinaryLogWriter::BinaryLogWriter(llvm::raw_ostream &OS, BinaryLogHeader H,
                                  bool Compress)
     : OS(OS), Header(std::move(H)), Compress(Compress) {
-  OS.write(Magic, sizeof Magic);
+  OS.write(BinaryLogMagic, sizeof BinaryLogMagic);
   char Version[2];
   llvm::support::endian::write16le(Version, binlog::Version);
   OS.write(Version, 2);

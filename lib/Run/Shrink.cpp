@@ -48,7 +48,7 @@ public:
   /// conversion is read) and replays it; false after reporting (also if
   /// it does not fail on an output).
   llvm::Expected<bool> start(llvm::StringRef Path, llvm::StringRef Name);
-  /// Shrinks it; Window and Keep say what is left.
+  /// Shrinks it; Start, End and Keep say what is left.
   llvm::Expected<bool> shrink();
   /// Writes the shrunk log; false after reporting.
   bool write(llvm::StringRef Path);

@@ -290,11 +290,6 @@ bool timeline::readRecordingBuffer(Compilation &C, unsigned BufferID,
   return File->finish(C, Runs);
 }
 
-bool timeline::isBinaryLogFile(llvm::StringRef Path) {
-  auto Head = llvm::MemoryBuffer::getFileSlice(Path, 6, 0);
-  return Head && (*Head)->getBuffer() == llvm::StringRef("BSLOG\x1a", 6);
-}
-
 bool timeline::readReplayedLog(Compilation &C, const TimelineOptions &Opts,
                                llvm::StringRef Path, std::vector<Run> &Runs) {
   if (!Opts.ReplayLog) {

@@ -1,6 +1,7 @@
 //===- Timeline.cpp - bsc timeline: read the runs, compare, write ---------===//
 #include "bsc/Timeline/Timeline.h"
 #include "TimelineImpl.h"
+#include "bsc/Basic/ByteCoding.h"
 #include "bsc/Basic/Output.h"
 #include "bsc/Debug/TraceDecode.h"
 #include "bsc/Frontend/Frontend.h"

@@ -171,8 +171,6 @@ bool readRecordingBuffer(Compilation &C, unsigned BufferID,
 /// A binary log, by replaying it (TimelineOptions::ReplayLog).
 bool readReplayedLog(Compilation &C, const TimelineOptions &Opts,
                      llvm::StringRef Path, std::vector<Run> &Runs);
-/// Whether the file starts as a binary log does.
-bool isBinaryLogFile(llvm::StringRef Path);
 /// A robot's trace log, with the tables of an instrumented object.
 bool readRobotLog(Compilation &C, const debug::DebugTables &Tables,
                   llvm::StringRef LogPath, std::vector<Run> &Runs);

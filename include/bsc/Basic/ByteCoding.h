@@ -10,10 +10,24 @@
 
 #include "llvm/ADT/ArrayRef.h"
 #include "llvm/Support/LEB128.h"
+#include "llvm/Support/MemoryBuffer.h"
 #include <cstdint>
 #include <vector>
 
 namespace bsc {
+
+/// The first bytes of every binary log (bsc/Run/BinaryLog.h), then its
+/// version.
+inline constexpr char BinaryLogMagic[6] = {'B', 'S', 'L', 'O', 'G', 0x1a};
+
+/// Whether the file at `Path` starts as a binary log does (a robot's
+/// flight log, a `.bslog` recording), whatever its name: for the readers
+/// that take either a binary log or their own format.
+inline bool isBinaryLogFile(llvm::StringRef Path) {
+  auto Head = llvm::MemoryBuffer::getFileSlice(Path, sizeof BinaryLogMagic, 0);
+  return Head && (*Head)->getBuffer() ==
+                     llvm::StringRef(BinaryLogMagic, sizeof BinaryLogMagic);
+}
 
 /// Appends `V` as unsigned LEB128.
 inline void appendULEB(std::vector<unsigned char> &Out, uint64_t V) {

@@ -7,7 +7,8 @@
 // as the changes since the cycle before (and whole in key cycles). The
 // format is documented in docs/repl.md, "The robot's log"; in short:
 //
-//   file    = magic "BSLOG" 0x1a, uint16 version (1), block...
+//   file    = magic "BSLOG" 0x1a (BinaryLogMagic, Basic/ByteCoding.h),
+//             uint16 version (1), block...
 //   block   = uint32 stored size, uint32 raw size, uint8 codec (0 raw,
 //             1 zstd), 3 zero bytes, stored bytes; the raw bytes are
 //             records, and no record spans two blocks
@@ -35,8 +36,6 @@ namespace bsc {
 struct CycleRecord;
 
 namespace binlog {
-/// The first 6 bytes of every log, then the version.
-inline constexpr char Magic[6] = {'B', 'S', 'L', 'O', 'G', 0x1a};
 inline constexpr unsigned Version = 1;
 inline constexpr size_t FileHeaderSize = 8, BlockHeaderSize = 12;
 enum Codec : uint8_t { CodecRaw = 0, CodecZstd = 1 };
