@@ -436,6 +436,7 @@ int bsc::replCommand(Compilation &C, const FrontendOptions &FOpts,
   OK &= checkWorldOutputOption(C, Opts.WorldLibrary, Opts.WorldOutput,
                                !FOpts.BindObjects.empty());
   OK &= parseRobots(C.Diags, Opts.Robots, ROpts.Robots);
+  OK &= parseCycleBudget(C.Diags, Opts.CycleBudget, ROpts.Load.CycleBudget);
   if (!OK)
     return finishCompilation(C);
   ROpts.Frontend = FOpts;

@@ -10,7 +10,7 @@
 #define BSC_LIB_LSP_SERVERIMPL_H
 
 #include "Features.h"
-#include "Transport.h"
+#include "bsc/Basic/Transport.h"
 #include "bsc/LSP/Server.h"
 #include <set>
 

@@ -27,7 +27,7 @@ void CycleHistory::copyView(Blocks Now,
 }
 
 void CycleHistory::takeSnapshot(uint32_t Cycle, bool Edited, Blocks Now) {
-  Snapshot Snap{Cycle, Edited, {}};
+  Snapshot Snap{Cycle, Edited, false, {}};
   copyView(Now, Snap.Bytes);
   Snapshots.push_back(std::move(Snap));
 }
@@ -180,7 +180,12 @@ void CycleHistory::applyInput(uint32_t Cycle, void *Input) const {
   }
 }
 
-void CycleHistory::keepPresent(uint32_t Cycle, Blocks Now) {
+bool CycleHistory::isBroken(uint32_t Cycle) const {
+  const Snapshot &Snap = snapshotAtOrBefore(Cycle);
+  return Snap.Cycle == Cycle && Snap.Broken;
+}
+
+void CycleHistory::keepPresent(uint32_t Cycle, Blocks Now, bool Broken) {
   assert(Cycle >= First && Cycle <= Last && "outside the history");
   size_t Index = Cycle - First;
   Starts.resize(Index + 1);
@@ -194,6 +199,7 @@ void CycleHistory::keepPresent(uint32_t Cycle, Blocks Now) {
   while (!Snapshots.empty() && Snapshots.back().Cycle >= Cycle)
     Snapshots.pop_back();
   takeSnapshot(Cycle, /*Edited=*/true, Now);
+  Snapshots.back().Broken = Broken;
   copyView(Now, LastView);
   CacheValid = false;
 }

@@ -52,13 +52,16 @@ Repl::~Repl() {
       close(Fd);
 }
 
+bool Repl::colors() const {
+  return &Err == &llvm::errs() && llvm::WithColor(llvm::errs()).colorsEnabled();
+}
+
 void Repl::flushDiagnostics() {
   OS.flush();
   if (!C)
     return;
-  printDiagnostics(C->SM, C->Diags.getDiagnostics(), llvm::errs(),
-                   llvm::WithColor(llvm::errs()).colorsEnabled());
-  llvm::errs().flush();
+  printDiagnostics(C->SM, C->Diags.getDiagnostics(), Err, colors());
+  Err.flush();
   C->Diags.clear();
 }
 
@@ -66,8 +69,7 @@ std::unique_ptr<Compilation> Repl::compileFiles() {
   auto NewC = std::make_unique<Compilation>();
   if (!runFrontend(*NewC, Frontend) ||
       !findProgramEntry(*NewC, Opts.EntryName)) {
-    printDiagnostics(NewC->SM, NewC->Diags.getDiagnostics(), llvm::errs(),
-                     llvm::WithColor(llvm::errs()).colorsEnabled());
+    printDiagnostics(NewC->SM, NewC->Diags.getDiagnostics(), Err, colors());
     return nullptr;
   }
   return NewC;
@@ -107,14 +109,14 @@ bool Repl::load(std::unique_ptr<Compilation> NewC) {
     return false;
   }
   if (!*Loaded) {
-    printDiagnostics(NewC->SM, NewC->Diags.getDiagnostics(), llvm::errs());
+    printDiagnostics(NewC->SM, NewC->Diags.getDiagnostics(), Err, colors());
     return false;
   }
   auto NewTeam = Team::start(*NewC, **Loaded, Opts.Robots);
   if (!NewTeam || !*NewTeam) {
     if (!NewTeam)
       reportInternalError(NewTeam.takeError());
-    printDiagnostics(NewC->SM, NewC->Diags.getDiagnostics(), llvm::errs());
+    printDiagnostics(NewC->SM, NewC->Diags.getDiagnostics(), Err, colors());
     return false;
   }
   std::unique_ptr<LoadedBehavior> NewL = std::move(*Loaded);
@@ -209,14 +211,14 @@ bool Repl::attachWorld() {
   if (!Opts.WorldOutput.empty()) {
     WorldOutputFd = openWorldOutput(*C, Opts.WorldOutput);
     if (WorldOutputFd < 0) {
-      printDiagnostics(C->SM, C->Diags.getDiagnostics(), llvm::errs());
+      printDiagnostics(C->SM, C->Diags.getDiagnostics(), Err, colors());
       return false;
     }
     Robots->setWorldOutput(WorldOutputFd);
   }
   if (!Opts.WorldLibrary.empty() &&
       !Robots->attachWorld(*C, *L, Opts.WorldLibrary, Opts.CycleLimitMs)) {
-    printDiagnostics(C->SM, C->Diags.getDiagnostics(), llvm::errs());
+    printDiagnostics(C->SM, C->Diags.getDiagnostics(), Err, colors());
     return false;
   }
   return true;
@@ -297,17 +299,10 @@ std::optional<CompiledLine> Repl::compileLine(llvm::StringRef Text) {
                           Variables);
 }
 
-std::string Repl::describe(const Type *T, const void *Addr) {
-  return "(" + T->getName().str() + ") " +
-         formatValue(T, Values->read(T, Addr));
-}
-
-void Repl::evaluate(llvm::StringRef Line) {
+std::optional<LineValue> Repl::runLine(llvm::StringRef Line) {
   std::optional<CompiledLine> R = compileLine(Line);
-  if (!R) {
-    flushDiagnostics();
-    return;
-  }
+  if (!R)
+    return std::nullopt;
   std::vector<unsigned char> Before = copyBlocks();
   BehaviorSession::Outcome O = S->runGuarded(R->Fn, Opts.CycleLimitMs);
   noteEdits(Before);
@@ -315,11 +310,23 @@ void Repl::evaluate(llvm::StringRef Line) {
     flushDiagnostics();
     OS << "the line was stopped; the state is as it left it\n";
     destroySlot(R->Result);
-    return;
+    return std::nullopt;
   }
-  if (R->Result.Ptr)
-    OS << describe(R->Result.Ty, R->Result.Ptr) << "\n";
+  LineValue V;
+  if (R->Result.Ptr) {
+    V.Ty = R->Result.Ty;
+    V.Value = Values->read(R->Result.Ty, R->Result.Ptr);
+  }
   destroySlot(R->Result);
+  return V;
+}
+
+void Repl::evaluate(llvm::StringRef Line) {
+  std::optional<LineValue> V = runLine(Line);
+  flushDiagnostics();
+  if (V && V->Ty)
+    OS << "(" << V->Ty->getName() << ") " << formatValue(V->Ty, V->Value)
+       << "\n";
 }
 
 bool Repl::handleLine(llvm::StringRef Line) {

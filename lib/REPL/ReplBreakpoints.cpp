@@ -3,8 +3,11 @@
 // Breakpoints are checked after each cycle (a cycle is the unit the robot
 // runs; the state between cycles is all there is to see), against the
 // cycle's activations (bsc/Debug/Trace.h): a task that ran, a task waiting
-// at a yield on a line, a task that failed, a watched value that changed;
-// `LOC if EXPR` also needs EXPR true after that cycle. `:until EXPR` stops
+// at a yield on a line, a line that ran (its statements' coverage counters
+// advanced in the cycle), a task that failed, the cycle budget running
+// out, a watched value that changed; `LOC if EXPR` also needs EXPR true
+// after that cycle. The debugger adds hit conditions and logpoints
+// (DebugSession.cpp). `:until EXPR` stops
 // the first cycle after which EXPR is true.
 //
 // Expressions here are probes (ReplProbes.cpp): REPL lines compiled once,
@@ -12,7 +15,11 @@
 //
 //===----------------------------------------------------------------------===//
 #include "ReplImpl.h"
+#include "llvm/ADT/ScopeExit.h"
 #include "llvm/ADT/StringExtras.h"
+#include "llvm/Support/FileSystem.h"
+#include "llvm/Support/Path.h"
+#include <algorithm>
 
 using namespace bsc;
 using namespace bsc::repl;
@@ -22,8 +29,27 @@ using namespace bsc::repl;
 //===----------------------------------------------------------------------===//
 
 std::string Repl::checkBreakpoints() {
+  if (!BreakOnEveryRobot)
+    return checkRobotBreakpoints(Selected, /*Counting=*/true);
+  for (unsigned K = 0; K < Robots->size(); ++K)
+    if (std::string Why = checkRobotBreakpoints(K, true); !Why.empty()) {
+      Selected = K;
+      S = &(*Robots)[K];
+      if (!Histories.empty())
+        History = Histories[K].get();
+      return Why;
+    }
+  return "";
+}
+
+std::string Repl::checkRobotBreakpoints(unsigned K, bool Counting) {
+  // Probes (conditions, watches, logpoints) run against the session S.
+  BehaviorSession *Shown = S;
+  S = &(*Robots)[K];
+  auto Restore = llvm::make_scope_exit([&] { S = Shown; });
   std::vector<debug::Activation> Records =
       debug::takeSnapshot(S->getState(), &S->getInfo());
+  std::vector<std::string> Hits;
   for (Breakpoint &B : Breakpoints) {
     std::string Hit;
     switch (B.K) {
@@ -37,12 +63,25 @@ std::string Repl::checkBreakpoints() {
     case Breakpoint::Line:
       for (const debug::Activation &A : Records) {
         const debug::DebugTables::Task &T = L->Tables.Tasks[A.Task];
-        if (A.Resume > 0 && T.File == B.File &&
-            T.YieldLines[A.Resume - 1] == B.LineNo) {
+        if (A.Resume > 0 && T.YieldLines[A.Resume - 1] == B.LineNo &&
+            isFile(C->SM.getMemoryBuffer(C->SM.FindBufferContainingLoc(
+                                             L->Layout.Tasks[A.Task]
+                                                 .Decl->getLoc()))
+                       ->getBufferIdentifier(),
+                   B.File)) {
           Hit = T.Name + " waits at " + B.Text;
           break;
         }
       }
+      break;
+    case Breakpoint::Code:
+      if (K < RanCounters.size())
+        for (unsigned Counter : B.Counters)
+          if (std::binary_search(RanCounters[K].begin(), RanCounters[K].end(),
+                                 Counter)) {
+            Hit = B.Text + " ran";
+            break;
+          }
       break;
     case Breakpoint::Failure:
       for (const debug::Activation &A : Records)
@@ -51,7 +90,20 @@ std::string Repl::checkBreakpoints() {
           break;
         }
       break;
+    case Breakpoint::Budget:
+      if (const bs_loop_info *Loop =
+              bs_budget_ran_out(S->getState(), &S->getInfo())) {
+        const BehaviorLayout::BudgetLayout::Loop &Where =
+            L->Layout.Budget.Loops[Loop - S->getInfo().budget.loops];
+        auto [Line, Col] = C->SM.getLineAndColumn(Where.Loc);
+        Hit = "the cycle budget ran out in a loop of " +
+              Where.Owner->getQualifiedName() + " (line " +
+              std::to_string(Line) + ")";
+      }
+      break;
     case Breakpoint::Watch: {
+      if (K != Selected)
+        break;
       std::optional<llvm::json::Value> Now = evalProbe(B.Watched);
       if (!Now)
         return "watch " + std::to_string(B.Number) + " was stopped";
@@ -61,6 +113,7 @@ std::string Repl::checkBreakpoints() {
                           ": " + formatValue(T, B.Last) + " -> " +
                           formatValue(T, *Now);
         B.Last = std::move(*Now);
+        LastStop.Breakpoints.push_back(B.Number);
         return Why;
       }
       break;
@@ -70,10 +123,104 @@ std::string Repl::checkBreakpoints() {
       continue;
     if (B.If.Eval && !isTrue(B.If))
       continue;
-    return "breakpoint " + std::to_string(B.Number) + ", " + Hit +
-           (B.If.Eval ? " and " + B.If.Text + " is true" : "");
+    if (Counting) {
+      if (!B.Hits.stopsAt(++B.HitCount))
+        continue;
+      if (B.isLogpoint()) {
+        printLog(B);
+        continue;
+      }
+    } else if (B.isLogpoint()) {
+      continue;
+    }
+    Hits.push_back("breakpoint " + std::to_string(B.Number) + ", " + Hit +
+                   (B.If.Eval ? " and " + B.If.Text + " is true" : ""));
+    LastStop.Breakpoints.push_back(B.Number);
   }
-  return "";
+  // Every breakpoint hit counts, though the first names the stop.
+  return Hits.empty() ? "" : Hits.front();
+}
+
+void Repl::printLog(Breakpoint &B) {
+  std::string Message;
+  for (size_t I = 0; I < B.Log.size(); ++I) {
+    Message += B.Log[I];
+    if (I < B.LogValues.size()) {
+      std::optional<llvm::json::Value> V = evalProbe(B.LogValues[I]);
+      Message += V ? formatValue(B.LogValues[I].Result.Ty, *V) : "<stopped>";
+    }
+  }
+  flushDiagnostics();
+  OS << Message << "\n";
+}
+
+std::optional<HitCondition> HitCondition::parse(llvm::StringRef Text) {
+  Text = Text.trim();
+  HitCondition H;
+  H.Operator = AtLeast;
+  for (auto [Spelling, Op] : {std::pair{">=", AtLeast}, {"==", Equal},
+                              {">", Greater}, {"%", Multiple}})
+    if (Text.consume_front(Spelling)) {
+      H.Operator = Op;
+      break;
+    }
+  Text = Text.trim();
+  if (Text.empty() || !llvm::all_of(Text, llvm::isDigit) ||
+      Text.getAsInteger(10, H.N) || (H.Operator == Multiple && H.N == 0))
+    return std::nullopt;
+  return H;
+}
+
+bool HitCondition::stopsAt(unsigned Hit) const {
+  switch (Operator) {
+  case Every:
+    return true;
+  case AtLeast:
+    return Hit >= N;
+  case Equal:
+    return Hit == N;
+  case Greater:
+    return Hit > N;
+  case Multiple:
+    return Hit % N == 0;
+  }
+  return true;
+}
+
+bool Repl::tracksLines() const {
+  return llvm::any_of(Breakpoints,
+                      [](const Breakpoint &B) { return B.K == Breakpoint::Code; });
+}
+
+bool Repl::isFile(llvm::StringRef BufferName, llvm::StringRef File) {
+  if (!llvm::sys::path::is_absolute(File))
+    return llvm::sys::path::filename(BufferName) == File || BufferName == File;
+  llvm::SmallString<256> A(BufferName), B(File);
+  llvm::sys::fs::make_absolute(A);
+  llvm::sys::path::remove_dots(A, /*remove_dot_dot=*/true);
+  llvm::sys::path::remove_dots(B, /*remove_dot_dot=*/true);
+  if (A == B)
+    return true;
+  llvm::SmallString<256> RealA, RealB;
+  return !llvm::sys::fs::real_path(A, RealA) &&
+         !llvm::sys::fs::real_path(B, RealB) && RealA == RealB;
+}
+
+std::vector<unsigned> Repl::findLineCounters(llvm::StringRef File,
+                                             unsigned Line) const {
+  std::vector<unsigned> Counters;
+  const std::vector<CoverageSite> &Sites = L->Layout.CoverageSites;
+  for (unsigned I = 0; I < Sites.size(); ++I) {
+    if (Sites[I].Kind != CoverageSite::Stmt &&
+        Sites[I].Kind != CoverageSite::Call)
+      continue;
+    unsigned Buffer = C->SM.FindBufferContainingLoc(Sites[I].N->getLoc());
+    if (Buffer &&
+        C->SM.FindLineNumber(Sites[I].N->getLoc(), Buffer) == Line &&
+        isFile(C->SM.getMemoryBuffer(Buffer)->getBufferIdentifier(), File))
+      Counters.push_back(I);
+  }
+  return Counters;
 }
 
 void Repl::rebaseWatches() {
@@ -86,11 +233,16 @@ void Repl::rebaseWatches() {
       B.Last = Values->read(B.Watched.Result.Ty, B.Watched.Result.Ptr);
 }
 
+void Repl::destroyBreakpoint(Breakpoint &B) {
+  destroyProbe(B.Watched);
+  destroyProbe(B.If);
+  for (Probe &P : B.LogValues)
+    destroyProbe(P);
+}
+
 void Repl::destroyBreakpoints() {
-  for (Breakpoint &B : Breakpoints) {
-    destroyProbe(B.Watched);
-    destroyProbe(B.If);
-  }
+  for (Breakpoint &B : Breakpoints)
+    destroyBreakpoint(B);
   Breakpoints.clear();
 }
 
@@ -112,10 +264,54 @@ splitCondition(llvm::StringRef Args) {
   return {Args, ""};
 }
 
+std::optional<Breakpoint> Repl::makeBreakpoint(llvm::StringRef Where,
+                                               llvm::SMLoc Loc) {
+  Breakpoint B;
+  B.Number = NextBreakpoint;
+  B.Text = Where.str();
+  if (Where == "failure") {
+    B.K = Breakpoint::Failure;
+  } else if (Where == "budget") {
+    B.K = Breakpoint::Budget;
+  } else if (auto [File, LineText] = Where.rsplit(':');
+             !LineText.empty() && llvm::all_of(LineText, llvm::isDigit)) {
+    B.File = File.str();
+    LineText.getAsInteger(10, B.LineNo);
+    // A yield's line stops where a task waits; another line with code
+    // stops after a cycle that ran it.
+    B.K = Breakpoint::Line;
+    bool Yield = false;
+    for (const BehaviorLayout::Task &T : L->Layout.Tasks) {
+      unsigned Buffer = C->SM.FindBufferContainingLoc(T.Decl->getLoc());
+      const debug::DebugTables::Task &DT =
+          L->Tables.Tasks[&T - L->Layout.Tasks.data()];
+      Yield |= Buffer &&
+               isFile(C->SM.getMemoryBuffer(Buffer)->getBufferIdentifier(),
+                      File) &&
+               llvm::is_contained(DT.YieldLines, B.LineNo);
+    }
+    if (!Yield) {
+      B.K = Breakpoint::Code;
+      B.Counters = findLineCounters(File, B.LineNo);
+      if (B.Counters.empty()) {
+        C->Diags.report(Loc, diag::err_repl_no_code_at) << File << LineText;
+        return std::nullopt;
+      }
+    }
+  } else if (std::optional<unsigned> T = findTask(Where)) {
+    B.K = Breakpoint::Task;
+    B.TaskIndex = *T;
+  } else {
+    C->Diags.report(Loc, diag::err_repl_unknown_task) << Where;
+    return std::nullopt;
+  }
+  return B;
+}
+
 void Repl::cmdBreak(llvm::StringRef Args, llvm::SMLoc Loc) {
   if (Args.empty()) {
     C->Diags.report(Loc, diag::err_repl_missing_argument)
-        << "break" << "a task, FILE:LINE or 'failure'";
+        << "break" << "a task, FILE:LINE, 'failure' or 'budget'";
     return;
   }
   auto [Where, Cond] = splitCondition(Args);
@@ -124,42 +320,21 @@ void Repl::cmdBreak(llvm::StringRef Args, llvm::SMLoc Loc) {
         << "break ... if" << "a condition";
     return;
   }
-  Breakpoint B;
-  B.Number = NextBreakpoint;
-  B.Text = Where.str();
-  if (Where == "failure") {
-    B.K = Breakpoint::Failure;
-  } else if (auto [File, LineText] = Where.rsplit(':');
-             !LineText.empty() && llvm::all_of(LineText, llvm::isDigit)) {
-    B.K = Breakpoint::Line;
-    B.File = File.str();
-    LineText.getAsInteger(10, B.LineNo);
-    bool Found = false;
-    for (const debug::DebugTables::Task &T : L->Tables.Tasks)
-      Found |= T.File == File && llvm::is_contained(T.YieldLines, B.LineNo);
-    if (!Found) {
-      C->Diags.report(Loc, diag::err_repl_no_yield_at) << File << LineText;
-      return;
-    }
-  } else if (std::optional<unsigned> T = findTask(Where)) {
-    B.K = Breakpoint::Task;
-    B.TaskIndex = *T;
-  } else {
-    C->Diags.report(Loc, diag::err_repl_unknown_task) << Where;
+  std::optional<Breakpoint> B = makeBreakpoint(Where, Loc);
+  if (!B)
     return;
-  }
   if (!Cond.empty()) {
     std::optional<Probe> If = compileProbe(Cond, "break", /*Bool=*/true, Loc);
     if (!If)
       return;
-    B.If = *If;
+    B->If = *If;
   }
   ++NextBreakpoint;
-  OS << "breakpoint " << B.Number << ": " << B.Text;
-  if (B.If.Eval)
-    OS << " if " << B.If.Text;
+  OS << "breakpoint " << B->Number << ": " << B->Text;
+  if (B->If.Eval)
+    OS << " if " << B->If.Text;
   OS << "\n";
-  Breakpoints.push_back(std::move(B));
+  Breakpoints.push_back(std::move(*B));
 }
 
 void Repl::cmdWatch(llvm::StringRef Args, llvm::SMLoc Loc) {
@@ -216,8 +391,7 @@ void Repl::cmdDelete(llvm::StringRef Args, llvm::SMLoc Loc) {
     C->Diags.report(Loc, diag::err_repl_no_breakpoint) << Args;
     return;
   }
-  destroyProbe(It->Watched);
-  destroyProbe(It->If);
+  destroyBreakpoint(*It);
   Breakpoints.erase(It);
   OS << "deleted " << Args << "\n";
 }

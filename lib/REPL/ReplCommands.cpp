@@ -99,7 +99,9 @@ void Repl::reportStop(llvm::StringRef Why) {
      << "\n";
 }
 
-StepEnd Repl::step(unsigned N, bool Report, Probe *Until) {
+StepEnd Repl::step(unsigned N, bool Report, Probe *Until,
+                   const std::function<std::string()> &StopWhen) {
+  LastStop = StopInfo();
   rebaseWatches();
   Interrupted = 0;
   auto OldHandler = std::signal(SIGINT, onInterrupt);
@@ -121,6 +123,15 @@ StepEnd Repl::step(unsigned N, bool Report, Probe *Until) {
       bool Diverged = O.K == BehaviorSession::Outcome::Diverged;
       if (Diverged)
         C->Diags.report(llvm::SMLoc(), diag::note_history_ends) << Cycle - 1;
+      LastStop.Broke =
+          Diverged ? StopInfo::Diverged
+          : O.K == BehaviorSession::Outcome::TimedOut ? StopInfo::TimedOut
+          : llvm::any_of(C->Diags.getDiagnostics(),
+                         [](const Diagnostic &D) {
+                           return D.Kind == diag::err_assertion_failed;
+                         })
+              ? StopInfo::Assertion
+              : StopInfo::Crash;
       flushDiagnostics();
       OS << "stopped in cycle " << Cycle
          << (Diverged ? "; the state is as the live run left cycle " +
@@ -158,21 +169,29 @@ StepEnd Repl::step(unsigned N, bool Report, Probe *Until) {
     std::string Why = checkBreakpoints();
     if (Why.empty() && Until && isTrue(*Until))
       Why = Until->Text + " is true";
+    if (Why.empty() && StopWhen && !(Why = StopWhen()).empty())
+      LastStop.Predicate = true;
     if (Why.empty() && EntryIndex) {
       int32_t State =
           bs_task_state_at(S->getState(), &S->getInfo().tasks[*EntryIndex]);
-      if (State < 0)
+      if (State < 0) {
         Why = "the entry " + L->Entry->getQualifiedName() + " failed";
+        LastStop.EntryFailed = true;
+      }
     }
-    if (Why.empty() && Interrupted)
+    if (Why.empty() && (Interrupted || (ShouldPause && ShouldPause()))) {
       Why = "interrupted";
+      LastStop.Interrupted = true;
+    }
     if (!Why.empty()) {
       reportStop(Why);
+      LastStop.Why = Why;
       End = StepEnd::Stopped;
       break;
     }
   }
   std::signal(SIGINT, OldHandler);
+  LastStop.End = End;
   return End;
 }
 
@@ -283,11 +302,13 @@ void Repl::cmdReplay(llvm::StringRef Args, llvm::SMLoc Loc) {
   // Each robot's conditions, for `:why`, before the next robot's cycle.
   R.TakeCycle = [&](unsigned K, BehaviorSession &) {
     keepExplainLog(K);
+    noteLinesRan(K);
     return true;
   };
   forgetFuture(); // The recording's inputs replace the history's.
   uint32_t Before = S->getCycle();
   rebaseWatches();
+  markCounters();
   bool OK = runTeam(*C, *L, *Robots, R, OS);
   flushDiagnostics();
   if (S->getCycle() == Before) // The file was refused before a cycle ran.
@@ -431,9 +452,10 @@ llvm::ArrayRef<Repl::CommandInfo> Repl::getCommands() {
        "check later lines in TASK's frame: its parameters, kept locals and "
        "nested funcs unqualified (no TASK: the entry's module)",
        &Repl::cmdFrame},
-      {"break", "TASK|FILE:LINE|failure [if EXPR]",
+      {"break", "TASK|FILE:LINE|failure|budget [if EXPR]",
        "stop after a cycle in which TASK ran, a task waits at a yield on "
-       "FILE:LINE, or a task failed (and EXPR is true)",
+       "FILE:LINE (another line: the cycle ran it), a task failed, or the "
+       "cycle budget ran out (and EXPR is true)",
        &Repl::cmdBreak},
       {"until", "EXPR [N]",
        "run until EXPR is true after a cycle, a breakpoint, or N cycles "

@@ -18,7 +18,12 @@
 #include "bsc/Sema/Sema.h"
 #include "llvm/LineEditor/LineEditor.h"
 #include "llvm/Support/raw_ostream.h"
+#include <functional>
 #include <optional>
+
+namespace bsc {
+class DebugSession;
+}
 
 namespace bsc::repl {
 
@@ -36,18 +41,65 @@ struct Probe {
   Slot Result;
 };
 
+/// DAP's hit condition (`>= 5`, `== 3`, `% 2`; `5` is `>= 5`): which hits
+/// of a breakpoint stop. `:break` has none: every hit stops.
+struct HitCondition {
+  enum Op { Every, AtLeast, Equal, Greater, Multiple } Operator = Every;
+  unsigned N = 0;
+  /// Parses `Text`; std::nullopt if it is none of the forms above.
+  static std::optional<HitCondition> parse(llvm::StringRef Text);
+  bool stopsAt(unsigned Hit) const;
+};
+
+/// What a line of b-script evaluated to (no type: a statement).
+struct LineValue {
+  const Type *Ty = nullptr;
+  llvm::json::Value Value = nullptr;
+};
+
 struct Breakpoint {
-  enum Kind { Task, Line, Failure, Watch } K;
+  enum Kind { Task, Line, Code, Failure, Budget, Watch } K;
   unsigned Number;
   std::string Text; ///< As the user wrote it (LOC for `LOC if EXPR`).
   unsigned TaskIndex = 0;
   std::string File;
   unsigned LineNo = 0;
+  /// Code: the coverage counters of the statements on the line (a task's
+  /// header counts its calls).
+  std::vector<unsigned> Counters;
   /// Watch: the expression and its last value.
   Probe Watched;
   llvm::json::Value Last = nullptr;
   /// `:break LOC if EXPR`: EXPR, a bool (no Eval: none).
   Probe If;
+  /// The debugger's hit condition, and the hits so far (those whose
+  /// condition held).
+  HitCondition Hits;
+  unsigned HitCount = 0;
+  /// A logpoint (DAP's logMessage): printed at each hit, never stops. Its
+  /// text between the `{expr}`s, and their probes: Log[I] comes before
+  /// LogValues[I].
+  std::vector<std::string> Log;
+  std::vector<Probe> LogValues;
+  bool isLogpoint() const { return !Log.empty(); }
+};
+
+/// How step() ended.
+enum class StepEnd {
+  Ran,     ///< Every cycle asked for ran.
+  Stopped, ///< A breakpoint, `:until`, the entry's failure or Ctrl-C.
+  Broken,  ///< A cycle crashed or ran out of time.
+};
+
+/// What ended the last step(), for the debugger (bsc/REPL/DebugSession.h).
+struct StopInfo {
+  StepEnd End = StepEnd::Ran;
+  std::string Why; ///< As "stopped after cycle N: " prints it.
+  /// The breakpoints that stopped it, by number.
+  std::vector<unsigned> Breakpoints;
+  /// Broken: what broke the cycle.
+  enum Break { None, Assertion, Crash, TimedOut, Diverged } Broke = None;
+  bool EntryFailed = false, Interrupted = false, Predicate = false;
 };
 
 using debug::formatValue;
@@ -57,17 +109,13 @@ using debug::formatValue;
 /// does not). N is empty without one.
 std::pair<llvm::StringRef, llvm::StringRef> splitCount(llvm::StringRef Args);
 
-/// How step() ended.
-enum class StepEnd {
-  Ran,     ///< Every cycle asked for ran.
-  Stopped, ///< A breakpoint, `:until`, the entry's failure or Ctrl-C.
-  Broken,  ///< A cycle crashed or ran out of time.
-};
-
 class Repl {
 public:
-  Repl(const ReplOptions &Opts, llvm::raw_ostream &OS)
-      : Opts(Opts), OS(OS), Frontend(Opts.Frontend) {}
+  /// Answers go to `OS`, diagnostics to `Err` (in colour if it is stderr
+  /// on a terminal).
+  Repl(const ReplOptions &Opts, llvm::raw_ostream &OS,
+       llvm::raw_ostream &Err = llvm::errs())
+      : Opts(Opts), OS(OS), Err(Err), Frontend(Opts.Frontend) {}
   ~Repl();
 
   /// Compiles and starts the behavior; false after reporting.
@@ -78,6 +126,10 @@ public:
                                                      size_t Pos) const;
 
 private:
+  // The debug adapter's face of the session (DebugSession.cpp) drives the
+  // same operations as the commands, with structured answers.
+  friend class bsc::DebugSession;
+
   // Loading.
   std::unique_ptr<Compilation> compileFiles();
   bool load(std::unique_ptr<Compilation> NewC);
@@ -92,12 +144,13 @@ private:
 
   // Lines of b-script.
   void evaluate(llvm::StringRef Line);
+  /// Runs line `Text` between cycles (a change it makes in the past ends
+  /// the history there); its value, or std::nullopt after reporting.
+  std::optional<LineValue> runLine(llvm::StringRef Text);
   /// Compiles `Text` as REPL line number ++LineNo (bsc/Run/Line.h); its
   /// result and new variables get slots. Null after reporting.
   std::optional<CompiledLine> compileLine(llvm::StringRef Text);
   void destroySlot(Slot &S);
-  /// The value as the REPL prints it: `(int) 3`.
-  std::string describe(const Type *T, const void *Addr);
 
   // Commands: each takes the text after its name and the place of the line
   // (for carets).
@@ -186,7 +239,10 @@ private:
   bool noArgs(llvm::StringRef Name, llvm::StringRef Args, llvm::SMLoc Loc);
   /// Runs up to N cycles; after each, checks the breakpoints and `Until`
   /// (if given, a bool probe that stops when true).
-  StepEnd step(unsigned N, bool Report, Probe *Until = nullptr);
+  /// `StopWhen` (the debugger's step in and out) is asked too; it returns
+  /// why to stop, or empty. What ended it is in LastStop.
+  StepEnd step(unsigned N, bool Report, Probe *Until = nullptr,
+               const std::function<std::string()> &StopWhen = nullptr);
   void cmdUntil(llvm::StringRef Args, llvm::SMLoc Loc);
   /// Compiles `Text` into a probe with a value (of type bool if `Bool`);
   /// reports for command `Cmd` and returns std::nullopt if it has none.
@@ -204,20 +260,43 @@ private:
   unsigned parseCount(llvm::StringRef Cmd, llvm::StringRef Arg,
                       unsigned Default, llvm::SMLoc Loc);
 
-  /// Why the last cycle should stop `:run`, or empty.
+  /// Why the last cycle should stop `:run`, or empty: the shown robot's
+  /// breakpoints, or with BreakOnEveryRobot the first robot's that hits
+  /// (which is then shown). The numbers that hit go to LastStop.
   std::string checkBreakpoints();
+  /// Robot K's breakpoints (watches only for the shown robot). `Counting`:
+  /// hits count towards hit conditions and logpoints print (not when
+  /// reverse-continue searches the past).
+  std::string checkRobotBreakpoints(unsigned K, bool Counting);
+  /// A breakpoint at `Where` (TASK, FILE:LINE, failure, budget) numbered
+  /// NextBreakpoint, or std::nullopt after reporting why not.
+  std::optional<Breakpoint> makeBreakpoint(llvm::StringRef Where,
+                                           llvm::SMLoc Loc);
+  /// The coverage counters of the statements on `File`:`Line` (a path, or
+  /// a file name as `:break` takes it).
+  std::vector<unsigned> findLineCounters(llvm::StringRef File,
+                                         unsigned Line) const;
+  /// Whether the buffer named `BufferName` is `File` (an absolute path, or
+  /// the name without folders).
+  static bool isFile(llvm::StringRef BufferName, llvm::StringRef File);
+  /// Prints logpoint B's message.
+  void printLog(Breakpoint &B);
+  /// Destroys breakpoint B's probes.
+  void destroyBreakpoint(Breakpoint &B);
   /// Takes the watches' values as the ones to compare against.
   void rebaseWatches();
   /// "stopped after cycle N: why" and the cycle's trace.
   void reportStop(llvm::StringRef Why);
   /// Prints and forgets the diagnostics so far.
   void flushDiagnostics();
+  /// Whether diagnostics are in colour (Err is a terminal's stderr).
+  bool colors() const;
   /// A buffer holding `Text`, named `<repl>`, for carets under a line.
   llvm::SMLoc addBuffer(llvm::StringRef Text);
   std::optional<unsigned> findTask(llvm::StringRef Name) const;
 
   const ReplOptions &Opts;
-  llvm::raw_ostream &OS;
+  llvm::raw_ostream &OS, &Err;
   /// Opts.Frontend and the modules `requires` added at the prompt.
   FrontendOptions Frontend;
   /// Per robot (none if NoHistory says why), and the shown robot's: the
@@ -259,6 +338,22 @@ private:
   /// The entry's index in the task table, if the entry is a task (its
   /// failure stops `:run`).
   std::optional<unsigned> EntryIndex;
+
+  // The debugger's (DebugSession.cpp).
+  /// Breakpoints stop for whichever robot hits them, not only the shown.
+  bool BreakOnEveryRobot = false;
+  /// Asked between cycles: true stops a run as Ctrl-C does (DAP's pause).
+  std::function<bool()> ShouldPause;
+  StopInfo LastStop;
+  /// With a Code breakpoint: per robot, the coverage counters its last
+  /// cycle advanced (sorted), and the counters before it.
+  std::vector<std::vector<unsigned>> RanCounters;
+  std::vector<uint64_t> CountersBefore;
+  bool tracksLines() const;
+  /// With a Code breakpoint: the counters before a robot's cycle, and
+  /// after it which advanced (RanCounters[K]).
+  void markCounters();
+  void noteLinesRan(unsigned K);
 };
 
 } // namespace bsc::repl

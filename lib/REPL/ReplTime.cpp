@@ -30,6 +30,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "ReplImpl.h"
+#include "llvm/ADT/ScopeExit.h"
 #include <algorithm>
 #include <cstring>
 
@@ -103,6 +104,10 @@ BehaviorSession::Outcome Repl::runNextCycle(bool &FromHistory,
 }
 
 BehaviorSession::Outcome Repl::runRobotCycle(unsigned K, bool &FromHistory) {
+  // Line breakpoints: which statements robot K's cycle ran (the robots
+  // share the JIT's counters, and run one after another).
+  markCounters();
+  auto NoteLines = llvm::make_scope_exit([&] { noteLinesRan(K); });
   BehaviorSession &R = (*Robots)[K];
   CycleHistory *H = Histories.empty() ? nullptr : Histories[K].get();
   uint32_t Next = R.getCycle() + 1;
@@ -116,11 +121,20 @@ BehaviorSession::Outcome Repl::runRobotCycle(unsigned K, bool &FromHistory) {
       H->recordCycle(R.getLastCalls(), getBlocks(R));
       // A crashed cycle cannot be re-run: its moment is the copy.
       if (O.K != BehaviorSession::Outcome::Completed)
-        H->keepPresent(Next, getBlocks(R));
+        H->keepPresent(Next, getBlocks(R), /*Broken=*/true);
     }
   } else if (H->isEdited(Next)) {
-    // The prompt changed this moment: it is the copy, not a re-run.
+    // A cycle that broke breaks again on its logged input and calls, and
+    // says so as it did live (a failed assertion with its values); then,
+    // as after the prompt changed a moment, the copy is that moment.
+    if (H->isBroken(Next)) {
+      H->applyInput(Next, R.getInput());
+      CycleRecord Calls;
+      H->getCalls(Next, Calls);
+      O = R.replayCycle(Opts.CycleLimitMs, Calls);
+    }
     restoreFromHistory(K, Next, /*Before=*/false);
+    keepExplainLog(K);
     return O;
   } else {
     H->applyInput(Next, R.getInput());
@@ -143,6 +157,23 @@ BehaviorSession::Outcome Repl::runRobotCycle(unsigned K, bool &FromHistory) {
   }
   keepExplainLog(K);
   return O;
+}
+
+void Repl::markCounters() {
+  if (tracksLines())
+    CountersBefore = readCoverage(*L);
+}
+
+void Repl::noteLinesRan(unsigned K) {
+  if (!tracksLines())
+    return;
+  RanCounters.resize(Robots->size());
+  RanCounters[K].clear();
+  std::vector<uint64_t> After = readCoverage(*L);
+  for (unsigned I = 0; I < After.size() && I < CountersBefore.size(); ++I)
+    if (After[I] != CountersBefore[I])
+      RanCounters[K].push_back(I);
+  CountersBefore = std::move(After);
 }
 
 void Repl::endHistoryAt(unsigned K, uint32_t Cycle) {

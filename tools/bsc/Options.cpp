@@ -35,6 +35,9 @@ cl::SubCommand tool::ConvertCmd(
 cl::SubCommand tool::LspCmd(
     "lsp", "Serve editors: a Language Server Protocol server on standard "
            "input and output (docs/editors.md)");
+cl::SubCommand tool::DapCmd(
+    "dap", "Debug in editors: a Debug Adapter Protocol server on standard "
+           "input and output, over the REPL's session (docs/editors.md)");
 cl::SubCommand tool::FormatCmd(
     "format", "Print b-script files in the one canonical layout, or rewrite "
               "them (-i), or name those that would change (--check)");
@@ -213,7 +216,7 @@ cl::opt<std::string> CycleBudgetArg(
     cl::desc("Give each cycle N loop passes: a task whose loop runs past them "
              "fails and the cycle returns; the state records the loop "
              "(bscript.h, \"Cycle budgets\")"),
-    cl::value_desc("N"), BSC_BOTH);
+    cl::value_desc("N"), BSC_BOTH, cl::sub(ReplCmd));
 cl::opt<std::string>
     TraceObject("object", cl::desc("The object compiled with --instrument"),
                 cl::value_desc("file.o"), BSC_DECODE, cl::Required);
@@ -464,6 +467,7 @@ ReplCommandOptions getReplOptions() {
   Opts.WorldLibrary = WorldLibrary;
   Opts.WorldOutput = WorldOutput;
   Opts.Robots = given(RobotsArg);
+  Opts.CycleBudget = given(CycleBudgetArg);
   Opts.DebugInfo = DebugInfo;
   return Opts;
 }

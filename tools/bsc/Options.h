@@ -20,7 +20,7 @@ namespace bsc::tool {
 /// bsc's own options (those of LLVM's libraries are hidden).
 extern llvm::cl::OptionCategory BscCategory;
 extern llvm::cl::SubCommand RunCmd, ReplCmd, TraceDecodeCmd, TimelineCmd,
-    FormatCmd, LspCmd, ReplayCmd, ConvertCmd;
+    FormatCmd, LspCmd, DapCmd, ReplayCmd, ConvertCmd;
 
 /// The command line after parsing.
 struct CommandLine {

@@ -14,6 +14,7 @@
 //   bsc timeline REC [REC2] -o P.html a run drawn (lib/Timeline)
 //   bsc format [-i|--check] FILE.bs... the canonical layout (lib/Format)
 //   bsc lsp                           the language server (lib/LSP)
+//   bsc dap                           the debug adapter (lib/DAP)
 //   bsc convert FROM -o TO            a recording in the other format
 //
 // Every subcommand is a row of one table (Subcommands below).
@@ -91,6 +92,10 @@ const Subcommand Subcommands[] = {
     {&LspCmd, false,
      [](Compilation &, CommandLine &CL, const char *Argv0) {
        return lspCommand(CL.RuntimeDir, Argv0);
+     }},
+    {&DapCmd, true,
+     [](Compilation &, CommandLine &CL, const char *Argv0) {
+       return dapCommand(CL.RuntimeDir, Argv0);
      }},
 };
 

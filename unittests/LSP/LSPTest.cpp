@@ -1,5 +1,5 @@
 //===- LSPTest.cpp - the wire, URIs, bscript.json, the index --------------===//
-#include "Transport.h"
+#include "bsc/Basic/Transport.h"
 #include "Workspace.h"
 #include "llvm/Support/FileSystem.h"
 #include "llvm/Support/Path.h"

@@ -302,6 +302,7 @@ struct ReplCommandOptions {
   BackendArgs Backend;
   std::string EntryName, CycleLimit, BatchFile, WorldLibrary, WorldOutput;
   std::optional<std::string> Robots; ///< --robots N, if given.
+  std::optional<std::string> CycleBudget;
   bool DebugInfo = false;
 };
 
@@ -328,6 +329,11 @@ int formatCommand(Compilation &C, const FormatCommandOptions &Opts,
 /// `bsc lsp`: the language server on standard input and output until the
 /// client says `exit` (lib/LSP). Returns the exit status.
 int lspCommand(llvm::StringRef RuntimeDir, const char *Argv0);
+
+/// `bsc dap`: the debug adapter on standard input and output until the
+/// client disconnects (lib/DAP); behaviors run on the host with its
+/// standard modules. Returns the exit status.
+int dapCommand(llvm::StringRef RuntimeDir, const char *Argv0);
 
 } // namespace bsc
 

@@ -75,8 +75,11 @@ public:
 
   /// The prompt changed the state or input at `Cycle` (<= last()): the
   /// cycles after it are forgotten and the blocks as they are now become
-  /// the copy at `Cycle`.
-  void keepPresent(uint32_t Cycle, Blocks Now);
+  /// the copy at `Cycle`. `Broken`: no prompt did, cycle `Cycle` crashed
+  /// or failed an assertion (its input and calls are logged up to there).
+  void keepPresent(uint32_t Cycle, Blocks Now, bool Broken = false);
+  /// Whether the copy at `Cycle` is of a cycle that broke (keepPresent).
+  bool isBroken(uint32_t Cycle) const;
 
   /// The bytes held (logs and copies), for the benchmark and `:history`.
   size_t getMemoryBytes() const;
@@ -86,6 +89,7 @@ private:
   struct Snapshot {
     uint32_t Cycle;
     bool Edited; ///< Taken by keepPresent.
+    bool Broken; ///< Of a cycle that broke (keepPresent).
     std::vector<unsigned char> Bytes; ///< State, input, output.
   };
   struct Change {

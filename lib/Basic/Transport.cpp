@@ -1,4 +1,4 @@
-//===- Transport.cpp - JSON-RPC messages over file descriptors ------------===//
+//===- Transport.cpp - Content-Length framed JSON over descriptors --------===//
 //
 // The base protocol: headers (`Content-Length: N`, others ignored), an
 // empty line, N bytes of JSON. Damaged input never stops the server: a
@@ -7,14 +7,13 @@
 // 64 MiB is refused rather than waited for.
 //
 //===----------------------------------------------------------------------===//
-#include "Transport.h"
+#include "bsc/Basic/Transport.h"
 #include "llvm/ADT/StringExtras.h"
 #include <cerrno>
 #include <poll.h>
 #include <unistd.h>
 
 using namespace bsc;
-using namespace bsc::lsp;
 
 static constexpr size_t MaxMessageBytes = size_t(64) << 20;
 

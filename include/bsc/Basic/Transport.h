@@ -1,13 +1,17 @@
-//===- Transport.h - JSON-RPC messages over file descriptors ---*- C++ -*-===//
-#ifndef BSC_LIB_LSP_TRANSPORT_H
-#define BSC_LIB_LSP_TRANSPORT_H
+//===- Transport.h - Content-Length framed JSON over descriptors -*- C++ -*-===//
+//
+// The base protocol of the language server (JSON-RPC) and of the debug
+// adapter (DAP): both frame JSON messages the same way.
+//
+//===----------------------------------------------------------------------===//
+#ifndef BSC_BASIC_TRANSPORT_H
+#define BSC_BASIC_TRANSPORT_H
 
 #include "llvm/Support/JSON.h"
 #include <optional>
 #include <string>
 
 namespace bsc {
-namespace lsp {
 
 /// Reads and writes `Content-Length`-framed JSON messages.
 class Transport {
@@ -30,7 +34,6 @@ private:
   bool AtEnd = false;
 };
 
-} // namespace lsp
 } // namespace bsc
 
 #endif
