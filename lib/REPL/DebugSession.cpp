@@ -8,9 +8,12 @@
 // (its yield), and stepping is by cycles:
 //
 //   next       one cycle
-//   step in    cycles until the innermost active task waits somewhere else
-//              (another line, or another task is innermost)
-//   step out   cycles until that task is no longer active, or finished
+//   step in    cycles until the behavior does what it did not in the
+//              cycle before: the innermost active task waits elsewhere
+//              (another line, another task), or a line runs that did not
+//              (the statements' coverage counters say which ran)
+//   step out   cycles until that task ends (done or failure) or is no
+//              longer active
 //   step back  one cycle back in time; reverse continue goes back to the
 //              last earlier cycle at which a breakpoint would have stopped
 //
@@ -60,6 +63,7 @@ std::unique_ptr<DebugSession> DebugSession::start(const ReplOptions &Opts,
   if (!D->R->start())
     return Fail();
   D->R->BreakOnEveryRobot = true;
+  D->R->TrackLines = true; // Step in compares the lines of cycles.
   std::vector<std::string> Defaults;
   for (const ExceptionFilter &F : getExceptionFilters())
     if (F.Default)
@@ -145,6 +149,12 @@ std::optional<BreakpointState> DebugSession::compileBreakpointParts(
   Breakpoint &B = R->Breakpoints.back();
   BreakpointState Bad;
   Bad.Id = Number;
+  // The condition and the log see the task's parameters and locals
+  // unqualified, as its code does.
+  const TaskDecl *Frame = R->Checker->getFrame();
+  R->Checker->setFrame(R->getBreakpointTask(B));
+  auto RestoreFrame =
+      llvm::make_scope_exit([&] { R->Checker->setFrame(Frame); });
   if (!HitCondition.trim().empty()) {
     std::optional<repl::HitCondition> H =
         repl::HitCondition::parse(HitCondition);
@@ -264,7 +274,9 @@ std::string DebugSession::setExceptionFilters(
       return "no exception filter '" + F + "' (assertion, taskFailure, budget)";
   deleteBreakpoints(FilterNumbers);
   StopOnAssertion = llvm::is_contained(Filters, "assertion");
-  for (llvm::StringRef Where : {"failure", "budget"}) {
+  // The budget first: a loop that runs out of it fails its task too, and
+  // the first breakpoint hit names the stop.
+  for (llvm::StringRef Where : {"budget", "failure"}) {
     if (!llvm::is_contained(Filters, Where == "failure" ? "taskFailure"
                                                         : "budget"))
       continue;
@@ -278,6 +290,17 @@ std::string DebugSession::setExceptionFilters(
 //===----------------------------------------------------------------------===//
 // Running
 //===----------------------------------------------------------------------===//
+
+std::string DebugSession::describeCounter(unsigned Counter) const {
+  const CoverageSite &Site = R->L->Layout.CoverageSites[Counter];
+  unsigned Buffer = R->C->SM.FindBufferContainingLoc(Site.N->getLoc());
+  if (!Buffer)
+    return Site.Owner->getQualifiedName();
+  return llvm::sys::path::filename(
+             R->C->SM.getMemoryBuffer(Buffer)->getBufferIdentifier())
+             .str() +
+         ":" + std::to_string(R->C->SM.FindLineNumber(Site.N->getLoc(), Buffer));
+}
 
 /// Where robot S's innermost active task waits: (task, line), or none.
 static std::optional<std::pair<unsigned, unsigned>>
@@ -305,15 +328,27 @@ DebugStop DebugSession::run(DebugRun How, std::function<bool()> ShouldPause) {
     R->step(1, /*Report=*/true);
     return makeStop(How);
   case DebugRun::StepIn: {
+    // Until the behavior does what it did not in the cycle before: a task
+    // waits elsewhere, or a line runs that did not (a branch turned).
     unsigned K = R->Selected;
     auto Before = innermostPlace(getFrames(K));
+    std::optional<std::vector<unsigned>> Lines;
+    if (K < R->RanCycle.size() && R->RanCycle[K] == getCycle())
+      Lines = R->RanCounters[K];
     R->step(MaxCycles, false, nullptr, [&]() -> std::string {
       std::vector<DebugFrame> Frames = getFrames(K);
-      auto Now = innermostPlace(Frames);
-      if (Now == Before)
-        return "";
-      return Frames.empty() ? "no task is active"
-                            : "the innermost task is " + Frames.front().Name;
+      if (innermostPlace(Frames) != Before)
+        return Frames.front().Name + " is the innermost task";
+      std::optional<std::vector<unsigned>> Previous = std::move(Lines);
+      Lines = R->RanCounters[K];
+      const std::vector<CoverageSite> &Sites = R->L->Layout.CoverageSites;
+      for (unsigned Counter : Previous ? *Lines : std::vector<unsigned>())
+        if (Sites[Counter].Kind != CoverageSite::True &&
+            Sites[Counter].Kind != CoverageSite::False &&
+            !std::binary_search(Previous->begin(), Previous->end(), Counter))
+          return describeCounter(Counter) + " ran, which it did not in cycle " +
+                 std::to_string(getCycle() - 1);
+      return "";
     });
     return makeStop(How);
   }
@@ -329,8 +364,8 @@ DebugStop DebugSession::run(DebugRun How, std::function<bool()> ShouldPause) {
     std::string Name = R->L->Tables.Tasks[*Task].ShortName;
     R->step(MaxCycles, false, nullptr, [&]() -> std::string {
       for (const DebugFrame &F : getFrames(K))
-        if (F.Task == Task && F.Waiting)
-          return "";
+        if (F.Task == Task)
+          return F.Running ? "" : F.Name;
       return Name + " is no longer active";
     });
     return makeStop(How);
@@ -400,6 +435,8 @@ DebugStop DebugSession::makeStop(DebugRun How) {
     Stop.ExceptionId = It != R->Breakpoints.end() && It->K == Breakpoint::Budget
                            ? "budget"
                            : "taskFailure";
+    // "breakpoint 1, Faults::spin failed": the filter set it, not the user.
+    Stop.Description = llvm::StringRef(Info.Why).split(", ").second.str();
   } else {
     Stop.Why = llvm::is_contained(TaskNumbers, First)
                    ? DebugStop::TaskBreakpoint
@@ -504,23 +541,29 @@ std::vector<DebugFrame> DebugSession::getFrames(unsigned Robot) const {
     Frames.push_back(F);
     return Frames;
   }
-  // The last task called at each level: what the cycle did last.
-  unsigned N = Tree.Roots.back();
-  while (true) {
-    const debug::ActiveTask &Node = Tree.Nodes[N];
-    const debug::DebugTables::Task &T = L.Tables.Tasks[Node.Record.Task];
-    DebugFrame F;
-    F.Task = Node.Record.Task;
-    F.Name = T.ShortName + " [" +
-             debug::describeActivation(L.Tables, Node.Record) + "]";
-    F.Path = filePath(R->C->SM, L.Layout.Tasks[Node.Record.Task].Decl);
-    F.Waiting = Node.Record.Resume > 0;
-    F.Line = F.Waiting ? T.YieldLines[Node.Record.Resume - 1] : T.Line;
-    Frames.push_back(F);
-    if (Node.Children.empty())
-      break;
-    N = Node.Children.back();
-  }
+  // Every active task, named by its path from the root; a hierarchy has
+  // branches, a stack has none: depth first, then reversed, so that the
+  // last branch's innermost task is on top and every root is below its
+  // tasks.
+  std::function<void(unsigned, const std::string &)> Visit =
+      [&](unsigned N, const std::string &Parents) {
+        const debug::ActiveTask &Node = Tree.Nodes[N];
+        const debug::DebugTables::Task &T = L.Tables.Tasks[Node.Record.Task];
+        DebugFrame F;
+        F.Task = Node.Record.Task;
+        std::string Path = Parents + T.ShortName;
+        F.Name = Path + " [" +
+                 debug::describeActivation(L.Tables, Node.Record) + "]";
+        F.Path = filePath(R->C->SM, L.Layout.Tasks[Node.Record.Task].Decl);
+        F.Waiting = Node.Record.Resume > 0;
+        F.Running = Node.Record.State > 0;
+        F.Line = F.Waiting ? T.YieldLines[Node.Record.Resume - 1] : T.Line;
+        Frames.push_back(F);
+        for (unsigned Child : Node.Children)
+          Visit(Child, Path + " > ");
+      };
+  for (unsigned Root : Tree.Roots)
+    Visit(Root, "");
   std::reverse(Frames.begin(), Frames.end());
   return Frames;
 }

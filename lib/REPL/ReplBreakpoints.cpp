@@ -187,8 +187,29 @@ bool HitCondition::stopsAt(unsigned Hit) const {
   return true;
 }
 
+const TaskDecl *Repl::getBreakpointTask(const Breakpoint &B) const {
+  switch (B.K) {
+  case Breakpoint::Task:
+    return llvm::dyn_cast<TaskDecl>(L->Layout.Tasks[B.TaskIndex].Decl);
+  case Breakpoint::Code:
+    return llvm::dyn_cast<TaskDecl>(
+        L->Layout.CoverageSites[B.Counters.front()].Owner);
+  case Breakpoint::Line:
+    for (size_t I = 0; I < L->Tables.Tasks.size(); ++I) {
+      const CallableDecl *D = L->Layout.Tasks[I].Decl;
+      unsigned Buffer = C->SM.FindBufferContainingLoc(D->getLoc());
+      if (Buffer && llvm::is_contained(L->Tables.Tasks[I].YieldLines, B.LineNo) &&
+          isFile(C->SM.getMemoryBuffer(Buffer)->getBufferIdentifier(), B.File))
+        return llvm::dyn_cast<TaskDecl>(D);
+    }
+    return nullptr;
+  default:
+    return nullptr;
+  }
+}
+
 bool Repl::tracksLines() const {
-  return llvm::any_of(Breakpoints,
+  return TrackLines || llvm::any_of(Breakpoints,
                       [](const Breakpoint &B) { return B.K == Breakpoint::Code; });
 }
 

@@ -279,6 +279,9 @@ private:
   /// Whether the buffer named `BufferName` is `File` (an absolute path, or
   /// the name without folders).
   static bool isFile(llvm::StringRef BufferName, llvm::StringRef File);
+  /// The task whose code holds breakpoint B's line (or B's task): the
+  /// debugger checks B's condition and log in its frame. Null if none.
+  const TaskDecl *getBreakpointTask(const Breakpoint &B) const;
   /// Prints logpoint B's message.
   void printLog(Breakpoint &B);
   /// Destroys breakpoint B's probes.
@@ -345,9 +348,12 @@ private:
   /// Asked between cycles: true stops a run as Ctrl-C does (DAP's pause).
   std::function<bool()> ShouldPause;
   StopInfo LastStop;
-  /// With a Code breakpoint: per robot, the coverage counters its last
-  /// cycle advanced (sorted), and the counters before it.
+  /// With a Code breakpoint or TrackLines: per robot, the coverage
+  /// counters its last cycle advanced (sorted) and that cycle, and the
+  /// counters before it.
+  bool TrackLines = false;
   std::vector<std::vector<unsigned>> RanCounters;
+  std::vector<uint32_t> RanCycle;
   std::vector<uint64_t> CountersBefore;
   bool tracksLines() const;
   /// With a Code breakpoint: the counters before a robot's cycle, and

@@ -168,7 +168,9 @@ void Repl::noteLinesRan(unsigned K) {
   if (!tracksLines())
     return;
   RanCounters.resize(Robots->size());
+  RanCycle.resize(Robots->size());
   RanCounters[K].clear();
+  RanCycle[K] = (*Robots)[K].getCycle();
   std::vector<uint64_t> After = readCoverage(*L);
   for (unsigned I = 0; I < After.size() && I < CountersBefore.size(); ++I)
     if (After[I] != CountersBefore[I])

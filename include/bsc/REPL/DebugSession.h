@@ -26,15 +26,16 @@ namespace repl {
 class Repl;
 }
 
-/// A task of the active hierarchy, innermost first.
+/// A task of the active hierarchy (DebugSession::getFrames).
 struct DebugFrame {
-  std::string Name; ///< `striker [running, Game.bs:37]`.
+  std::string Name; ///< `game > striker [running, Game.bs:35]`.
   std::string Path; ///< Its file, absolute.
   unsigned Line = 0;
   /// Its index in the task table; none before a task ran.
   std::optional<unsigned> Task;
-  /// Whether it waits at a yield (its locals are kept).
-  bool Waiting = false;
+  /// Whether it waits at a yield (its locals are kept), and whether it is
+  /// running (it did not end with done or failure).
+  bool Waiting = false, Running = false;
 };
 
 /// A value as the debugger shows it.
@@ -65,8 +66,10 @@ struct BreakpointState {
 };
 
 /// The run commands: continue, next (one cycle), step in (until the
-/// innermost task waits somewhere else), step out (until it is no longer
-/// active or finished), and back in time.
+/// behavior does what it did not in the cycle before: the innermost task
+/// waits elsewhere, or a line runs that did not), step out (until the
+/// innermost task ends, done or failure, or is no longer active), and back
+/// in time.
 enum class DebugRun { Continue, Next, StepIn, StepOut, StepBack,
                       ReverseContinue };
 
@@ -122,6 +125,9 @@ public:
   /// reason in takeErrors().
   std::optional<DebugStop> gotoCycle(uint32_t Cycle);
 
+  /// The tasks of robot `Robot`'s last cycle, depth first and reversed:
+  /// the last branch's innermost task first, each root after its tasks.
+  /// Before the first cycle, the entry.
   std::vector<DebugFrame> getFrames(unsigned Robot) const;
   /// A frame's task's parameters, then the locals it keeps.
   std::vector<DebugValue> getFields(unsigned Robot,
@@ -151,6 +157,8 @@ private:
   /// Shows robot K (lines, probes and `:why` follow it).
   void selectRobot(unsigned K);
   DebugStop makeStop(DebugRun How);
+  /// `Game.bs:23`: where coverage counter `Counter`'s statement is.
+  std::string describeCounter(unsigned Counter) const;
   DebugStop reverseContinue();
   void deleteBreakpoints(std::vector<unsigned> &Numbers);
   std::optional<BreakpointState>
