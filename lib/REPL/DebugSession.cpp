@@ -144,11 +144,10 @@ static bool splitLogMessage(llvm::StringRef Message,
 }
 
 std::optional<BreakpointState> DebugSession::compileBreakpointParts(
-    unsigned Number, llvm::StringRef Condition, llvm::StringRef HitCondition,
+    llvm::StringRef Condition, llvm::StringRef HitCondition,
     llvm::StringRef LogMessage) {
   Breakpoint &B = R->Breakpoints.back();
   BreakpointState Bad;
-  Bad.Id = Number;
   // The condition and the log see the task's parameters and locals
   // unqualified, as its code does.
   const TaskDecl *Frame = R->Checker->getFrame();
@@ -216,16 +215,17 @@ DebugSession::setSourceBreakpoints(llvm::StringRef Path,
     }
     B->Text = llvm::sys::path::filename(Path).str() + ":" +
               std::to_string(SB.Line);
-    unsigned Number = R->NextBreakpoint++;
+    unsigned Number = B->Number;
     R->Breakpoints.push_back(std::move(*B));
     if (std::optional<BreakpointState> Bad = compileBreakpointParts(
-            Number, SB.Condition, SB.HitCondition, SB.LogMessage)) {
+            SB.Condition, SB.HitCondition, SB.LogMessage)) {
       R->destroyBreakpoint(R->Breakpoints.back());
       R->Breakpoints.pop_back();
       Bad->Line = SB.Line;
       States.push_back(*Bad);
       continue;
     }
+    ++R->NextBreakpoint;
     Numbers.push_back(Number);
     State.Verified = true;
     State.Id = Number;
@@ -248,15 +248,16 @@ DebugSession::setTaskBreakpoints(llvm::ArrayRef<TaskBreakpoint> Wanted) {
     }
     std::optional<Breakpoint> B =
         R->makeBreakpoint(TB.Name, R->addBuffer(TB.Name));
-    unsigned Number = R->NextBreakpoint++;
+    unsigned Number = B->Number;
     R->Breakpoints.push_back(std::move(*B));
-    if (std::optional<BreakpointState> Bad = compileBreakpointParts(
-            Number, TB.Condition, TB.HitCondition, "")) {
+    if (std::optional<BreakpointState> Bad =
+            compileBreakpointParts(TB.Condition, TB.HitCondition, "")) {
       R->destroyBreakpoint(R->Breakpoints.back());
       R->Breakpoints.pop_back();
       States.push_back(*Bad);
       continue;
     }
+    ++R->NextBreakpoint;
     TaskNumbers.push_back(Number);
     State.Verified = true;
     State.Id = Number;

@@ -161,8 +161,11 @@ private:
   std::string describeCounter(unsigned Counter) const;
   DebugStop reverseContinue();
   void deleteBreakpoints(std::vector<unsigned> &Numbers);
+  /// Gives the breakpoint last added its condition, hit condition and
+  /// log, compiled in its task's frame; why it cannot be set, or
+  /// std::nullopt.
   std::optional<BreakpointState>
-  compileBreakpointParts(unsigned Number, llvm::StringRef Condition,
+  compileBreakpointParts(llvm::StringRef Condition,
                          llvm::StringRef HitCondition,
                          llvm::StringRef LogMessage);
 
