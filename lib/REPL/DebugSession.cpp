@@ -76,6 +76,7 @@ std::unique_ptr<DebugSession> DebugSession::start(const ReplOptions &Opts,
     D->R->flushDiagnostics();
     if (D->getCycle() == 0)
       return Fail();
+    D->ReplayEnd = D->getCycle();
     if (D->R->History)
       D->R->travelTo(D->R->History->first());
   }
@@ -312,6 +313,22 @@ innermostPlace(const std::vector<DebugFrame> &Frames) {
 }
 
 DebugStop DebugSession::run(DebugRun How, std::function<bool()> ShouldPause) {
+  // A replayed log's runs stop at its end: past it the behavior runs live,
+  // on no logged input, which the next run does if asked.
+  unsigned Limit = MaxCycles;
+  if (ReplayEnd && getCycle() < *ReplayEnd)
+    Limit = *ReplayEnd - getCycle();
+  auto AtLogEnd = [&](DebugStop Stop) {
+    if (ReplayEnd && getCycle() == *ReplayEnd &&
+        R->LastStop.End == StepEnd::Ran && How != DebugRun::Next) {
+      Stop.Why = DebugStop::Pause;
+      Stop.Description = "the end of the replayed log, cycle " +
+                         std::to_string(*ReplayEnd) +
+                         " (from here the behavior runs live)";
+      *OutputStream << Stop.Description << "\n";
+    }
+    return Stop;
+  };
   R->ShouldPause = std::move(ShouldPause);
   auto Done = llvm::make_scope_exit([&] { R->ShouldPause = nullptr; });
   switch (How) {
@@ -336,7 +353,7 @@ DebugStop DebugSession::run(DebugRun How, std::function<bool()> ShouldPause) {
     std::optional<std::vector<unsigned>> Lines;
     if (K < R->RanCycle.size() && R->RanCycle[K] == getCycle())
       Lines = R->RanCounters[K];
-    R->step(MaxCycles, false, nullptr, [&]() -> std::string {
+    R->step(Limit, false, nullptr, [&]() -> std::string {
       std::vector<DebugFrame> Frames = getFrames(K);
       if (innermostPlace(Frames) != Before)
         return Frames.front().Name + " is the innermost task";
@@ -351,7 +368,7 @@ DebugStop DebugSession::run(DebugRun How, std::function<bool()> ShouldPause) {
                  std::to_string(getCycle() - 1);
       return "";
     });
-    return makeStop(How);
+    return AtLogEnd(makeStop(How));
   }
   case DebugRun::StepOut: {
     unsigned K = R->Selected;
@@ -363,24 +380,27 @@ DebugStop DebugSession::run(DebugRun How, std::function<bool()> ShouldPause) {
       return makeStop(How);
     }
     std::string Name = R->L->Tables.Tasks[*Task].ShortName;
-    R->step(MaxCycles, false, nullptr, [&]() -> std::string {
+    R->step(Limit, false, nullptr, [&]() -> std::string {
       for (const DebugFrame &F : getFrames(K))
         if (F.Task == Task)
           return F.Running ? "" : F.Name;
       return Name + " is no longer active";
     });
-    return makeStop(How);
+    return AtLogEnd(makeStop(How));
   }
   case DebugRun::Continue:
     break;
   }
   // A failed assertion ends a cycle; without the filter the run goes on.
   while (true) {
-    R->step(MaxCycles, /*Report=*/false);
+    R->step(Limit, /*Report=*/false);
     if (R->LastStop.End == StepEnd::Broken &&
-        R->LastStop.Broke == StopInfo::Assertion && !StopOnAssertion)
+        R->LastStop.Broke == StopInfo::Assertion && !StopOnAssertion) {
+      if (ReplayEnd && getCycle() < *ReplayEnd)
+        Limit = *ReplayEnd - getCycle();
       continue;
-    return makeStop(How);
+    }
+    return AtLogEnd(makeStop(How));
   }
 }
 

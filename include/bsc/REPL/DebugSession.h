@@ -180,6 +180,8 @@ private:
   /// The `assertion` filter: a failed assertion stops a run (else it is
   /// reported and the run goes on with the next cycle).
   bool StopOnAssertion = true;
+  /// The last cycle of the log replayed at launch, where runs stop.
+  std::optional<uint32_t> ReplayEnd;
 };
 
 } // namespace bsc
