@@ -1,9 +1,11 @@
 // The b-script extension: starts `bsc lsp` (the language server of bsc) for
-// b-script documents and talks to it over stdin/stdout. Highlighting comes
+// b-script documents and talks to it over stdin/stdout, and debugs
+// behaviors with `bsc dap` (the debug type `bscript`). Highlighting comes
 // from the TextMate grammar and works without the server.
 //
-// Settings: bscript.server.path (the bsc executable), bscript.server.args
-// (arguments after `lsp`), bscript.trace.server (read by the client itself).
+// Settings: bscript.server.path (the bsc executable, for both), bscript.
+// server.args (arguments after `lsp`), bscript.trace.server (read by the
+// client itself).
 'use strict';
 
 const fs = require('fs');
@@ -198,6 +200,63 @@ function restart() {
   return pending;
 }
 
+// The debug adapter: `bsc dap` from the same bsc as the language server.
+const debugAdapterFactory = {
+  createDebugAdapterDescriptor() {
+    const { command } = serverCommand();
+    const executable = resolveExecutable(command);
+    if (!executable) {
+      void vscode.window.showErrorMessage(
+        `b-script: cannot debug: '${command}' was not found or is not executable. ` +
+        'Set "bscript.server.path" to the bsc executable; the debugger is started as ' +
+        `\`${command} dap\`.`);
+      return undefined;
+    }
+    return new vscode.DebugAdapterExecutable(executable, ['dap'], { cwd: baseFolder() });
+  },
+};
+
+// F5 without a launch.json debugs the b-script file in the editor; a
+// configuration without a program is refused with a message.
+const debugConfigurationProvider = {
+  resolveDebugConfiguration(folder, config) {
+    if (!config.type && !config.request && !config.name) {
+      const editor = vscode.window.activeTextEditor;
+      if (editor && editor.document.languageId === 'bscript') {
+        config = { type: 'bscript', request: 'launch', name: 'Debug the behavior',
+                   program: editor.document.fileName, stopOnEntry: true };
+      }
+    }
+    if (!config.program) {
+      void vscode.window.showErrorMessage(
+        'b-script: a launch configuration names the behavior\'s files in "program"');
+      return undefined;
+    }
+    return config;
+  },
+};
+
+// b-script: Go to Cycle... (the debug console's `:goto N` as a command).
+async function gotoCycle() {
+  const session = vscode.debug.activeDebugSession;
+  if (!session || session.type !== 'bscript') {
+    void vscode.window.showErrorMessage('b-script: no b-script debug session is running');
+    return;
+  }
+  const text = await vscode.window.showInputBox({
+    prompt: 'The cycle to go to (back or forth in the session\'s history)',
+    validateInput: (value) => (/^\s*\d+\s*$/.test(value) ? undefined : 'a cycle number, from 0'),
+  });
+  if (text === undefined) {
+    return;
+  }
+  try {
+    await session.customRequest('bscript/gotoCycle', { cycle: Number(text) });
+  } catch (error) {
+    void vscode.window.showErrorMessage(`b-script: ${error && error.message || error}`);
+  }
+}
+
 function activate(context) {
   outputChannel = vscode.window.createOutputChannel(CLIENT_NAME);
   watcher = vscode.workspace.createFileSystemWatcher('**/{*.bs,bscript.json}');
@@ -205,6 +264,9 @@ function activate(context) {
     outputChannel,
     watcher,
     vscode.commands.registerCommand('bscript.restartServer', () => restart()),
+    vscode.commands.registerCommand('bscript.gotoCycle', gotoCycle),
+    vscode.debug.registerDebugAdapterDescriptorFactory('bscript', debugAdapterFactory),
+    vscode.debug.registerDebugConfigurationProvider('bscript', debugConfigurationProvider),
     vscode.workspace.onDidChangeConfiguration((event) => {
       if (event.affectsConfiguration('bscript.server') ||
           event.affectsConfiguration('bscript.inlayHints')) {

@@ -15,6 +15,11 @@
 //   open   with the document $OPEN_DOCUMENT open: print the diagnostics the
 //          server publishes for it and the edits of formatting it through
 //          the server; deactivate (for a real `bsc lsp`)
+//   debug  the debugger's contribution: the debug adapter the extension
+//          starts, the configuration F5 makes for $OPEN_DOCUMENT (the
+//          active editor) and for a launch.json without a program, and
+//          the command bscript.gotoCycle against a debug session that
+//          prints its custom requests; deactivate
 // SERVER_PATH is typically Inputs/fake-bsc; $FAKE_BSC_LOG is its side.
 'use strict';
 const Module = require('module');
@@ -124,6 +129,13 @@ if (process.env.OPEN_DOCUMENT) {
 }
 const providers = {};
 const diagnosticsSeen = [];
+const debugRegistrations = {};
+let activeDebugSession;
+let inputBoxAnswer;
+
+class DebugAdapterExecutable {
+  constructor(command, args, options) { this.command = command; this.args = args; this.options = options; }
+}
 
 const vscode = partly('vscode', {
   EventEmitter, Position, Range, Diagnostic, TextEdit, Uri, CancellationTokenSource,
@@ -178,6 +190,11 @@ const vscode = partly('vscode', {
     showErrorMessage(message) { errorMessages += 1; say(`error message: ${message}`); return Promise.resolve(undefined); },
     showWarningMessage(message) { say(`warning message: ${message}`); return Promise.resolve(undefined); },
     showInformationMessage(message) { say(`information message: ${message}`); return Promise.resolve(undefined); },
+    showInputBox(options) {
+      say(`input box: ${options.prompt}; "x" is ${options.validateInput('x')}, "12" is ${options.validateInput('12')}`);
+      return Promise.resolve(inputBoxAnswer);
+    },
+    get activeTextEditor() { return documents.length ? { document: documents[0] } : undefined; },
     createOutputChannel(name) {
       say(`output channel: ${name}`);
       const log = (text) => process.stderr.write(`[${name}] ${text}`);
@@ -186,6 +203,20 @@ const vscode = partly('vscode', {
         replace() {},
       });
     },
+  }),
+  DebugAdapterExecutable,
+  debug: partly('vscode.debug', {
+    registerDebugAdapterDescriptorFactory(type, factory) {
+      say(`debug adapter factory: ${type}`);
+      debugRegistrations.factory = factory;
+      return disposable;
+    },
+    registerDebugConfigurationProvider(type, provider) {
+      say(`debug configuration provider: ${type}`);
+      debugRegistrations.provider = provider;
+      return disposable;
+    },
+    get activeDebugSession() { return activeDebugSession; },
   }),
   commands: partly('vscode.commands', {
     registerCommand(id, callback) {
@@ -255,6 +286,28 @@ async function main() {
     for (const e of edits || []) {
       say(`edit: ${e.range.start.line + 1}:${e.range.start.character + 1}-${e.range.end.line + 1}:${e.range.end.character + 1}: ${JSON.stringify(e.newText)}`);
     }
+    say('deactivate');
+    await extension.deactivate();
+    process.exit(0);
+  }
+  if (scenario === 'debug') {
+    const descriptor = debugRegistrations.factory.createDebugAdapterDescriptor({}, undefined);
+    say(`adapter: ${descriptor ? `${descriptor.command} ${descriptor.args.join(' ')}` : 'none'}`);
+    const f5 = debugRegistrations.provider.resolveDebugConfiguration(undefined, {});
+    say(`F5 without launch.json: ${JSON.stringify(f5)}`);
+    const given = { type: 'bscript', request: 'launch', name: 'x', program: 'A.bs', robots: 2 };
+    say(`launch.json: ${JSON.stringify(debugRegistrations.provider.resolveDebugConfiguration(undefined, given))}`);
+    const bad = debugRegistrations.provider.resolveDebugConfiguration(undefined, { type: 'bscript', request: 'launch', name: 'y' });
+    say(`without a program: ${bad}`);
+    await commands['bscript.gotoCycle']();
+    activeDebugSession = {
+      type: 'bscript',
+      customRequest(command, args) { say(`custom request: ${command} ${JSON.stringify(args)}`); return Promise.resolve({}); },
+    };
+    inputBoxAnswer = '12';
+    await commands['bscript.gotoCycle']();
+    inputBoxAnswer = undefined;
+    await commands['bscript.gotoCycle']();
     say('deactivate');
     await extension.deactivate();
     process.exit(0);
