@@ -29,6 +29,11 @@ script):
                               configurationDone: waits for `stopped`
     raw TEXT                  bytes as they are (\\r\\n escapes)
     wait EVENT                prints the messages up to the event EVENT
+    storm SEED N PATH         N requests of random commands with random
+                              arguments (disconnect and terminate left out;
+                              setBreakpoints only on PATH); each must be
+                              answered, a resume also stopped; prints how
+                              many were and how many succeeded
     end                       closes the adapter's input; prints its exit
                               status
 In JSON, `PATH(P)` becomes the absolute path of P under --root as a JSON
@@ -140,6 +145,67 @@ class Client:
         self.until(lambda m: m.get('type') == 'event'
                    and m.get('event') in (event, also))
 
+    def storm(self, seed, count, path):
+        import random
+        rng = random.Random(seed)
+        commands = ['threads', 'stackTrace', 'scopes', 'variables',
+                    'setVariable', 'evaluate', 'exceptionInfo', 'completions',
+                    'setBreakpoints', 'setFunctionBreakpoints',
+                    'setExceptionBreakpoints', 'pause', 'bscript/gotoCycle',
+                    'launch', 'attach', 'configurationDone', 'initialize',
+                    'nothing', 'continue', 'next', 'stepIn', 'stepOut',
+                    'stepBack', 'reverseContinue']
+        resumes = {'continue', 'next', 'stepIn', 'stepOut', 'stepBack',
+                   'reverseContinue'}
+        names = ['threadId', 'frameId', 'variablesReference', 'name', 'value',
+                 'expression', 'context', 'text', 'column', 'cycle', 'filters',
+                 'breakpoints', 'source', 'line', 'condition', 'hitCondition',
+                 'logMessage', 'program', 'startFrame', 'levels']
+
+        def value(depth=0):
+            kind = rng.randrange(9 if depth < 2 else 6)
+            if kind == 0:
+                return rng.choice([0, 1, 2, 3, -1, 7, 2**31, -2**40, 10**20])
+            if kind == 1:
+                return rng.choice(['', 'x', 'input', 'input.time', ':why',
+                                   ':goto 2', ':back', 'n + 1', '{n', '% 0',
+                                   ':step 2', 'striker', 'repl', 'hover',
+                                   '\u00e9\u0000', ':record /nonexistent/x'])
+            if kind == 2:
+                return rng.random() * 1e6
+            if kind == 3:
+                return rng.choice([True, False, None])
+            if kind == 4:
+                return rng.choice([1, 2, 3])
+            if kind == 5:
+                return 'a' * rng.randrange(0, 300)
+            if kind == 6:
+                return [value(depth + 1) for _ in range(rng.randrange(4))]
+            return {rng.choice(names): value(depth + 1)
+                    for _ in range(rng.randrange(4))}
+
+        answered = succeeded = 0
+        for _ in range(count):
+            command = rng.choice(commands)
+            args = {rng.choice(names): value() for _ in range(rng.randrange(5))}
+            if command == 'setBreakpoints':
+                args['source'] = {'path': path}
+            if rng.randrange(10) == 0:
+                args = value()
+            seq = self.send(command, args)
+            while True:
+                msg = self.read_message()
+                if msg.get('type') == 'response' and msg.get('request_seq') == seq:
+                    break
+            answered += 1
+            succeeded += bool(msg.get('success'))
+            if command in resumes and msg.get('success'):
+                while True:
+                    ev = self.read_message()
+                    if ev.get('type') == 'event' and ev.get('event') in ('stopped', 'terminated'):
+                        break
+        print('storm: %d answered, %d succeeded' % (answered, succeeded))
+
     def expand(self, text):
         text = re.sub(r'PATH\(([^)]*)\)',
                       lambda m: json.dumps(os.path.join(self.root,
@@ -162,6 +228,9 @@ class Client:
                 return
             self.wait('initialized')
             self.request('configurationDone', None, resumes=True)
+        elif op == 'storm':
+            seed, count, path = rest.split(' ', 2)
+            self.storm(int(seed), int(count), os.path.join(self.root, path))
         elif op == 'raw':
             self.write(rest.encode().decode('unicode_escape').encode())
         elif op == 'wait':
