@@ -563,9 +563,9 @@ std::vector<DebugFrame> DebugSession::getFrames(unsigned Robot) const {
     return Frames;
   }
   // Every active task, named by its path from the root; a hierarchy has
-  // branches, a stack has none: depth first, then reversed, so that the
-  // last branch's innermost task is on top and every root is below its
-  // tasks.
+  // branches, a stack has none: depth first as `:tasks` lists them, then
+  // reversed, so that the last branch's innermost task is on top and each
+  // task is below those it called.
   std::function<void(unsigned, const std::string &)> Visit =
       [&](unsigned N, const std::string &Parents) {
         const debug::ActiveTask &Node = Tree.Nodes[N];

@@ -208,3 +208,27 @@ TEST(CycleHistoryTest, AnEditIsTheLiveViewOfItsCycle) {
 }
 
 } // namespace
+
+TEST(CycleHistoryTest, ABrokenCycleIsKeptAsItsCopyWithItsInputAndCalls) {
+  Toy T;
+  CycleHistory H(sizes(), 8);
+  runAndRecord(T, H, 12);
+  // Cycle 13 "crashes" half-way: logged, then kept as the moment it left.
+  T.Input = Toy::inputOf(113);
+  CycleRecord R = entryOf(T);
+  T.State[0] = 999;
+  H.recordCycle(R, T.blocks());
+  H.keepPresent(13, T.blocks(), /*Broken=*/true);
+  EXPECT_TRUE(H.isEdited(13));
+  EXPECT_TRUE(H.isBroken(13));
+  EXPECT_FALSE(H.isBroken(12));
+  // Its input is still there for a re-run (which breaks again).
+  Toy U;
+  H.restore(12, /*Before=*/false, U.blocks());
+  H.applyInput(13, U.Input.data());
+  EXPECT_EQ(U.Input, Toy::inputOf(113));
+  // A prompt's edit is no break.
+  H.keepPresent(13, T.blocks());
+  EXPECT_TRUE(H.isEdited(13));
+  EXPECT_FALSE(H.isBroken(13));
+}

@@ -125,8 +125,9 @@ public:
   /// reason in takeErrors().
   std::optional<DebugStop> gotoCycle(uint32_t Cycle);
 
-  /// The tasks of robot `Robot`'s last cycle, depth first and reversed:
-  /// the last branch's innermost task first, each root after its tasks.
+  /// The tasks of robot `Robot`'s last cycle as `:tasks` lists them (depth
+  /// first, siblings in the task table's order), reversed: the last
+  /// branch's innermost task first, each task after those it called.
   /// Before the first cycle, the entry.
   std::vector<DebugFrame> getFrames(unsigned Robot) const;
   /// A frame's task's parameters, then the locals it keeps.
