@@ -180,7 +180,8 @@ void Adapter::fail(const json::Object &Request, llvm::StringRef Message) {
 }
 
 void Adapter::event(llvm::StringRef Name, json::Value Body) {
-  send(json::Object{{"type", "event"}, {"event", Name}, {"body", std::move(Body)}});
+  send(json::Object{
+      {"type", "event"}, {"event", Name}, {"body", std::move(Body)}});
 }
 
 void Adapter::flushOutput() {
@@ -208,8 +209,9 @@ void Adapter::stopped(const DebugStop &Stop) {
   forgetHandles();
   LastStop = Stop;
   LastDetails = Details;
-  static const char *Reasons[] = {"step",  "breakpoint", "function breakpoint",
-                                  "exception", "pause", "goto", "entry"};
+  static const char *Reasons[] = {
+      "step", "breakpoint", "function breakpoint", "exception", "pause",
+      "goto", "entry"};
   json::Object Body{{"reason", Reasons[Stop.Why]},
                     {"description", Stop.Description},
                     {"threadId", int64_t(Stop.Robot) + 1},
@@ -471,8 +473,7 @@ Reply Adapter::launch(const json::Object &Args) {
   R.Robots = A.number("robots", 1, MaxRobots, 1);
   R.Load.OptLevel = A.number("optimize", 0, 3, 0);
   R.Load.CycleBudget = A.number("cycleBudget", 0, UINT32_MAX, 0);
-  R.CycleLimitMs =
-      A.number("cycleLimitMs", 0, 3600000, DefaultCycleLimitMs);
+  R.CycleLimitMs = A.number("cycleLimitMs", 0, 3600000, DefaultCycleLimitMs);
   std::string Replay = A.string("replay");
   StopOnEntry = A.boolean("stopOnEntry", true);
   if (!A.Error.empty())
@@ -497,9 +498,9 @@ Reply Adapter::launch(const json::Object &Args) {
     event("output", json::Object{{"category", "stderr"}, {"output", Errors}});
     // The first line names the problem in the editor's message.
     llvm::StringRef First = llvm::StringRef(Errors).split('\n').first;
-    return refuse("the behavior cannot be debugged: " +
-                  (First.empty() ? llvm::StringRef("see the debug console")
-                                 : First));
+    return refuse(
+        "the behavior cannot be debugged: " +
+        (First.empty() ? llvm::StringRef("see the debug console") : First));
   }
   return nullptr;
 }
@@ -585,8 +586,7 @@ Reply Adapter::setExceptionBreakpoints(const json::Object &Args) {
     for (const json::Value &V : *A)
       if (std::optional<llvm::StringRef> F = V.getAsString())
         Filters.push_back(F->str());
-  if (std::string Error = Session->setExceptionFilters(Filters);
-      !Error.empty())
+  if (std::string Error = Session->setExceptionFilters(Filters); !Error.empty())
     return refuse(Error);
   return nullptr;
 }
@@ -596,9 +596,10 @@ Reply Adapter::setExceptionBreakpoints(const json::Object &Args) {
 //===----------------------------------------------------------------------===//
 
 void Adapter::resume(const json::Object &Request, DebugRun How) {
-  respond(Request, How == DebugRun::Continue
-                       ? json::Value(json::Object{{"allThreadsContinued", true}})
-                       : json::Value(nullptr));
+  respond(Request,
+          How == DebugRun::Continue
+              ? json::Value(json::Object{{"allThreadsContinued", true}})
+              : json::Value(nullptr));
   runUntilStop(How);
 }
 
@@ -634,7 +635,7 @@ llvm::Error Adapter::gotoCycle(const json::Object &Request,
   std::optional<DebugStop> Stop = Session->gotoCycle(*Cycle);
   if (!Stop)
     return refuse("cannot go to cycle " + std::to_string(*Cycle) + ": " +
-                       llvm::StringRef(Session->takeErrors()).trim().str());
+                  llvm::StringRef(Session->takeErrors()).trim().str());
   respond(Request);
   stopped(*Stop);
   return llvm::Error::success();
@@ -648,19 +649,32 @@ Reply Adapter::threads() {
   json::Array Threads;
   unsigned Robots = Session->getRobots();
   for (unsigned K = 0; K < Robots; ++K)
-    Threads.push_back(json::Object{
-        {"id", int64_t(K) + 1},
-        {"name", Robots == 1 ? std::string("behavior")
-                             : "robot " + std::to_string(K)}});
+    Threads.push_back(
+        json::Object{{"id", int64_t(K) + 1},
+                     {"name", Robots == 1 ? std::string("behavior")
+                                          : "robot " + std::to_string(K)}});
   return json::Object{{"threads", std::move(Threads)}};
 }
 
+/// Args[Key], a number from 1 to Count (threads, frames, variables); else
+/// "no WHAT N" and `Why`.
+static llvm::Expected<size_t> getHandle(const json::Object &Args,
+                                        llvm::StringRef Key, size_t Count,
+                                        llvm::StringRef What,
+                                        llvm::StringRef Why) {
+  std::optional<int64_t> N = Args.getInteger(Key);
+  if (!N || *N < 1 || uint64_t(*N) > Count)
+    return refuse("no " + What + " " +
+                  (N ? std::to_string(*N) : std::string("given")) + Why);
+  return *N;
+}
+
 llvm::Expected<unsigned> Adapter::robotOf(const json::Object &Args) {
-  std::optional<int64_t> Thread = Args.getInteger("threadId");
-  if (!Thread || *Thread < 1 || *Thread > Session->getRobots())
-    return refuse("no thread " +
-                       (Thread ? std::to_string(*Thread) : std::string("given")) +
-                       ": a thread is a robot, from 1");
+  llvm::Expected<size_t> Thread =
+      getHandle(Args, "threadId", Session->getRobots(), "thread",
+                ": a thread is a robot, from 1");
+  if (!Thread)
+    return Thread.takeError();
   return *Thread - 1;
 }
 
@@ -673,16 +687,16 @@ Reply Adapter::stackTrace(const json::Object &Args) {
   int64_t Start = Args.getInteger("startFrame").value_or(0);
   int64_t Levels = Args.getInteger("levels").value_or(0);
   json::Array Result;
-  for (int64_t I = std::max<int64_t>(Start, 0); I < int64_t(Stack.size()) &&
-                                               (Levels <= 0 || I < Start + Levels);
-       ++I) {
+  for (int64_t I = std::max<int64_t>(Start, 0);
+       I < int64_t(Stack.size()) && (Levels <= 0 || I < Start + Levels); ++I) {
     const DebugFrame &F = Stack[I];
     Frames.push_back({Robot, F});
     Result.push_back(json::Object{
         {"id", int64_t(Frames.size())},
         {"name", F.Name},
-        {"source", json::Object{{"name", llvm::sys::path::filename(F.Path).str()},
-                                {"path", F.Path}}},
+        {"source",
+         json::Object{{"name", llvm::sys::path::filename(F.Path).str()},
+                      {"path", F.Path}}},
         {"line", int64_t(F.Line)},
         {"column", 1}});
   }
@@ -691,12 +705,12 @@ Reply Adapter::stackTrace(const json::Object &Args) {
 }
 
 llvm::Expected<size_t> Adapter::frameOf(const json::Object &Args) {
-  std::optional<int64_t> Id = Args.getInteger("frameId");
-  if (!Id || *Id < 1 || *Id > int64_t(Frames.size()))
-    return refuse("no frame " +
-                       (Id ? std::to_string(*Id) : std::string("given")) +
-                       " (frames are numbered afresh at each stop)");
-  return *Id - 1;
+  llvm::Expected<size_t> Frame =
+      getHandle(Args, "frameId", Frames.size(), "frame",
+                " (frames are numbered afresh at each stop)");
+  if (!Frame)
+    return Frame.takeError();
+  return *Frame - 1;
 }
 
 Reply Adapter::scopes(const json::Object &Args) {
@@ -786,11 +800,11 @@ json::Object Adapter::variable(unsigned Robot, const DebugValue &V) {
 }
 
 Reply Adapter::variables(const json::Object &Args) {
-  std::optional<int64_t> Ref = Args.getInteger("variablesReference");
-  if (!Ref || *Ref < 1 || *Ref > int64_t(Nodes.size()))
-    return refuse("no variables " +
-                       (Ref ? std::to_string(*Ref) : std::string("given")) +
-                       " (they are numbered afresh at each stop)");
+  llvm::Expected<size_t> Ref =
+      getHandle(Args, "variablesReference", Nodes.size(), "variables",
+                " (they are numbered afresh at each stop)");
+  if (!Ref)
+    return Ref.takeError();
   // Copied: variable() grows Nodes.
   VariableNode N = Nodes[*Ref - 1];
   json::Array Result;
@@ -828,7 +842,7 @@ Reply Adapter::setVariable(const json::Object &Args) {
   std::optional<llvm::StringRef> Value = Args.getString("value");
   if (!Ref || *Ref < 1 || *Ref > int64_t(Nodes.size()) || !Name || !Value)
     return refuse("setVariable needs a variablesReference of this stop, "
-                       "a name and a value");
+                  "a name and a value");
   const VariableNode &N = Nodes[*Ref - 1];
   std::string Path = N.Path + (Name->starts_with("[") ? "" : ".") + Name->str();
   if (N.Frame)
@@ -867,15 +881,16 @@ llvm::Error Adapter::evaluate(const json::Object &Request,
     Session->runConsoleLine(Text, Robot);
     std::string Answer = Session->takeOutput();
     flushOutput();
-    respond(Request, json::Object{{"result", llvm::StringRef(Answer).rtrim("\n").str()},
-                                  {"variablesReference", 0}});
+    respond(Request,
+            json::Object{{"result", llvm::StringRef(Answer).rtrim("\n").str()},
+                         {"variablesReference", 0}});
   } else {
     std::optional<DebugValue> V = Session->evaluate(Text, Robot, Task);
     if (!V)
       return refuse(llvm::StringRef(Session->takeErrors()).trim().str());
-    json::Object Body{{"result", V->Type.empty() ? "" : V->Display},
-                      {"variablesReference",
-                       childrenOf(Robot, V->Value, V->Path)}};
+    json::Object Body{
+        {"result", V->Type.empty() ? "" : V->Display},
+        {"variablesReference", childrenOf(Robot, V->Value, V->Path)}};
     if (!V->Type.empty())
       Body["type"] = V->Type;
     respond(Request, std::move(Body));

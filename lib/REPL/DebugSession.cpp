@@ -144,9 +144,10 @@ static bool splitLogMessage(llvm::StringRef Message,
   return true;
 }
 
-std::optional<BreakpointState> DebugSession::compileBreakpointParts(
-    llvm::StringRef Condition, llvm::StringRef HitCondition,
-    llvm::StringRef LogMessage) {
+std::optional<BreakpointState>
+DebugSession::compileBreakpointParts(llvm::StringRef Condition,
+                                     llvm::StringRef HitCondition,
+                                     llvm::StringRef LogMessage) {
   Breakpoint &B = R->Breakpoints.back();
   BreakpointState Bad;
   // The condition and the log see the task's parameters and locals
@@ -167,8 +168,8 @@ std::optional<BreakpointState> DebugSession::compileBreakpointParts(
     B.Hits = *H;
   }
   if (!Condition.trim().empty()) {
-    std::optional<Probe> If = R->compileProbe(
-        Condition, "break", /*Bool=*/true, R->addBuffer(Condition));
+    std::optional<Probe> If = R->compileProbe(Condition, "break", /*Bool=*/true,
+                                              R->addBuffer(Condition));
     if (!If) {
       Bad.Message = takeErrors();
       return Bad;
@@ -214,8 +215,8 @@ DebugSession::setSourceBreakpoints(llvm::StringRef Path,
       States.push_back(State);
       continue;
     }
-    B->Text = llvm::sys::path::filename(Path).str() + ":" +
-              std::to_string(SB.Line);
+    B->Text =
+        llvm::sys::path::filename(Path).str() + ":" + std::to_string(SB.Line);
     unsigned Number = B->Number;
     R->Breakpoints.push_back(std::move(*B));
     if (std::optional<BreakpointState> Bad = compileBreakpointParts(
@@ -268,8 +269,8 @@ DebugSession::setTaskBreakpoints(llvm::ArrayRef<TaskBreakpoint> Wanted) {
   return States;
 }
 
-std::string DebugSession::setExceptionFilters(
-    llvm::ArrayRef<std::string> Filters) {
+std::string
+DebugSession::setExceptionFilters(llvm::ArrayRef<std::string> Filters) {
   for (const std::string &F : Filters)
     if (!llvm::any_of(getExceptionFilters(),
                       [&](const ExceptionFilter &E) { return F == E.Id; }))
@@ -279,8 +280,8 @@ std::string DebugSession::setExceptionFilters(
   // The budget first: a loop that runs out of it fails its task too, and
   // the first breakpoint hit names the stop.
   for (llvm::StringRef Where : {"budget", "failure"}) {
-    if (!llvm::is_contained(Filters, Where == "failure" ? "taskFailure"
-                                                        : "budget"))
+    if (!llvm::is_contained(Filters,
+                            Where == "failure" ? "taskFailure" : "budget"))
       continue;
     std::optional<Breakpoint> B = R->makeBreakpoint(Where, llvm::SMLoc());
     FilterNumbers.push_back(R->NextBreakpoint++);
@@ -301,7 +302,8 @@ std::string DebugSession::describeCounter(unsigned Counter) const {
   return llvm::sys::path::filename(
              R->C->SM.getMemoryBuffer(Buffer)->getBufferIdentifier())
              .str() +
-         ":" + std::to_string(R->C->SM.FindLineNumber(Site.N->getLoc(), Buffer));
+         ":" +
+         std::to_string(R->C->SM.FindLineNumber(Site.N->getLoc(), Buffer));
 }
 
 /// Where robot S's innermost active task waits: (task, line), or none.
@@ -422,8 +424,7 @@ DebugStop DebugSession::makeStop(DebugRun How) {
                                 "diverged"};
     Stop.Why = DebugStop::Exception;
     Stop.ExceptionId = Ids[Info.Broke];
-    Stop.Description = Info.Broke == StopInfo::Assertion
-                           ? "an assertion failed"
+    Stop.Description = Info.Broke == StopInfo::Assertion ? "an assertion failed"
                        : Info.Broke == StopInfo::TimedOut
                            ? "the cycle ran out of time"
                        : Info.Broke == StopInfo::Diverged
@@ -449,9 +450,8 @@ DebugStop DebugSession::makeStop(DebugRun How) {
   }
   unsigned First = Info.Breakpoints.front();
   if (llvm::is_contained(FilterNumbers, First)) {
-    auto It = llvm::find_if(R->Breakpoints, [&](const Breakpoint &B) {
-      return B.Number == First;
-    });
+    auto It = llvm::find_if(
+        R->Breakpoints, [&](const Breakpoint &B) { return B.Number == First; });
     Stop.Why = DebugStop::Exception;
     Stop.ExceptionId = It != R->Breakpoints.end() && It->K == Breakpoint::Budget
                            ? "budget"
@@ -511,8 +511,8 @@ DebugStop DebugSession::reverseContinue() {
     Stop.Breakpoints = Hit;
   } else {
     R->showCycle();
-    Stop.Description = "the start of the history, cycle " +
-                       std::to_string(getCycle());
+    Stop.Description =
+        "the start of the history, cycle " + std::to_string(getCycle());
   }
   return Stop;
 }
@@ -538,7 +538,8 @@ static std::string filePath(const llvm::SourceMgr &SM, const Decl *D) {
   unsigned Buffer = SM.FindBufferContainingLoc(D->getLoc());
   if (!Buffer)
     return "";
-  llvm::SmallString<256> Path(SM.getMemoryBuffer(Buffer)->getBufferIdentifier());
+  llvm::SmallString<256> Path(
+      SM.getMemoryBuffer(Buffer)->getBufferIdentifier());
   llvm::sys::fs::make_absolute(Path);
   llvm::sys::path::remove_dots(Path, /*remove_dot_dot=*/true);
   return Path.str().str();
@@ -613,27 +614,29 @@ std::vector<DebugValue> DebugSession::getFields(unsigned Robot,
   return Fields;
 }
 
-std::optional<DebugValue> DebugSession::getInput(unsigned Robot) const {
-  const LoadedBehavior &L = *R->L;
-  if (!L.InputClass)
+/// `input` or `output` (`Name`) of class `Class` at `Object`, if there is
+/// a class.
+static std::optional<DebugValue> readWorldObject(debug::ValueIO &Values,
+                                                 const NativeClass *Class,
+                                                 const void *Object,
+                                                 const char *Name) {
+  if (!Class)
     return std::nullopt;
   DebugValue V;
-  V.Name = V.Path = "input";
-  V.Type = L.InputClass->QualifiedName;
-  V.Value = R->Values->readClass(*L.InputClass, (*R->Robots)[Robot].getInput());
+  V.Name = V.Path = Name;
+  V.Type = Class->QualifiedName;
+  V.Value = Values.readClass(*Class, Object);
   return V;
 }
 
+std::optional<DebugValue> DebugSession::getInput(unsigned Robot) const {
+  return readWorldObject(*R->Values, R->L->InputClass,
+                         (*R->Robots)[Robot].getInput(), "input");
+}
+
 std::optional<DebugValue> DebugSession::getOutput(unsigned Robot) const {
-  const LoadedBehavior &L = *R->L;
-  if (!L.OutputClass)
-    return std::nullopt;
-  DebugValue V;
-  V.Name = V.Path = "output";
-  V.Type = L.OutputClass->QualifiedName;
-  V.Value =
-      R->Values->readClass(*L.OutputClass, (*R->Robots)[Robot].getOutput());
-  return V;
+  return readWorldObject(*R->Values, R->L->OutputClass,
+                         (*R->Robots)[Robot].getOutput(), "output");
 }
 
 std::optional<DebugValue> DebugSession::evaluate(llvm::StringRef Line,
@@ -644,8 +647,7 @@ std::optional<DebugValue> DebugSession::evaluate(llvm::StringRef Line,
   // the scope of the lines after it.
   const TaskDecl *Frame = R->Checker->getFrame();
   if (Task)
-    R->Checker->setFrame(
-        llvm::cast<TaskDecl>(R->L->Layout.Tasks[*Task].Decl));
+    R->Checker->setFrame(llvm::cast<TaskDecl>(R->L->Layout.Tasks[*Task].Decl));
   std::optional<LineValue> V = R->runLine(Line);
   R->Checker->setFrame(Frame);
   R->flushDiagnostics();

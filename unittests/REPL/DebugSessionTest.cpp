@@ -83,9 +83,13 @@ TEST(HitConditionTest, ParsesTheFormsAndCountsHits) {
 }
 
 TEST_F(DebugSessionTest, BreakpointsAreVerifiedAgainstTheLinesThatRun) {
-  std::vector<BreakpointState> States = Session->setSourceBreakpoints(
-      File, {{7, "", "", ""}, {8, "", "", ""}, {9, "", "", ""},
-             {5, "", "", ""}, {8, "n +", "", ""}, {8, "", "x", ""}});
+  std::vector<BreakpointState> States =
+      Session->setSourceBreakpoints(File, {{7, "", "", ""},
+                                           {8, "", "", ""},
+                                           {9, "", "", ""},
+                                           {5, "", "", ""},
+                                           {8, "n +", "", ""},
+                                           {8, "", "x", ""}});
   ASSERT_EQ(States.size(), 6u);
   EXPECT_TRUE(States[0].Verified);  // A yield.
   EXPECT_TRUE(States[1].Verified);  // A statement.
@@ -140,7 +144,8 @@ TEST_F(DebugSessionTest, FramesAreTheHierarchyWithTheLastBranchOnTop) {
   // A finished task keeps its parameters only.
   EXPECT_EQ(Session->getFields(0, Frames[1]).size(), 1u);
   // Evaluated in step's frame, its locals are unqualified.
-  std::optional<DebugValue> V = Session->evaluate("twice + n", 0, Frames[0].Task);
+  std::optional<DebugValue> V =
+      Session->evaluate("twice + n", 0, Frames[0].Task);
   ASSERT_TRUE(V);
   EXPECT_EQ(V->Display, "3");
   EXPECT_FALSE(Session->evaluate("twice", 0, std::nullopt));

@@ -43,7 +43,7 @@ struct DebugValue {
   std::string Name;
   std::string Type; ///< `int`, `Game::Input`; empty for a member.
   llvm::json::Value Value = nullptr; ///< As bsc/Debug/Values.h reads it.
-  std::string Display;                ///< As the REPL prints it.
+  std::string Display;               ///< As the REPL prints it.
   /// An expression for it at the prompt (`input.ball.x`, `striker.state`).
   std::string Path;
 };
@@ -70,13 +70,26 @@ struct BreakpointState {
 /// waits elsewhere, or a line runs that did not), step out (until the
 /// innermost task ends, done or failure, or is no longer active), and back
 /// in time.
-enum class DebugRun { Continue, Next, StepIn, StepOut, StepBack,
-                      ReverseContinue };
+enum class DebugRun {
+  Continue,
+  Next,
+  StepIn,
+  StepOut,
+  StepBack,
+  ReverseContinue
+};
 
 /// Where and why a run stopped.
 struct DebugStop {
-  enum Reason { Step, Breakpoint, TaskBreakpoint, Exception, Pause, Goto,
-                Entry } Why = Step;
+  enum Reason {
+    Step,
+    Breakpoint,
+    TaskBreakpoint,
+    Exception,
+    Pause,
+    Goto,
+    Entry
+  } Why = Step;
   std::string Description; ///< `breakpoint 1, striker ran`.
   /// Exception: `assertion`, `taskFailure`, `budget`, `crash`, `timeout`,
   /// `diverged`, and the diagnostics that say what happened.
