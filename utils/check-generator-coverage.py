@@ -111,7 +111,7 @@ def required():
             req.add(f"for {part} {form}")
     for form in ("return value", "return none in func", "return none in task",
                  "yield none", "yield int", "yield TaskState",
-                 "assert", "assert with message"):
+                 "assert", "assert with message", "assume", "assume with message"):
         req.add(f"stmt {form}")
     for kind in ("local", "param", "callable", "native", "enum", "const", "input", "output"):
         req.add(f"name {kind}")
@@ -240,7 +240,8 @@ def features(dump):
                 o = owner(n)
                 found.add("stmt return none in " + ("task" if o and o.kind == "TaskDecl" else "func"))
         elif k == "AssertStmt":
-            found.add("stmt assert with message" if len(c) > 1 else "stmt assert")
+            which = "assume" if t.startswith("AssertStmt assume") else "assert"
+            found.add(f"stmt {which} with message" if len(c) > 1 else f"stmt {which}")
         elif k == "YieldStmt":
             found.add("stmt yield " + (category(c[0].type) if c else "none"))
         elif k == "NameExpr":

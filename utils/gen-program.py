@@ -34,7 +34,8 @@ checks that the generator writes every node kind, operator and form):
 - int `/` and `%` by zero and `INT_MIN / -1`, wrapping `+ - *`, hex
   literals, `int(float)` of huge, infinite and NaN values, conversions;
 - `&&` and `||` whose right operand calls a func that prints;
-- `assert(cond)` and `assert(cond, "message")` whose conditions always hold
+- `assert(cond)` and `assert(cond, "message")` whose conditions always hold,
+  and `assume(...)`s alike before them (what the environment guarantees)
   (`b || !b`, `i == i`) and call nothing: the JIT checks them, objects
   leave them out, and both must print the same;
 - bounded `for` loops (a counter only the step changes) with `break` and
@@ -963,10 +964,13 @@ class Gen:
             b = self.bool_expr(ctx, 0)
             cond = f"!({b} && !{b})"
         ctx.pure -= 1
+        # An assumption and the assertion it guards: both hold, so runs
+        # and objects agree whatever the keyword.
+        keyword = "assume" if r.random() < 0.3 else "assert"
         if r.random() < 0.5:
-            self.emit(ind, f'assert({cond}, "{ctx.owner.name} holds")')
+            self.emit(ind, f'{keyword}({cond}, "{ctx.owner.name} holds")')
         else:
-            self.emit(ind, f"assert({cond})")
+            self.emit(ind, f"{keyword}({cond})")
 
     def bounded_loop(self, ctx, ind):
         """A loop of 1 to 4 trips with a counter only it changes, in every

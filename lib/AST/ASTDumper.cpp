@@ -238,6 +238,8 @@ void Dumper::dumpStmt(const Stmt *S) {
     return;
   case NodeKind::AssertStmt: {
     auto *A = llvm::cast<AssertStmt>(S);
+    if (A->IsAssume)
+      OS << " assume";
     loc(S->getLoc());
     child(A->Cond);
     if (A->Message)

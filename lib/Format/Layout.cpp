@@ -57,7 +57,8 @@ public:
       return false;
     if (T == tok::l_paren)
       return !(endsOperand(P) || P == tok::kw_if || P == tok::kw_for ||
-               P == tok::kw_taskState || P == tok::kw_assert);
+               P == tok::kw_taskState || P == tok::kw_assert ||
+               P == tok::kw_assume);
     if (T == tok::l_square)
       return !endsOperand(P);
     return true; // Words, `,` and `;`, and the spaced operators.

@@ -295,7 +295,7 @@ bool Lexer::nextLineStartsStatement() {
   PeekResult = llvm::StringSwitch<bool>(llvm::StringRef(P, WordEnd - P))
                    .Cases("func", "task", "requires", "if", "else", true)
                    .Cases("for", "break", "continue", "return", "yield", true)
-                   .Case("assert", true)
+                   .Cases("assert", "assume", true)
                    .Default(false);
   return PeekResult;
 }

@@ -38,7 +38,8 @@ static bool startsExpression(tok::Kind K) {
 
 /// statement ::= if-stmt | for-stmt | 'break' NEWLINE | 'continue' NEWLINE
 ///             | ('return' | 'yield') expr? NEWLINE
-///             | 'assert' '(' expr (',' string-literal)? ')' NEWLINE
+///             | ('assert' | 'assume') '(' expr (',' string-literal)? ')'
+///               NEWLINE
 ///             | func-decl (top level of a task body only)
 ///             | simple-stmt NEWLINE
 Stmt *Parser::parseStatement() {
@@ -67,7 +68,7 @@ Stmt *Parser::parseStatement() {
     Expr *Value = parseOptionalValue();
     return finishLine(make<YieldStmt>(rangeFrom(Start), Value), Start);
   }
-  if (Tok.is(tok::kw_assert))
+  if (Tok.is(tok::kw_assert) || Tok.is(tok::kw_assume))
     return parseAssert();
   if (Tok.is(tok::kw_func))
     return parseNestedFunc();
@@ -100,12 +101,15 @@ Stmt *Parser::parseStatement() {
   return finishLine(parseSimpleStatement(), Start);
 }
 
-/// assert-stmt ::= 'assert' '(' expr (',' string-literal)? ')' NEWLINE
+/// assert-stmt ::= ('assert' | 'assume') '(' expr (',' string-literal)? ')'
+///                 NEWLINE
 Stmt *Parser::parseAssert() {
   llvm::SMLoc Start = Tok.Loc;
+  bool IsAssume = Tok.is(tok::kw_assume);
   consume();
   if (Tok.isNot(tok::l_paren)) {
-    diag(Tok.Loc, diag::err_expected_after) << "'('" << "'assert'";
+    diag(Tok.Loc, diag::err_expected_after)
+        << "'('" << (IsAssume ? "'assume'" : "'assert'");
     return recoverStatement(nullptr, Start);
   }
   consume();
@@ -123,7 +127,8 @@ Stmt *Parser::parseAssert() {
   }
   if (!InError)
     expect(tok::r_paren, "')'");
-  return finishLine(make<AssertStmt>(rangeFrom(Start), Cond, Message), Start);
+  return finishLine(
+      make<AssertStmt>(rangeFrom(Start), Cond, Message, IsAssume), Start);
 }
 
 /// The value of `return` / `yield`, if the line has one.

@@ -31,8 +31,8 @@ using namespace bsc::repl;
 llvm::ArrayRef<ExceptionFilter> bsc::getExceptionFilters() {
   static const ExceptionFilter Filters[] = {
       {"assertion", "Failed assertions",
-       "Stop in the cycle whose assert failed (else the failure is reported "
-       "and the run goes on)",
+       "Stop in the cycle whose assert failed or assume did not hold (else "
+       "it is reported and the run goes on)",
        true},
       {"taskFailure", "Task failures",
        "Stop after a cycle in which a task failed", false},
@@ -393,16 +393,23 @@ DebugStop DebugSession::run(DebugRun How, std::function<bool()> ShouldPause) {
   case DebugRun::Continue:
     break;
   }
-  // A failed assertion ends a cycle; without the filter the run goes on.
+  // A failed assertion ends a cycle; without the filter the run goes on,
+  // within the same number of cycles, and a pause stops it there too.
+  uint32_t Start = getCycle();
   while (true) {
-    R->step(Limit, /*Report=*/false);
-    if (R->LastStop.End == StepEnd::Broken &&
-        R->LastStop.Broke == StopInfo::Assertion && !StopOnAssertion) {
-      if (ReplayEnd && getCycle() < *ReplayEnd)
-        Limit = *ReplayEnd - getCycle();
-      continue;
+    R->step(Limit - std::min(Limit, getCycle() - Start), /*Report=*/false);
+    if (R->LastStop.End != StepEnd::Broken ||
+        R->LastStop.Broke != StopInfo::Assertion || StopOnAssertion)
+      return AtLogEnd(makeStop(How));
+    if (getCycle() - Start >= Limit)
+      return AtLogEnd(makeStop(How));
+    if (R->ShouldPause && R->ShouldPause()) {
+      DebugStop Stop;
+      Stop.Why = DebugStop::Pause;
+      Stop.Robot = R->Selected;
+      Stop.Description = "paused at cycle " + std::to_string(getCycle());
+      return Stop;
     }
-    return AtLogEnd(makeStop(How));
   }
 }
 
@@ -424,7 +431,9 @@ DebugStop DebugSession::makeStop(DebugRun How) {
                                 "diverged"};
     Stop.Why = DebugStop::Exception;
     Stop.ExceptionId = Ids[Info.Broke];
-    Stop.Description = Info.Broke == StopInfo::Assertion ? "an assertion failed"
+    Stop.Description = Info.Broke == StopInfo::Assertion
+                           ? (Info.Assumption ? "an assumption does not hold"
+                                              : "an assertion failed")
                        : Info.Broke == StopInfo::TimedOut
                            ? "the cycle ran out of time"
                        : Info.Broke == StopInfo::Diverged

@@ -128,10 +128,15 @@ StepEnd Repl::step(unsigned N, bool Report, Probe *Until,
           : O.K == BehaviorSession::Outcome::TimedOut ? StopInfo::TimedOut
           : llvm::any_of(C->Diags.getDiagnostics(),
                          [](const Diagnostic &D) {
-                           return D.Kind == diag::err_assertion_failed;
+                           return D.Kind == diag::err_assertion_failed ||
+                                  D.Kind == diag::err_assumption_failed;
                          })
               ? StopInfo::Assertion
               : StopInfo::Crash;
+      LastStop.Assumption = llvm::any_of(
+          C->Diags.getDiagnostics(), [](const Diagnostic &D) {
+            return D.Kind == diag::err_assumption_failed;
+          });
       flushDiagnostics();
       OS << "stopped in cycle " << Cycle
          << (Diverged ? "; the state is as the live run left cycle " +

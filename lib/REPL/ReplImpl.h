@@ -98,7 +98,9 @@ struct StopInfo {
   /// The breakpoints that stopped it, by number.
   std::vector<unsigned> Breakpoints;
   /// Broken: what broke the cycle.
+  /// (An assumption that does not hold breaks as an Assertion does.)
   enum Break { None, Assertion, Crash, TimedOut, Diverged } Broke = None;
+  bool Assumption = false;
   bool EntryFailed = false, Interrupted = false, Predicate = false;
 };
 

@@ -48,7 +48,9 @@ bool bsc::reportFailedAssertion(Compilation &C, const LoadedBehavior &L,
       Assert = A.S;
   std::string Message =
       Assert && Assert->Message ? ": " + Assert->Message->Value : "";
-  C.Diags.report(Site.Loc, diag::err_assertion_failed)
+  C.Diags.report(Site.Loc, Assert && Assert->IsAssume
+                               ? diag::err_assumption_failed
+                               : diag::err_assertion_failed)
       << Cycle << Site.Operands[0].Text << Message;
 
   // Each operand that ran, under the one that encloses it (as `:why`).

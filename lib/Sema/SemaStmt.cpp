@@ -55,7 +55,7 @@ void Sema::checkCondition(Expr *&Cond) {
 
 void Sema::checkAssert(AssertStmt *S) {
   if (InReplLine) {
-    diag(S->getLoc(), diag::err_repl_assert);
+    diag(S->getLoc(), diag::err_repl_assert) << S->getKeyword();
     return;
   }
   InAssertCondition = true;

@@ -37,13 +37,19 @@ task main()
 
 class DebugSessionTest : public ::testing::Test {
 protected:
-  void SetUp() override {
-    ASSERT_FALSE(llvm::sys::fs::createUniqueDirectory("debug-session", Dir));
+  void SetUp() override { load(Behavior); }
+  void load(const char *Source) {
+    Session.reset();
+    if (Dir.empty()) {
+      ASSERT_FALSE(
+          llvm::sys::fs::createUniqueDirectory("debug-session", Dir));
+    }
+    File.clear();
     llvm::sys::path::append(File, Dir, "Counter.bs");
     std::error_code EC;
     llvm::raw_fd_ostream OS(File, EC);
     ASSERT_FALSE(EC);
-    OS << Behavior;
+    OS << Source;
     OS.close();
     Opts.Frontend.Inputs = {File.str().str()};
     std::string Errors;
@@ -117,7 +123,7 @@ TEST_F(DebugSessionTest, ContinueStopsAtALineWithItsConditionAndHitCount) {
   ASSERT_TRUE(States[0].Verified) << States[0].Message;
   DebugStop Stop = Session->run(DebugRun::Continue, nullptr);
   EXPECT_EQ(Stop.Why, DebugStop::Breakpoint);
-  EXPECT_EQ(Session->getCycle(), 6u);
+  EXPECT_EQ(Session->getCycle(), 7u); // Asked after cycles 4 to 7.
   EXPECT_EQ(value("main.n"), 6);
   EXPECT_EQ(Stop.Breakpoints, std::vector<unsigned>{States[0].Id});
 }
@@ -202,6 +208,24 @@ TEST_F(DebugSessionTest, SetInputIsOnlyForInput) {
   // No world module: no input at all.
   EXPECT_FALSE(Session->getInput(0));
   EXPECT_FALSE(Session->setInput("input.x", "3", 0));
+}
+
+TEST_F(DebugSessionTest, AnAssumptionThatDoesNotHoldStopsAsAnException) {
+  load("task main()\n    int n = 0\n    for(;; yield)\n        n += 1\n"
+       "        assume(n < 3)\n");
+  DebugStop Stop = Session->run(DebugRun::Continue, nullptr);
+  EXPECT_EQ(Stop.Why, DebugStop::Exception);
+  EXPECT_EQ(Stop.ExceptionId, "assertion");
+  EXPECT_EQ(Stop.Description, "an assumption does not hold");
+  EXPECT_EQ(Session->getCycle(), 3u);
+  EXPECT_NE(Session->takeErrors().find("assumption does not hold: n < 3"),
+            std::string::npos);
+  // Without the filter, the run goes on (to a pause here).
+  Session->setExceptionFilters({});
+  unsigned Asked = 0;
+  Stop = Session->run(DebugRun::Continue, [&] { return ++Asked == 4; });
+  EXPECT_EQ(Stop.Why, DebugStop::Pause);
+  EXPECT_EQ(Session->getCycle(), 7u); // Asked after cycles 4 to 7.
 }
 
 } // namespace

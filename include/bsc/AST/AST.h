@@ -427,10 +427,16 @@ public:
 /// stops the cycle; an object checks it only with --assertions=count|trap.
 class AssertStmt : public Stmt {
 public:
-  AssertStmt(llvm::SMRange R, Expr *Cond, class StringLiteralExpr *Message)
-      : Stmt(NodeKind::AssertStmt, R), Cond(Cond), Message(Message) {}
+  AssertStmt(llvm::SMRange R, Expr *Cond, class StringLiteralExpr *Message,
+             bool IsAssume)
+      : Stmt(NodeKind::AssertStmt, R), Cond(Cond), Message(Message),
+        IsAssume(IsAssume) {}
   Expr *Cond;
   class StringLiteralExpr *Message; ///< May be null.
+  /// `assume(cond)`: what the environment guarantees (`bsc verify` explores
+  /// only inputs that satisfy it); it runs and fails as an `assert` does.
+  bool IsAssume;
+  llvm::StringRef getKeyword() const { return IsAssume ? "assume" : "assert"; }
   static bool classof(const Node *N) {
     return N->getKind() == NodeKind::AssertStmt;
   }
