@@ -123,7 +123,7 @@ TEST_F(DebugSessionTest, ContinueStopsAtALineWithItsConditionAndHitCount) {
   ASSERT_TRUE(States[0].Verified) << States[0].Message;
   DebugStop Stop = Session->run(DebugRun::Continue, nullptr);
   EXPECT_EQ(Stop.Why, DebugStop::Breakpoint);
-  EXPECT_EQ(Session->getCycle(), 7u); // Asked after cycles 4 to 7.
+  EXPECT_EQ(Session->getCycle(), 6u);
   EXPECT_EQ(value("main.n"), 6);
   EXPECT_EQ(Stop.Breakpoints, std::vector<unsigned>{States[0].Id});
 }
