@@ -20,6 +20,7 @@ PACKAGES=(cmake ninja-build g++ gcc-multilib g++-multilib python3 file
           chromium fonts-dejavu-core  # chromium: the timeline page's tests
           neovim  # docs/editors.md's Neovim 0.7 recipe, run in the tests
           lcov  # genhtml reads the tracefiles of --coverage in the tests
+          libz3-dev  # bsc verify: Z3, the solver LLVM 19 is built with
           nodejs)  # nodejs, npm: the VS Code extension's build and tests
 # NodeSource's nodejs has npm inside, and apt refuses Debian's npm beside it.
 command -v npm >/dev/null || PACKAGES+=(npm)

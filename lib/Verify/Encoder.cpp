@@ -1,0 +1,797 @@
+//===- Encoder.cpp - one cycle's LLVM IR as Z3 terms ----------------------===//
+//
+// Blocks are encoded in reverse post-order: a block is reached when one of
+// the edges into it is taken, its phis are the value of the edge taken,
+// and its memory is its predecessors' merged by the same conditions. A
+// back edge (a loop the optimiser did not unroll) stops the encoding.
+// Floats are Z3's IEEE floats with rounding to nearest even, as the host
+// computes them; comparisons follow LLVM's ordered and unordered forms.
+//
+//===----------------------------------------------------------------------===//
+#include "Encoder.h"
+#include "llvm/ADT/PostOrderIterator.h"
+#include "llvm/ADT/StringExtras.h"
+#include "llvm/IR/GetElementPtrTypeIterator.h"
+#include "llvm/IR/Instructions.h"
+#include "llvm/IR/IntrinsicInst.h"
+#include "llvm/IR/Operator.h"
+#include "llvm/Support/raw_ostream.h"
+
+using namespace bsc;
+using namespace bsc::verify;
+
+bool Encoder::unsupported(const std::string &What) {
+  if (Unsupported.empty())
+    Unsupported = What;
+  return false;
+}
+
+/// "the instruction 'fdiv <2 x float> ...'" for a message.
+static std::string describe(const llvm::Value &V) {
+  std::string Text;
+  llvm::raw_string_ostream OS(Text);
+  V.print(OS);
+  llvm::StringRef T = llvm::StringRef(Text).trim();
+  return "'" + T.take_front(80).str() + (T.size() > 80 ? "...'" : "'");
+}
+
+z3::sort Encoder::floatSort(llvm::Type *T) {
+  return T->isDoubleTy() ? Z.fpa_sort<64>() : Z.fpa_sort<32>();
+}
+
+//===----------------------------------------------------------------------===//
+// Values
+//===----------------------------------------------------------------------===//
+
+std::optional<Encoder::Value> Encoder::valueOf(llvm::Value *V) {
+  auto It = Values.find(V);
+  if (It != Values.end())
+    return It->second;
+  if (auto *CI = llvm::dyn_cast<llvm::ConstantInt>(V)) {
+    const llvm::APInt &A = CI->getValue();
+    unsigned W = A.getBitWidth();
+    z3::expr E = W <= 64 ? Z.bv_val(uint64_t(A.getZExtValue()), W)
+                         : Z.bv_val(llvm::toString(A, 10, false).c_str(), W);
+    return Value{Value::Bits, E, 0};
+  }
+  if (auto *CF = llvm::dyn_cast<llvm::ConstantFP>(V)) {
+    llvm::APInt Bits = CF->getValueAPF().bitcastToAPInt();
+    z3::expr B = Z.bv_val(uint64_t(Bits.getZExtValue()), Bits.getBitWidth());
+    z3::expr F(Z, Z3_mk_fpa_to_fp_bv(Z, B, floatSort(CF->getType())));
+    return Value{Value::Float, F, 0};
+  }
+  if (llvm::isa<llvm::UndefValue>(V) || llvm::isa<llvm::PoisonValue>(V))
+    return fresh(V->getType(), "undef");
+  if (llvm::isa<llvm::ConstantPointerNull>(V))
+    return unsupported("a null pointer"), std::nullopt;
+  unsupported("the value " + describe(*V));
+  return std::nullopt;
+}
+
+std::optional<z3::expr> Encoder::bits(llvm::Value *V) {
+  std::optional<Value> X = valueOf(V);
+  if (!X)
+    return std::nullopt;
+  if (X->K == Value::Bits)
+    return X->E;
+  if (X->K == Value::Float)
+    return z3::expr(Z, Z3_mk_fpa_to_ieee_bv(Z, X->E));
+  unsupported("a pointer used as a number: " + describe(*V));
+  return std::nullopt;
+}
+
+std::optional<z3::expr> Encoder::floating(llvm::Value *V) {
+  std::optional<Value> X = valueOf(V);
+  if (!X)
+    return std::nullopt;
+  if (X->K == Value::Float)
+    return X->E;
+  if (X->K == Value::Bits)
+    return z3::expr(Z, Z3_mk_fpa_to_fp_bv(Z, X->E, floatSort(V->getType())));
+  unsupported("a pointer used as a float: " + describe(*V));
+  return std::nullopt;
+}
+
+std::optional<Pointer> Encoder::pointer(llvm::Value *V) {
+  std::optional<Value> X = valueOf(V);
+  if (!X)
+    return std::nullopt;
+  if (X->K != Value::Ptr) {
+    unsupported("a number used as a pointer: " + describe(*V));
+    return std::nullopt;
+  }
+  return X->pointer();
+}
+
+std::optional<Encoder::Value> Encoder::fresh(llvm::Type *T,
+                                             const std::string &Name) {
+  std::string Full = TagPrefix + Name + "." + std::to_string(Fresh++);
+  if (T->isIntegerTy())
+    return Value{Value::Bits,
+                 Z.bv_const(Full.c_str(), T->getIntegerBitWidth()), 0};
+  if (T->isFloatTy() || T->isDoubleTy())
+    return Value{Value::Float, Z.constant(Full.c_str(), floatSort(T)), 0};
+  unsupported("a value of type " + describe(*llvm::UndefValue::get(T)));
+  return std::nullopt;
+}
+
+//===----------------------------------------------------------------------===//
+// Memory
+//===----------------------------------------------------------------------===//
+
+std::optional<z3::expr> Encoder::load(const Memory &M, const Pointer &P,
+                                      unsigned Size) {
+  const std::vector<z3::expr> &Bytes = M.Bytes[P.Object];
+  if (Size == 0 || Size > Bytes.size()) {
+    unsupported("a read of " + std::to_string(Size) + " bytes of " +
+                M.Names[P.Object]);
+    return std::nullopt;
+  }
+  auto At = [&](uint64_t Offset) {
+    z3::expr V = Bytes[Offset];
+    for (unsigned I = 1; I < Size; ++I) // Little-endian.
+      V = z3::concat(Bytes[Offset + I], V);
+    return V;
+  };
+  z3::expr Offset = P.Offset.simplify();
+  uint64_t Known;
+  if (Offset.is_numeral_u64(Known)) {
+    if (Known + Size > Bytes.size()) {
+      unsupported("a read past the end of " + M.Names[P.Object]);
+      return std::nullopt;
+    }
+    return At(Known);
+  }
+  // An index the behavior computed: any place the read fits (bsc clamps
+  // indices, so there is one).
+  z3::expr V = At(Bytes.size() - Size);
+  for (uint64_t O = Bytes.size() - Size; O-- > 0;)
+    V = z3::ite(Offset == Z.bv_val(O, 64), At(O), V);
+  return V;
+}
+
+bool Encoder::store(Memory &M, const Pointer &P, const z3::expr &Bits,
+                    const z3::expr &) {
+  std::vector<z3::expr> &Bytes = M.Bytes[P.Object];
+  unsigned Size = Bits.get_sort().bv_size() / 8;
+  if (Size == 0 || Size > Bytes.size())
+    return unsupported("a write of " + std::to_string(Size) + " bytes to " +
+                       M.Names[P.Object]);
+  z3::expr Offset = P.Offset.simplify();
+  uint64_t Known;
+  if (Offset.is_numeral_u64(Known)) {
+    if (Known + Size > Bytes.size())
+      return unsupported("a write past the end of " + M.Names[P.Object]);
+    for (unsigned I = 0; I < Size; ++I)
+      Bytes[Known + I] = Bits.extract(8 * I + 7, 8 * I).simplify();
+    return true;
+  }
+  for (uint64_t O = 0; O + Size <= Bytes.size(); ++O)
+    for (unsigned I = 0; I < Size; ++I)
+      Bytes[O + I] = z3::ite(Offset == Z.bv_val(O, 64),
+                             Bits.extract(8 * I + 7, 8 * I), Bytes[O + I]);
+  return true;
+}
+
+/// The memory where the paths `Conds` select meet: each byte is the one
+/// of the path taken (the last is the rest).
+static Memory merge(z3::context &Z, const std::vector<const Memory *> &Ins,
+                    const std::vector<z3::expr> &Conds, bool &Ok) {
+  Memory M = *Ins.back();
+  for (size_t K = Ins.size() - 1; K-- > 0;) {
+    const Memory &In = *Ins[K];
+    for (size_t O = 0; O < In.Bytes.size() && O < M.Bytes.size(); ++O)
+      for (size_t B = 0; B < In.Bytes[O].size(); ++B)
+        if (!z3::eq(In.Bytes[O][B], M.Bytes[O][B]))
+          M.Bytes[O][B] = z3::ite(Conds[K], In.Bytes[O][B], M.Bytes[O][B]);
+    for (const auto &[Key, P] : In.Cells) {
+      auto It = M.Cells.find(Key);
+      if (It == M.Cells.end()) {
+        M.Cells.insert({Key, P});
+      } else if (It->second.Object != P.Object) {
+        Ok = false; // A pointer to one object or another.
+      } else if (!z3::eq(It->second.Offset, P.Offset)) {
+        It->second.Offset = z3::ite(Conds[K], P.Offset, It->second.Offset);
+      }
+    }
+  }
+  (void)Z;
+  return M;
+}
+
+//===----------------------------------------------------------------------===//
+// Instructions
+//===----------------------------------------------------------------------===//
+
+bool Encoder::encodeCall(llvm::CallInst &C, Memory &M, z3::expr Reached) {
+  llvm::Function *Callee = C.getCalledFunction();
+  if (!Callee)
+    return unsupported("a call through a pointer: " + describe(C));
+  if (Callee->getName() == VerifyCheckSymbol) {
+    std::optional<z3::expr> Cond = bits(C.getArgOperand(0));
+    auto *Index = llvm::dyn_cast<llvm::ConstantInt>(C.getArgOperand(1));
+    auto *Assume = llvm::dyn_cast<llvm::ConstantInt>(C.getArgOperand(2));
+    if (!Cond || !Index || !Assume)
+      return unsupported("a check the verifier cannot read: " + describe(C));
+    if (Assume->isOne())
+      Assumed = Assumed && z3::implies(Reached, asBool(*Cond));
+    else
+      Checks.push_back(
+          {unsigned(Index->getZExtValue()), Reached && !asBool(*Cond)});
+    return true;
+  }
+  if (auto *II = llvm::dyn_cast<llvm::IntrinsicInst>(&C)) {
+    auto Arg = [&](unsigned I) { return bits(C.getArgOperand(I)); };
+    auto Set = [&](z3::expr E) {
+      set(&C, Value{Value::Bits, E, 0});
+      return true;
+    };
+    switch (II->getIntrinsicID()) {
+    case llvm::Intrinsic::lifetime_start:
+    case llvm::Intrinsic::lifetime_end:
+    case llvm::Intrinsic::dbg_declare:
+    case llvm::Intrinsic::dbg_value:
+    case llvm::Intrinsic::dbg_label:
+    case llvm::Intrinsic::experimental_noalias_scope_decl:
+      return true;
+    case llvm::Intrinsic::assume: {
+      std::optional<z3::expr> Cond = Arg(0);
+      if (!Cond)
+        return false;
+      // What the code generator knows (a task's gap of cycles): true on
+      // every path that reaches it.
+      Assumed = Assumed && z3::implies(Reached, asBool(*Cond));
+      return true;
+    }
+    case llvm::Intrinsic::expect: {
+      std::optional<z3::expr> A = Arg(0);
+      return A && Set(*A);
+    }
+    case llvm::Intrinsic::smax:
+    case llvm::Intrinsic::smin:
+    case llvm::Intrinsic::umax:
+    case llvm::Intrinsic::umin: {
+      std::optional<z3::expr> A = Arg(0), B = Arg(1);
+      if (!A || !B)
+        return false;
+      auto ID = II->getIntrinsicID();
+      z3::expr Less = ID == llvm::Intrinsic::smax || ID == llvm::Intrinsic::smin
+                          ? *A < *B
+                          : z3::ult(*A, *B);
+      bool Max = ID == llvm::Intrinsic::smax || ID == llvm::Intrinsic::umax;
+      return Set(z3::ite(Less, Max ? *B : *A, Max ? *A : *B));
+    }
+    case llvm::Intrinsic::abs: {
+      std::optional<z3::expr> A = Arg(0);
+      return A && Set(z3::ite(*A < 0, -*A, *A));
+    }
+    case llvm::Intrinsic::fabs: {
+      std::optional<z3::expr> A = floating(C.getArgOperand(0));
+      if (!A)
+        return false;
+      set(&C, Value{Value::Float, z3::abs(*A), 0});
+      return true;
+    }
+    case llvm::Intrinsic::memset:
+    case llvm::Intrinsic::memcpy:
+    case llvm::Intrinsic::memmove: {
+      auto *Len = llvm::dyn_cast<llvm::ConstantInt>(C.getArgOperand(2));
+      std::optional<Pointer> Dst = pointer(C.getArgOperand(0));
+      if (!Len || !Dst)
+        return unsupported("a copy of a length the verifier cannot see: " +
+                           describe(C));
+      for (uint64_t I = 0; I < Len->getZExtValue(); ++I) {
+        Pointer D{Dst->Object, Dst->Offset + Z.bv_val(I, 64)};
+        std::optional<z3::expr> Byte;
+        if (II->getIntrinsicID() == llvm::Intrinsic::memset) {
+          Byte = Arg(1);
+        } else {
+          std::optional<Pointer> Src = pointer(C.getArgOperand(1));
+          if (!Src)
+            return false;
+          Byte = load(M, {Src->Object, Src->Offset + Z.bv_val(I, 64)}, 1);
+        }
+        if (!Byte || !store(M, D, *Byte, Reached))
+          return false;
+      }
+      return true;
+    }
+    default:
+      return unsupported("the intrinsic " + Callee->getName().str());
+    }
+  }
+  if (!Callee->isDeclaration())
+    return unsupported("a call of " + Callee->getName().str() +
+                       " that was not inlined (a recursive func?)");
+  // Registered C++: a fresh result, the same for the same arguments if it
+  // reads no memory.
+  llvm::Type *T = C.getType();
+  if (T->isVoidTy())
+    return true;
+  std::vector<z3::expr> Args;
+  bool Pure = C.doesNotAccessMemory();
+  for (llvm::Value *A : C.args()) {
+    if (A->getType()->isPointerTy()) {
+      Pure = false;
+      continue;
+    }
+    std::optional<z3::expr> E = bits(A);
+    if (!E)
+      return false;
+    Args.push_back(*E);
+  }
+  std::optional<Value> V = fresh(T, "native");
+  if (!V)
+    return false;
+  if (Pure) {
+    for (const auto &[Seen, Old] : PureCalls[Callee->getName().str()]) {
+      z3::expr Same = Z.bool_val(true);
+      for (size_t I = 0; I < Args.size(); ++I)
+        Same = Same && Seen[I] == Args[I];
+      Assumed = Assumed && z3::implies(Same, V->E == Old.E);
+    }
+    PureCalls[Callee->getName().str()].push_back({Args, *V});
+  }
+  Natives.push_back({Callee->getName().str(), V->E});
+  set(&C, *V);
+  return true;
+}
+
+bool Encoder::encodeInstruction(llvm::Instruction &I, Memory &M,
+                                z3::expr Reached) {
+  using llvm::Instruction;
+  auto SetBits = [&](z3::expr E) {
+    set(&I, Value{Value::Bits, E, 0});
+    return true;
+  };
+  auto SetFloat = [&](z3::expr E) {
+    set(&I, Value{Value::Float, E, 0});
+    return true;
+  };
+  z3::expr RNE(Z, Z3_mk_fpa_rne(Z));
+  if (auto *B = llvm::dyn_cast<llvm::BinaryOperator>(&I)) {
+    if (B->getType()->isFloatingPointTy()) {
+      std::optional<z3::expr> A = floating(B->getOperand(0)),
+                              C = floating(B->getOperand(1));
+      if (!A || !C)
+        return false;
+      switch (B->getOpcode()) {
+      case Instruction::FAdd:
+        return SetFloat(z3::expr(Z, Z3_mk_fpa_add(Z, RNE, *A, *C)));
+      case Instruction::FSub:
+        return SetFloat(z3::expr(Z, Z3_mk_fpa_sub(Z, RNE, *A, *C)));
+      case Instruction::FMul:
+        return SetFloat(z3::expr(Z, Z3_mk_fpa_mul(Z, RNE, *A, *C)));
+      case Instruction::FDiv:
+        return SetFloat(z3::expr(Z, Z3_mk_fpa_div(Z, RNE, *A, *C)));
+      case Instruction::FRem:
+        return SetFloat(z3::expr(Z, Z3_mk_fpa_rem(Z, *A, *C)));
+      default:
+        return unsupported("the instruction " + describe(I));
+      }
+    }
+    if (!B->getType()->isIntegerTy())
+      return unsupported("the instruction " + describe(I));
+    std::optional<z3::expr> A = bits(B->getOperand(0)),
+                            C = bits(B->getOperand(1));
+    if (!A || !C)
+      return false;
+    switch (B->getOpcode()) {
+    case Instruction::Add:
+      return SetBits(*A + *C);
+    case Instruction::Sub:
+      return SetBits(*A - *C);
+    case Instruction::Mul:
+      return SetBits(*A * *C);
+    case Instruction::UDiv:
+      return SetBits(z3::udiv(*A, *C));
+    case Instruction::SDiv:
+      return SetBits(*A / *C);
+    case Instruction::URem:
+      return SetBits(z3::urem(*A, *C));
+    case Instruction::SRem:
+      return SetBits(z3::srem(*A, *C));
+    case Instruction::Shl:
+      return SetBits(z3::shl(*A, *C));
+    case Instruction::LShr:
+      return SetBits(z3::lshr(*A, *C));
+    case Instruction::AShr:
+      return SetBits(z3::ashr(*A, *C));
+    case Instruction::And:
+      return SetBits(*A & *C);
+    case Instruction::Or:
+      return SetBits(*A | *C);
+    case Instruction::Xor:
+      return SetBits(*A ^ *C);
+    default:
+      return unsupported("the instruction " + describe(I));
+    }
+  }
+  if (auto *N = llvm::dyn_cast<llvm::UnaryOperator>(&I)) {
+    std::optional<z3::expr> A = floating(N->getOperand(0));
+    if (!A || N->getOpcode() != Instruction::FNeg)
+      return A ? unsupported("the instruction " + describe(I)) : false;
+    return SetFloat(-*A);
+  }
+  if (auto *Cmp = llvm::dyn_cast<llvm::ICmpInst>(&I)) {
+    if (Cmp->getOperand(0)->getType()->isPointerTy()) {
+      std::optional<Pointer> A = pointer(Cmp->getOperand(0)),
+                             C = pointer(Cmp->getOperand(1));
+      if (!A || !C || A->Object != C->Object)
+        return unsupported("a comparison of pointers: " + describe(I));
+      z3::expr Eq = A->Offset == C->Offset;
+      return SetBits(fromBool(Cmp->getPredicate() == llvm::CmpInst::ICMP_EQ
+                                  ? Eq
+                                  : !Eq));
+    }
+    std::optional<z3::expr> A = bits(Cmp->getOperand(0)),
+                            C = bits(Cmp->getOperand(1));
+    if (!A || !C)
+      return false;
+    z3::expr R = Z.bool_val(false);
+    switch (Cmp->getPredicate()) {
+    case llvm::CmpInst::ICMP_EQ: R = *A == *C; break;
+    case llvm::CmpInst::ICMP_NE: R = *A != *C; break;
+    case llvm::CmpInst::ICMP_UGT: R = z3::ugt(*A, *C); break;
+    case llvm::CmpInst::ICMP_UGE: R = z3::uge(*A, *C); break;
+    case llvm::CmpInst::ICMP_ULT: R = z3::ult(*A, *C); break;
+    case llvm::CmpInst::ICMP_ULE: R = z3::ule(*A, *C); break;
+    case llvm::CmpInst::ICMP_SGT: R = *A > *C; break;
+    case llvm::CmpInst::ICMP_SGE: R = *A >= *C; break;
+    case llvm::CmpInst::ICMP_SLT: R = *A < *C; break;
+    case llvm::CmpInst::ICMP_SLE: R = *A <= *C; break;
+    default:
+      return unsupported("the instruction " + describe(I));
+    }
+    return SetBits(fromBool(R));
+  }
+  if (auto *Cmp = llvm::dyn_cast<llvm::FCmpInst>(&I)) {
+    std::optional<z3::expr> A = floating(Cmp->getOperand(0)),
+                            C = floating(Cmp->getOperand(1));
+    if (!A || !C)
+      return false;
+    z3::expr Unordered = z3::expr(Z, Z3_mk_fpa_is_nan(Z, *A)) ||
+                         z3::expr(Z, Z3_mk_fpa_is_nan(Z, *C));
+    z3::expr Eq(Z, Z3_mk_fpa_eq(Z, *A, *C)), Lt(Z, Z3_mk_fpa_lt(Z, *A, *C)),
+        Gt(Z, Z3_mk_fpa_gt(Z, *A, *C));
+    z3::expr R = Z.bool_val(false);
+    using P = llvm::CmpInst::Predicate;
+    switch (Cmp->getPredicate()) {
+    case P::FCMP_FALSE: R = Z.bool_val(false); break;
+    case P::FCMP_TRUE: R = Z.bool_val(true); break;
+    case P::FCMP_OEQ: R = Eq; break;
+    case P::FCMP_OGT: R = Gt; break;
+    case P::FCMP_OGE: R = Gt || Eq; break;
+    case P::FCMP_OLT: R = Lt; break;
+    case P::FCMP_OLE: R = Lt || Eq; break;
+    case P::FCMP_ONE: R = Lt || Gt; break;
+    case P::FCMP_ORD: R = !Unordered; break;
+    case P::FCMP_UNO: R = Unordered; break;
+    case P::FCMP_UEQ: R = Unordered || Eq; break;
+    case P::FCMP_UGT: R = Unordered || Gt; break;
+    case P::FCMP_UGE: R = Unordered || Gt || Eq; break;
+    case P::FCMP_ULT: R = Unordered || Lt; break;
+    case P::FCMP_ULE: R = Unordered || Lt || Eq; break;
+    case P::FCMP_UNE: R = !Eq; break;
+    default:
+      return unsupported("the instruction " + describe(I));
+    }
+    return SetBits(fromBool(R));
+  }
+  if (auto *Sel = llvm::dyn_cast<llvm::SelectInst>(&I)) {
+    std::optional<z3::expr> Cond = bits(Sel->getCondition());
+    std::optional<Value> A = valueOf(Sel->getTrueValue()),
+                         C = valueOf(Sel->getFalseValue());
+    if (!Cond || !A || !C || A->K != C->K)
+      return Cond && A && C ? unsupported("the instruction " + describe(I))
+                            : false;
+    if (A->K == Value::Ptr && A->Object != C->Object)
+      return unsupported("a choice of objects: " + describe(I));
+    set(&I, Value{A->K, z3::ite(asBool(*Cond), A->E, C->E), A->Object});
+    return true;
+  }
+  if (auto *Cast = llvm::dyn_cast<llvm::CastInst>(&I)) {
+    llvm::Type *To = Cast->getType();
+    switch (Cast->getOpcode()) {
+    case Instruction::ZExt:
+    case Instruction::SExt:
+    case Instruction::Trunc: {
+      std::optional<z3::expr> A = bits(Cast->getOperand(0));
+      if (!A)
+        return false;
+      unsigned From = A->get_sort().bv_size(), W = To->getIntegerBitWidth();
+      if (Cast->getOpcode() == Instruction::Trunc)
+        return SetBits(A->extract(W - 1, 0));
+      return SetBits(Cast->getOpcode() == Instruction::ZExt
+                         ? z3::zext(*A, W - From)
+                         : z3::sext(*A, W - From));
+    }
+    case Instruction::BitCast:
+      if (To->isFloatingPointTy()) {
+        std::optional<z3::expr> A = bits(Cast->getOperand(0));
+        return A && SetFloat(z3::expr(
+                        Z, Z3_mk_fpa_to_fp_bv(Z, *A, floatSort(To))));
+      }
+      if (To->isIntegerTy()) {
+        std::optional<z3::expr> A = bits(Cast->getOperand(0));
+        return A && SetBits(*A);
+      }
+      break;
+    case Instruction::SIToFP:
+    case Instruction::UIToFP: {
+      std::optional<z3::expr> A = bits(Cast->getOperand(0));
+      if (!A)
+        return false;
+      return SetFloat(z3::expr(
+          Z, Cast->getOpcode() == Instruction::SIToFP
+                 ? Z3_mk_fpa_to_fp_signed(Z, RNE, *A, floatSort(To))
+                 : Z3_mk_fpa_to_fp_unsigned(Z, RNE, *A, floatSort(To))));
+    }
+    case Instruction::FPToSI:
+    case Instruction::FPToUI: {
+      std::optional<z3::expr> A = floating(Cast->getOperand(0));
+      if (!A)
+        return false;
+      z3::expr RTZ(Z, Z3_mk_fpa_rtz(Z));
+      unsigned W = To->getIntegerBitWidth();
+      return SetBits(z3::expr(
+          Z, Cast->getOpcode() == Instruction::FPToSI
+                 ? Z3_mk_fpa_to_sbv(Z, RTZ, *A, W)
+                 : Z3_mk_fpa_to_ubv(Z, RTZ, *A, W)));
+    }
+    case Instruction::FPExt:
+    case Instruction::FPTrunc: {
+      std::optional<z3::expr> A = floating(Cast->getOperand(0));
+      return A && SetFloat(z3::expr(
+                      Z, Z3_mk_fpa_to_fp_float(Z, RNE, *A, floatSort(To))));
+    }
+    default:
+      break;
+    }
+    return unsupported("the instruction " + describe(I));
+  }
+  if (auto *GEP = llvm::dyn_cast<llvm::GetElementPtrInst>(&I)) {
+    std::optional<Pointer> Base = pointer(GEP->getPointerOperand());
+    if (!Base)
+      return false;
+    z3::expr Offset = Base->Offset;
+    for (llvm::gep_type_iterator It = llvm::gep_type_begin(GEP),
+                                 End = llvm::gep_type_end(GEP);
+         It != End; ++It) {
+      if (llvm::StructType *ST = It.getStructTypeOrNull()) {
+        unsigned Field =
+            llvm::cast<llvm::ConstantInt>(It.getOperand())->getZExtValue();
+        Offset = Offset + Z.bv_val(uint64_t(DL.getStructLayout(ST)
+                                                ->getElementOffset(Field)),
+                                   64);
+        continue;
+      }
+      std::optional<z3::expr> Index = bits(It.getOperand());
+      if (!Index)
+        return false;
+      unsigned W = Index->get_sort().bv_size();
+      z3::expr I64 = W < 64 ? z3::sext(*Index, 64 - W) : *Index;
+      Offset = Offset +
+               I64 * Z.bv_val(uint64_t(It.getSequentialElementStride(DL)), 64);
+    }
+    set(&I, Value{Value::Ptr, Offset.simplify(), Base->Object});
+    return true;
+  }
+  if (auto *Ld = llvm::dyn_cast<llvm::LoadInst>(&I)) {
+    std::optional<Pointer> P = pointer(Ld->getPointerOperand());
+    if (!P)
+      return false;
+    llvm::Type *T = Ld->getType();
+    if (T->isPointerTy()) {
+      uint64_t Known;
+      auto It = M.Cells.end();
+      if (P->Offset.simplify().is_numeral_u64(Known))
+        It = M.Cells.find({P->Object, Known});
+      if (It == M.Cells.end())
+        return unsupported("a pointer read from memory the verifier does "
+                           "not follow: " +
+                           describe(I));
+      set(&I, Value{Value::Ptr, It->second.Offset, It->second.Object});
+      return true;
+    }
+    std::optional<z3::expr> B = load(M, *P, DL.getTypeStoreSize(T));
+    if (!B)
+      return false;
+    if (T->isIntegerTy()) {
+      unsigned W = T->getIntegerBitWidth();
+      return SetBits(W == B->get_sort().bv_size() ? *B : B->extract(W - 1, 0));
+    }
+    if (T->isFloatTy() || T->isDoubleTy())
+      return SetFloat(z3::expr(Z, Z3_mk_fpa_to_fp_bv(Z, *B, floatSort(T))));
+    return unsupported("a read of " + describe(I));
+  }
+  if (auto *St = llvm::dyn_cast<llvm::StoreInst>(&I)) {
+    std::optional<Pointer> P = pointer(St->getPointerOperand());
+    if (!P)
+      return false;
+    llvm::Value *V = St->getValueOperand();
+    if (V->getType()->isPointerTy()) {
+      std::optional<Pointer> Stored = pointer(V);
+      uint64_t Known;
+      if (!Stored || !P->Offset.simplify().is_numeral_u64(Known))
+        return unsupported("a pointer written where the verifier does not "
+                           "follow it: " +
+                           describe(I));
+      M.Cells.insert_or_assign({P->Object, Known}, *Stored);
+      return true;
+    }
+    std::optional<z3::expr> B = bits(V);
+    if (!B)
+      return false;
+    unsigned Bytes = DL.getTypeStoreSize(V->getType());
+    unsigned W = B->get_sort().bv_size();
+    z3::expr Wide = W == 8 * Bytes ? *B : z3::zext(*B, 8 * Bytes - W);
+    return store(M, *P, Wide, Reached);
+  }
+  if (auto *A = llvm::dyn_cast<llvm::AllocaInst>(&I)) {
+    std::optional<llvm::TypeSize> Size = A->getAllocationSize(DL);
+    if (!Size || Size->isScalable() || !A->isStaticAlloca())
+      return unsupported("the instruction " + describe(I));
+    std::vector<z3::expr> Content;
+    for (uint64_t B = 0; B < Size->getFixedValue(); ++B)
+      Content.push_back(freshByte(TagPrefix + "stack." +
+                                  std::to_string(Fresh++)));
+    unsigned Object = M.add("a local", std::move(Content));
+    set(&I, Value{Value::Ptr, Z.bv_val(0, 64), Object});
+    return true;
+  }
+  if (auto *C = llvm::dyn_cast<llvm::CallInst>(&I))
+    return encodeCall(*C, M, Reached);
+  if (auto *Fr = llvm::dyn_cast<llvm::FreezeInst>(&I)) {
+    std::optional<Value> V = valueOf(Fr->getOperand(0));
+    if (!V)
+      return false;
+    set(&I, *V);
+    return true;
+  }
+  return unsupported("the instruction " + describe(I));
+}
+
+//===----------------------------------------------------------------------===//
+// Blocks
+//===----------------------------------------------------------------------===//
+
+bool Encoder::encode(llvm::Function &F, llvm::ArrayRef<Pointer> Args,
+                     Memory &Mem, llvm::StringRef Tag) {
+  Values.clear();
+  Reach.clear();
+  Out.clear();
+  Edges.clear();
+  Checks.clear();
+  Natives.clear();
+  PureCalls.clear();
+  Unsupported.clear();
+  Assumed = Z.bool_val(true);
+  TagPrefix = Tag.str() + ".";
+  for (unsigned I = 0; I < Args.size() && I < F.arg_size(); ++I)
+    set(F.getArg(I), Value{Value::Ptr, Args[I].Offset, Args[I].Object});
+
+  llvm::ReversePostOrderTraversal<llvm::Function *> RPO(&F);
+  llvm::DenseMap<llvm::BasicBlock *, unsigned> Order;
+  for (llvm::BasicBlock *BB : RPO)
+    Order[BB] = Order.size();
+  std::vector<const Memory *> Returns;
+  std::vector<z3::expr> ReturnConds;
+  for (llvm::BasicBlock *BB : RPO) {
+    // Where control comes from: the entry, or the edges encoded so far.
+    Memory M;
+    z3::expr Reached = Z.bool_val(BB->isEntryBlock());
+    if (BB->isEntryBlock()) {
+      M = Mem;
+    } else {
+      std::vector<const Memory *> Ins;
+      std::vector<z3::expr> Conds;
+      std::vector<llvm::BasicBlock *> Preds;
+      for (llvm::BasicBlock *P : llvm::predecessors(BB)) {
+        if (!Order.count(P) || llvm::is_contained(Preds, P))
+          continue; // Unreachable from the entry, or seen (a switch).
+        if (Order[P] >= Order[BB])
+          return unsupported("a loop in " + F.getName().str() +
+                             " that was not unrolled");
+        auto E = Edges.find({P, BB});
+        if (E == Edges.end())
+          continue;
+        Preds.push_back(P);
+        Ins.push_back(&Out.at(P));
+        Conds.push_back(E->second);
+        Reached = Reached || E->second;
+      }
+      if (Ins.empty())
+        continue;
+      bool Ok = true;
+      M = merge(Z, Ins, Conds, Ok);
+      if (!Ok)
+        return unsupported("a pointer to one object or another in " +
+                           F.getName().str());
+      for (llvm::PHINode &Phi : BB->phis()) {
+        std::optional<Value> V;
+        for (size_t K = Ins.size(); K-- > 0;) {
+          std::optional<Value> In =
+              valueOf(Phi.getIncomingValueForBlock(Preds[K]));
+          if (!In)
+            return false;
+          if (!V) {
+            V = In;
+          } else if (V->K != In->K ||
+                     (V->K == Value::Ptr && V->Object != In->Object)) {
+            return unsupported("the phi " + describe(Phi));
+          } else {
+            V->E = z3::ite(Conds[K], In->E, V->E);
+          }
+        }
+        set(&Phi, *V);
+      }
+    }
+    z3::expr ReachBB = Reached.simplify();
+    Reach.insert_or_assign(BB, ReachBB);
+    for (llvm::Instruction &I : *BB) {
+      if (llvm::isa<llvm::PHINode>(I))
+        continue;
+      if (I.isTerminator())
+        break;
+      if (!encodeInstruction(I, M, ReachBB))
+        return false;
+    }
+    llvm::Instruction *Term = BB->getTerminator();
+    if (auto *Br = llvm::dyn_cast<llvm::BranchInst>(Term)) {
+      if (Br->isUnconditional()) {
+        Edges.emplace(std::pair(BB, Br->getSuccessor(0)), ReachBB);
+      } else {
+        std::optional<z3::expr> C = bits(Br->getCondition());
+        if (!C)
+          return false;
+        z3::expr T = asBool(*C);
+        if (Br->getSuccessor(0) == Br->getSuccessor(1)) {
+          Edges.emplace(std::pair(BB, Br->getSuccessor(0)), ReachBB);
+        } else {
+          Edges.emplace(std::pair(BB, Br->getSuccessor(0)), ReachBB && T);
+          Edges.emplace(std::pair(BB, Br->getSuccessor(1)), ReachBB && !T);
+        }
+      }
+    } else if (auto *Sw = llvm::dyn_cast<llvm::SwitchInst>(Term)) {
+      std::optional<z3::expr> C = bits(Sw->getCondition());
+      if (!C)
+        return false;
+      z3::expr Other = ReachBB;
+      std::map<llvm::BasicBlock *, z3::expr> To;
+      for (auto &Case : Sw->cases()) {
+        std::optional<z3::expr> V = bits(Case.getCaseValue());
+        z3::expr Taken = *C == *V;
+        auto It = To.find(Case.getCaseSuccessor());
+        if (It == To.end())
+          To.insert({Case.getCaseSuccessor(), Taken});
+        else
+          It->second = It->second || Taken;
+        Other = Other && !Taken;
+      }
+      for (auto &[Succ, Taken] : To)
+        Edges.emplace(std::pair(BB, Succ), ReachBB && Taken);
+      auto It = Edges.find({BB, Sw->getDefaultDest()});
+      if (It == Edges.end())
+        Edges.emplace(std::pair(BB, Sw->getDefaultDest()), Other);
+      else
+        It->second = It->second || Other;
+    } else if (llvm::isa<llvm::ReturnInst>(Term)) {
+      Out.insert_or_assign(BB, std::move(M));
+      Returns.push_back(&Out.at(BB));
+      ReturnConds.push_back(ReachBB);
+      continue;
+    } else if (llvm::isa<llvm::UnreachableInst>(Term)) {
+      Assumed = Assumed && !ReachBB;
+    } else {
+      return unsupported("the instruction " + describe(*Term));
+    }
+    Out.insert_or_assign(BB, std::move(M));
+  }
+  if (Returns.empty())
+    return unsupported(F.getName().str() + " never returns");
+  bool Ok = true;
+  Mem = merge(Z, Returns, ReturnConds, Ok);
+  return Ok || unsupported("a pointer to one object or another in " +
+                           F.getName().str());
+}
