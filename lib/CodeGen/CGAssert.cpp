@@ -7,6 +7,7 @@
 //           evaluating it changes nothing)
 //   Count   if (!cond) state.assertions[k] += 1          (unlikely)
 //   Trap    if (!cond) llvm.trap                          (unlikely)
+//   Verify  bs.verify.check(cond, index, is-assume): `bsc verify` reads it
 //   Report  record = {site, mask 0}; evaluate cond writing its operands
 //           into the record (as CGExplain.cpp does for `:why`);
 //           if (!cond) { bs.assert.record = record; llvm.trap }
@@ -165,6 +166,21 @@ void FunctionEmitter::emitAssert(const AssertStmt &S) {
   }
   if (MarkAssertion)
     Builder.CreateCall(MarkAssertion, {Builder.getInt32(0)});
+  if (Mode == AssertionMode::Verify) {
+    llvm::FunctionCallee Check = CGM.getModule().getOrInsertFunction(
+        VerifyCheckSymbol,
+        llvm::FunctionType::get(
+            Builder.getVoidTy(),
+            {Builder.getInt1Ty(), Builder.getInt32Ty(), Builder.getInt1Ty()},
+            false));
+    // It reads nothing and writes nothing the behavior sees, so the
+    // optimiser keeps the code around it as it would be without it.
+    if (auto *F = llvm::dyn_cast<llvm::Function>(Check.getCallee()))
+      F->setMemoryEffects(llvm::MemoryEffects::inaccessibleMemOnly());
+    Builder.CreateCall(Check, {Holds, Builder.getInt32(CGM.getAssertionIndex(&S)),
+                               Builder.getInt1(S.IsAssume)});
+    return;
+  }
   auto *Failed = llvm::BasicBlock::Create(Ctx, "assert.failed", Fn);
   auto *Go = llvm::BasicBlock::Create(Ctx, "assert.ok", Fn);
   Builder.CreateCondBr(Holds, Go, Failed,

@@ -22,6 +22,7 @@
 #ifndef BSC_LIB_VERIFY_ENCODER_H
 #define BSC_LIB_VERIFY_ENCODER_H
 
+#include "bsc/AST/Layout.h"
 #include "llvm/ADT/DenseMap.h"
 #include "llvm/IR/DataLayout.h"
 #include "llvm/IR/Function.h"
@@ -66,9 +67,6 @@ struct NativeResult {
   z3::expr Value;
 };
 
-/// The hooks the verifier's code calls (CodeGen's AssertionMode::Verify):
-/// `void bs.verify.check(i1 cond, i32 index, i1 assume)`.
-inline constexpr const char *VerifyCheckSymbol = "bs.verify.check";
 
 class Encoder {
 public:

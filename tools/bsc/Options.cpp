@@ -38,6 +38,9 @@ cl::SubCommand tool::LspCmd(
 cl::SubCommand tool::DapCmd(
     "dap", "Debug in editors: a Debug Adapter Protocol server on standard "
            "input and output, over the REPL's session (docs/editors.md)");
+cl::SubCommand tool::VerifyCmd(
+    "verify", "Check the behavior's assertions for every input sequence of N "
+              "cycles that its assumptions allow, with Z3 (docs/verify.md)");
 cl::SubCommand tool::FormatCmd(
     "format", "Print b-script files in the one canonical layout, or rewrite "
               "them (-i), or name those that would change (--check)");
@@ -61,17 +64,17 @@ namespace {
 #define BSC_REPLAY BSC_TOP, cl::sub(ReplayCmd)
 
 cl::list<std::string> InputFiles(cl::Positional, cl::desc("<file.bs>..."),
-                                 BSC_ALL);
+                                 BSC_ALL, cl::sub(VerifyCmd));
 cl::list<std::string>
     IncludeDirs("I", cl::Prefix, cl::desc("Search folder for required modules"),
                 cl::value_desc("dir"), BSC_ALL, cl::sub(TimelineCmd),
-                cl::sub(ConvertCmd));
+                cl::sub(ConvertCmd), cl::sub(VerifyCmd));
 cl::opt<std::string>
     EntryName("entry",
               cl::desc("The task or func called once per cycle (default: "
                        "'main' of the first file's module)"),
               cl::value_desc("Module::name"), cl::init("main"), BSC_ALL,
-              cl::sub(TimelineCmd), cl::sub(ConvertCmd));
+              cl::sub(TimelineCmd), cl::sub(ConvertCmd), cl::sub(VerifyCmd));
 cl::list<std::string> ExportNames(
     "export",
     cl::desc("Export these funcs and tasks as the object's entries (default: "
@@ -80,7 +83,8 @@ cl::list<std::string> ExportNames(
     cl::value_desc("Module::name,..."), cl::CommaSeparated, BSC_TOP);
 cl::opt<std::string> CyclesArg("cycles",
                                cl::desc("Execution cycles to run (default 1)"),
-                               cl::value_desc("N"), cl::init("1"), BSC_BOTH);
+                               cl::value_desc("N"), cl::init("1"), BSC_BOTH,
+                               cl::sub(VerifyCmd));
 cl::opt<std::string>
     OptLevelArg("O", cl::Prefix,
                 cl::desc("Optimisation level 0..3 (default 0)"),
@@ -340,7 +344,8 @@ cl::opt<bool> EmitHeaderFlag(
     cl::desc("Write the typed C header of the behavior for the target"),
     BSC_TOP);
 cl::opt<std::string> OutputFile("o", cl::desc("Output file ('-' for stdout)"),
-                                cl::value_desc("file"), BSC_TOP);
+                                cl::value_desc("file"), BSC_TOP,
+                                cl::sub(VerifyCmd));
 cl::opt<std::string>
     TargetArg("target",
               cl::desc("i586 (the robot: Geode, PIC, ELF32), x86_64, or any "
@@ -363,7 +368,7 @@ cl::list<std::string>
                          "registering C++ for the scripts (repeatable; read "
                          "for -target)"),
                 cl::value_desc("obj"), BSC_ALL, cl::sub(TimelineCmd),
-                cl::sub(ConvertCmd));
+                cl::sub(ConvertCmd), cl::sub(VerifyCmd));
 cl::opt<bool> DumpBindings("dump-bindings",
                            cl::desc("Print what the standard modules and the "
                                     "--bind objects register, and exit"),
@@ -490,6 +495,11 @@ tool::CommandLine tool::readCommandLine() {
   CL.Compile = getCompileOptions();
   CL.Run = getRunOptions();
   CL.Repl = getReplOptions();
+  CL.Verify.EntryName = EntryName;
+  CL.Verify.Cycles =
+      CyclesArg.getNumOccurrences() ? std::optional<std::string>(CyclesArg)
+                                    : std::nullopt;
+  CL.Verify.CounterexamplePath = OutputFile;
   CL.TraceDecode.ObjectPath = TraceObject;
   CL.TraceDecode.LogPath = TraceLog;
   CL.TraceDecode.OnlyChanges = TraceChangesFlag;

@@ -20,7 +20,7 @@ namespace bsc::tool {
 /// bsc's own options (those of LLVM's libraries are hidden).
 extern llvm::cl::OptionCategory BscCategory;
 extern llvm::cl::SubCommand RunCmd, ReplCmd, TraceDecodeCmd, TimelineCmd,
-    FormatCmd, LspCmd, DapCmd, ReplayCmd, ConvertCmd;
+    FormatCmd, LspCmd, DapCmd, ReplayCmd, ConvertCmd, VerifyCmd;
 
 /// The command line after parsing.
 struct CommandLine {
@@ -37,6 +37,7 @@ struct CommandLine {
   FormatCommandOptions Format;
   ReplayCommandOptions Replay;
   ConvertCommandOptions Convert;
+  VerifyCommandOptions Verify;
 };
 
 CommandLine readCommandLine();

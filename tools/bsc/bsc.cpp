@@ -15,6 +15,7 @@
 //   bsc format [-i|--check] FILE.bs... the canonical layout (lib/Format)
 //   bsc lsp                           the language server (lib/LSP)
 //   bsc dap                           the debug adapter (lib/DAP)
+//   bsc verify --cycles N FILE.bs...  assertions for every input (lib/Verify)
 //   bsc convert FROM -o TO            a recording in the other format
 //
 // Every subcommand is a row of one table (Subcommands below).
@@ -92,6 +93,10 @@ const Subcommand Subcommands[] = {
     {&LspCmd, false,
      [](Compilation &, CommandLine &CL, const char *Argv0) {
        return lspCommand(CL.RuntimeDir, Argv0);
+     }},
+    {&VerifyCmd, true,
+     [](Compilation &C, CommandLine &CL, const char *) {
+       return verifyCommand(C, CL.Frontend, CL.Verify);
      }},
     {&DapCmd, true,
      [](Compilation &, CommandLine &CL, const char *Argv0) {

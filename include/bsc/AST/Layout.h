@@ -111,7 +111,13 @@ enum class AssertionMode {
   /// that the session's guard ends the cycle and the driver reports the
   /// assertion with the values of its operands.
   Report,
+  /// `bsc verify`'s: each assertion and assumption is a call of
+  /// VerifyCheckSymbol (its condition, its index in Behavior::Assertions,
+  /// whether it is an assumption), which the verifier reads; no branch.
+  Verify,
 };
+/// AssertionMode::Verify: `void (i1 holds, i32 index, i1 assume)`.
+inline constexpr const char *VerifyCheckSymbol = "bs.verify.check";
 /// AssertionMode::Report: the record of the assertion that failed.
 inline constexpr const char *AssertRecordSymbol = "bs.assert.record";
 /// Its room: a header and 64 operands of the largest size.

@@ -330,6 +330,17 @@ int formatCommand(Compilation &C, const FormatCommandOptions &Opts,
 /// client says `exit` (lib/LSP). Returns the exit status.
 int lspCommand(llvm::StringRef RuntimeDir, const char *Argv0);
 
+/// `bsc verify` as written on the command line.
+struct VerifyCommandOptions {
+  std::string EntryName, CounterexamplePath;
+  std::optional<std::string> Cycles; ///< --cycles N, if given.
+};
+
+/// `bsc verify` (lib/Verify): checks the options, then the behavior's
+/// assertions for every input of N cycles. Returns the exit status.
+int verifyCommand(Compilation &C, const FrontendOptions &FOpts,
+                  const VerifyCommandOptions &Opts);
+
 /// `bsc dap`: the debug adapter on standard input and output until the
 /// client disconnects (lib/DAP); behaviors run on the host with its
 /// standard modules. Returns the exit status.

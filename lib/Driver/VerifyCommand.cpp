@@ -1,0 +1,33 @@
+//===- VerifyCommand.cpp - `bsc verify`'s options, then lib/Verify -------===//
+#include "bsc/Driver/Driver.h"
+#include "bsc/Verify/Verify.h"
+#include "llvm/Support/raw_ostream.h"
+
+using namespace bsc;
+
+int bsc::verifyCommand(Compilation &C, const FrontendOptions &FOpts,
+                       const VerifyCommandOptions &Opts) {
+  VerifyOptions V;
+  bool OK = true;
+  if (FOpts.Inputs.empty()) {
+    C.Diags.report(llvm::SMLoc(), diag::err_no_input_files);
+    OK = false;
+  }
+  if (!Opts.Cycles ||
+      llvm::StringRef(*Opts.Cycles).getAsInteger(10, V.Cycles) ||
+      V.Cycles == 0 || V.Cycles > MaxVerifyCycles) {
+    C.Diags.report(llvm::SMLoc(), diag::err_verify_cycles)
+        << MaxVerifyCycles << Opts.Cycles.value_or("");
+    OK = false;
+  }
+  if (!OK || !runFrontend(C, FOpts))
+    return finishCompilation(C);
+  V.EntryName = Opts.EntryName;
+  V.CounterexamplePath = Opts.CounterexamplePath;
+  V.Load.StandardModules = FOpts.StandardModules;
+  V.Load.BindObjects = FOpts.BindObjects;
+  VerifyResult R = verifyBehavior(C, V, llvm::outs());
+  int Status = finishCompilation(C);
+  // Not fully explored is no proof and no counterexample: status 2.
+  return R == VerifyResult::NotExplored ? 2 : Status;
+}

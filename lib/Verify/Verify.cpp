@@ -1,0 +1,257 @@
+//===- Verify.cpp - `bsc verify`: bounded model checking with Z3 ----------===//
+//
+// The behavior is loaded into the JIT as `bsc run` loads it, for the state
+// its first cycle starts from (bs_state_init's, the constructors of its
+// C++ values included) and the layout of `input` and `output`. Its cycle
+// is then compiled again with AssertionMode::Verify, optimised as `-O2`
+// (tasks and funcs inlined into the entry, counted loops unrolled), and
+// encoded once per cycle: the state, `input` and `output` are bytes that
+// carry from one cycle to the next, the header's cycle number is the
+// cycle's, `input` is free in every cycle. Z3 is asked, cycle after cycle,
+// whether an assertion can fail there while every assumption so far held;
+// the first that can is the counterexample, its inputs the model's.
+//
+//===----------------------------------------------------------------------===//
+#include "bsc/Verify/Verify.h"
+#include "Encoder.h"
+#include "bsc/Basic/Output.h"
+#include "bsc/CodeGen/Target.h"
+#include "bscript/bscript.h"
+#include "llvm/IR/LLVMContext.h"
+#include "llvm/Support/Format.h"
+#include "llvm/Support/Timer.h"
+#include "llvm/Support/ToolOutputFile.h"
+#include <chrono>
+#include <cstddef>
+#include <cstring>
+
+using namespace bsc;
+using namespace bsc::verify;
+
+namespace {
+/// The objects of the behavior's memory.
+struct Objects {
+  unsigned State, Input, Output, User;
+};
+
+/// Concrete bytes as terms.
+std::vector<z3::expr> bytesOf(z3::context &Z, const void *Data, size_t Size) {
+  std::vector<z3::expr> Bytes;
+  const auto *P = static_cast<const unsigned char *>(Data);
+  for (size_t I = 0; I < Size; ++I)
+    Bytes.push_back(Z.bv_val(unsigned(P[I]), 8));
+  return Bytes;
+}
+
+/// A native's result as the model has it: an int (signed) or a float.
+std::string describeValue(z3::context &Z, const z3::model &Model,
+                          const z3::expr &V) {
+  if (V.get_sort().is_bv()) {
+    unsigned W = V.get_sort().bv_size();
+    int64_t I = 0;
+    z3::expr Wide = W < 64 ? z3::sext(V, 64 - W) : V;
+    Model.eval(Wide, true).is_numeral_i64(I);
+    return W == 1 ? (I ? "true" : "false") : std::to_string(I);
+  }
+  uint64_t Bits = 0;
+  Model.eval(z3::expr(Z, Z3_mk_fpa_to_ieee_bv(Z, V)), true)
+      .is_numeral_u64(Bits);
+  std::string Text;
+  llvm::raw_string_ostream OS(Text);
+  if (V.get_sort().fpa_sbits() > 24) {
+    double D;
+    std::memcpy(&D, &Bits, sizeof D);
+    OS << D;
+  } else {
+    float F;
+    uint32_t B = uint32_t(Bits);
+    std::memcpy(&F, &B, sizeof F);
+    OS << F;
+  }
+  return Text;
+}
+
+/// The value the model gives a byte term.
+unsigned char byteIn(const z3::model &Model, const z3::expr &Byte) {
+  uint64_t V = 0;
+  Model.eval(Byte, /*model_completion=*/true).is_numeral_u64(V);
+  return static_cast<unsigned char>(V);
+}
+} // namespace
+
+VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
+                                 llvm::raw_ostream &OS) {
+  auto Start = std::chrono::steady_clock::now();
+  const CallableDecl *Entry = findProgramEntry(C, Opts.EntryName);
+  if (!Entry)
+    return VerifyResult::Error;
+  // The JIT's load: the initial state, the layout, the world's classes.
+  auto Loaded = loadBehavior(C, *Entry, Opts.Load);
+  if (!Loaded) {
+    reportInternalError(Loaded.takeError());
+    return VerifyResult::Error;
+  }
+  if (!*Loaded)
+    return VerifyResult::Error;
+  LoadedBehavior &L = **Loaded;
+  auto Session = startSession(C, L);
+  if (!Session) {
+    reportInternalError(Session.takeError());
+    return VerifyResult::Error;
+  }
+  if (!*Session)
+    return VerifyResult::Error;
+  BehaviorSession &S = **Session;
+
+  // The cycle as the verifier reads it.
+  llvm::LLVMContext Ctx;
+  CodeGenOptions CGOpts;
+  CGOpts.BehaviorName = C.Modules.front()->Name;
+  CGOpts.Assertions = AssertionMode::Verify;
+  CGOpts.OptLevel = 2;
+  CGOpts.Exports.emplace();
+  if (isCallableFromC(*Entry))
+    CGOpts.Exports->push_back(Entry);
+  BehaviorLayout Layout;
+  std::unique_ptr<llvm::Module> M =
+      emitLLVM(C.Checked, Ctx, L.JIT->getTriple(), L.JIT->getDataLayout(),
+               CGOpts, Layout);
+  if (Layout.StateSize != L.Layout.StateSize) {
+    C.Diags.report(llvm::SMLoc(), diag::err_verify_internal)
+        << "the verifier's state is not the JIT's";
+    return VerifyResult::Error;
+  }
+  optimizeModule(*M, nullptr, 2);
+  llvm::Function *Cycle = M->getFunction(L.EntrySymbol);
+  if (!Cycle || Cycle->isDeclaration()) {
+    C.Diags.report(llvm::SMLoc(), diag::err_verify_internal)
+        << "no entry function " + L.EntrySymbol;
+    return VerifyResult::Error;
+  }
+
+  z3::context Z;
+  Memory Mem;
+  Objects O;
+  O.State = Mem.add("the state", bytesOf(Z, S.getState(), L.Layout.StateSize));
+  O.Input = Mem.add("input", {});
+  O.Output = Mem.add("output", L.OutputClass
+                                   ? bytesOf(Z, S.getOutput(),
+                                             L.OutputClass->Size)
+                                   : std::vector<z3::expr>());
+  O.User = Mem.add("the user pointer's object", {});
+  Mem.Cells.insert({{O.State, offsetof(bs_state_header, input)},
+                    Pointer{O.Input, Z.bv_val(0, 64)}});
+  Mem.Cells.insert({{O.State, offsetof(bs_state_header, output)},
+                    Pointer{O.Output, Z.bv_val(0, 64)}});
+  Mem.Cells.insert({{O.State, offsetof(bs_state_header, user)},
+                    Pointer{O.User, Z.bv_val(0, 64)}});
+  size_t InputSize = L.InputClass ? L.InputClass->Size : 0;
+
+  Encoder E(Z, M->getDataLayout());
+  z3::solver Solver(Z);
+  std::vector<std::vector<z3::expr>> Inputs;
+  std::vector<std::vector<NativeResult>> NativesPerCycle;
+  unsigned Assertions = 0;
+  for (const Behavior::Assertion &A : C.Checked.Assertions)
+    Assertions += !A.S->IsAssume;
+  for (unsigned K = 1; K <= Opts.Cycles; ++K) {
+    // bs_begin_cycle: the cycle number; a fresh input.
+    std::string Tag = "c" + std::to_string(K);
+    std::vector<z3::expr> Input;
+    for (size_t I = 0; I < InputSize; ++I)
+      Input.push_back(E.freshByte(Tag + ".input." + std::to_string(I)));
+    Mem.Bytes[O.Input] = Input;
+    Inputs.push_back(Input);
+    for (unsigned I = 0; I < 4; ++I)
+      Mem.Bytes[O.State][offsetof(bs_state_header, cycle) + I] =
+          Z.bv_val((K >> (8 * I)) & 0xff, 8);
+    if (!E.encode(*Cycle, {Pointer{O.State, Z.bv_val(0, 64)}}, Mem, Tag)) {
+      C.Diags.report(llvm::SMLoc(), diag::err_verify_not_explored)
+          << E.getUnsupported();
+      return VerifyResult::NotExplored;
+    }
+    NativesPerCycle.push_back(E.getNativeResults());
+    Solver.add(E.getAssumed());
+    z3::expr AnyFails = Z.bool_val(false);
+    for (const Check &Ch : E.getChecks())
+      AnyFails = AnyFails || Ch.Fails;
+    Solver.push();
+    Solver.add(AnyFails);
+    z3::check_result R = Solver.check();
+    if (R == z3::unknown) {
+      C.Diags.report(llvm::SMLoc(), diag::err_verify_not_explored)
+          << "the solver gave up in cycle " + std::to_string(K) + ": " +
+                 Solver.reason_unknown();
+      return VerifyResult::NotExplored;
+    }
+    if (R == z3::sat) {
+      z3::model Model = Solver.get_model();
+      // The first check the model fails names the assertion.
+      const Check *Failed = nullptr;
+      for (const Check &Ch : E.getChecks())
+        if (!Failed && Model.eval(Ch.Fails, true).is_true())
+          Failed = &Ch;
+      const AssertStmt *A = C.Checked.Assertions[Failed->Index].S;
+      std::string Message = A->Message ? ": " + A->Message->Value : "";
+      llvm::SMRange Cond = A->Cond->getRange();
+      std::string Text(Cond.Start.getPointer(),
+                       Cond.End.getPointer() - Cond.Start.getPointer());
+      C.Diags.report(A->getLoc(), diag::err_verify_counterexample)
+          << K << Text << Message;
+      // Each cycle's input and the results of registered C++, as the
+      // model has them; written into the session's input to read it as
+      // the REPL prints values.
+      debug::ValueIO Values(
+          [&L](llvm::StringRef Sym) { return L.JIT->lookup(Sym); });
+      std::vector<llvm::json::Value> InputValues;
+      for (unsigned J = 0; J < K; ++J) {
+        auto *In = static_cast<unsigned char *>(S.getInput());
+        for (size_t I = 0; I < InputSize; ++I)
+          In[I] = byteIn(Model, Inputs[J][I]);
+        InputValues.push_back(L.InputClass ? Values.readClass(*L.InputClass, In)
+                                           : llvm::json::Value(nullptr));
+        if (L.InputClass) {
+          std::string Line;
+          llvm::raw_string_ostream LS(Line);
+          debug::printJSON(LS, InputValues.back());
+          C.Diags.report(llvm::SMLoc(), diag::note_verify_input)
+              << J + 1 << Line;
+        }
+        for (const NativeResult &N : NativesPerCycle[J]) {
+          C.Diags.report(llvm::SMLoc(), diag::note_verify_native)
+              << J + 1 << N.Callee << describeValue(Z, Model, N.Value);
+        }
+      }
+      if (!Opts.CounterexamplePath.empty()) {
+        std::unique_ptr<llvm::ToolOutputFile> Out =
+            openOutput(C.Diags, Opts.CounterexamplePath, /*Text=*/true);
+        if (Out) {
+          debug::printJSON(Out->os(), recordHeader(L));
+          Out->os() << "\n";
+          for (unsigned J = 0; J < K; ++J) {
+            llvm::json::Object Line{{"cycle", int64_t(J + 1)},
+                                    {"input", std::move(InputValues[J])}};
+            debug::printJSON(Out->os(), llvm::json::Value(std::move(Line)));
+            Out->os() << "\n";
+          }
+          Out->keep();
+          OS << "wrote the counterexample to " << Opts.CounterexamplePath
+             << "\n";
+        }
+      }
+      return VerifyResult::Counterexample;
+    }
+    Solver.pop();
+    // It held in this cycle: the next may rely on it.
+    Solver.add(!AnyFails);
+  }
+  double Seconds = std::chrono::duration<double>(
+                       std::chrono::steady_clock::now() - Start)
+                       .count();
+  OS << "verified: " << Assertions
+     << (Assertions == 1 ? " assertion holds" : " assertions hold")
+     << " for " << Opts.Cycles
+     << " cycles, every input the assumptions allow ("
+     << llvm::format("%.2f", Seconds) << " s)\n";
+  return VerifyResult::Verified;
+}
