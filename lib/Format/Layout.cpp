@@ -52,6 +52,11 @@ public:
     if (T == tok::r_paren || T == tok::r_square || T == tok::comma ||
         T == tok::semi)
       return false;
+    // `1.5 .w` (an error Sema reports) stays apart: `1.5.w` would lex as
+    // another token.
+    if (T == tok::period &&
+        (P == tok::int_literal || P == tok::float_literal))
+      return true;
     if (P == tok::period || P == tok::coloncolon || T == tok::period ||
         T == tok::coloncolon)
       return false;
