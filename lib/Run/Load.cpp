@@ -45,7 +45,7 @@ bsc::loadBehavior(Compilation &C, const CallableDecl &Entry,
 
   CodeGenOptions CGOpts;
   CGOpts.BehaviorName = C.Modules.front()->Name;
-  CGOpts.Probes = true;
+  CGOpts.Probes = Opts.Probes;
   CGOpts.Boundary = true;
   CGOpts.ExternalFunctions = Opts.ExternalFunctions;
   CGOpts.DebugInfo = Opts.DebugInfo;

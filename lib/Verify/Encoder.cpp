@@ -20,6 +20,16 @@
 using namespace bsc;
 using namespace bsc::verify;
 
+/// " at Loop.bs:6" from the block's first line, or " in FUNCTION".
+static std::string placeOf(const llvm::BasicBlock &BB) {
+  for (const llvm::Instruction &I : BB)
+    if (const llvm::DebugLoc &Loc = I.getDebugLoc())
+      if (Loc.getLine())
+        return " at " + Loc->getFilename().str() + ":" +
+               std::to_string(Loc.getLine());
+  return " in " + BB.getParent()->getName().str();
+}
+
 bool Encoder::unsupported(const std::string &What) {
   if (Unsupported.empty())
     Unsupported = What;
@@ -691,8 +701,9 @@ bool Encoder::encode(llvm::Function &F, llvm::ArrayRef<Pointer> Args,
         if (!Order.count(P) || llvm::is_contained(Preds, P))
           continue; // Unreachable from the entry, or seen (a switch).
         if (Order[P] >= Order[BB])
-          return unsupported("a loop in " + F.getName().str() +
-                             " that was not unrolled");
+          return unsupported("a loop" + placeOf(*BB) +
+                             " that was not unrolled (its passes depend on "
+                             "what the cycle computes)");
         auto E = Edges.find({P, BB});
         if (E == Edges.end())
           continue;

@@ -24,6 +24,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstring>
+#include <map>
 
 using namespace bsc;
 using namespace bsc::verify;
@@ -85,8 +86,11 @@ VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
   const CallableDecl *Entry = findProgramEntry(C, Opts.EntryName);
   if (!Entry)
     return VerifyResult::Error;
-  // The JIT's load: the initial state, the layout, the world's classes.
-  auto Loaded = loadBehavior(C, *Entry, Opts.Load);
+  // The JIT's load: the initial state, the layout, the world's classes;
+  // without probes, which keep every local in the state.
+  LoadOptions Load = Opts.Load;
+  Load.Probes = false;
+  auto Loaded = loadBehavior(C, *Entry, Load);
   if (!Loaded) {
     reportInternalError(Loaded.takeError());
     return VerifyResult::Error;
@@ -109,6 +113,9 @@ VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
   CGOpts.BehaviorName = C.Modules.front()->Name;
   CGOpts.Assertions = AssertionMode::Verify;
   CGOpts.OptLevel = 2;
+  // Lines, for what the verifier cannot explore.
+  CGOpts.DebugInfo = true;
+  CGOpts.Sources = &C.SM;
   CGOpts.Exports.emplace();
   if (isCallableFromC(*Entry))
     CGOpts.Exports->push_back(Entry);
@@ -116,17 +123,35 @@ VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
   std::unique_ptr<llvm::Module> M =
       emitLLVM(C.Checked, Ctx, L.JIT->getTriple(), L.JIT->getDataLayout(),
                CGOpts, Layout);
+  // Both without probes: one layout. Else a bug of bsc's.
   if (Layout.StateSize != L.Layout.StateSize) {
-    C.Diags.report(llvm::SMLoc(), diag::err_verify_internal)
-        << "the verifier's state is not the JIT's";
+    reportInternalError(llvm::createStringError(
+        llvm::inconvertibleErrorCode(),
+        "bsc verify: the verifier's state is not the JIT's"));
     return VerifyResult::Error;
   }
   optimizeModule(*M, nullptr, 2);
   llvm::Function *Cycle = M->getFunction(L.EntrySymbol);
   if (!Cycle || Cycle->isDeclaration()) {
-    C.Diags.report(llvm::SMLoc(), diag::err_verify_internal)
-        << "no entry function " + L.EntrySymbol;
+    reportInternalError(llvm::createStringError(
+        llvm::inconvertibleErrorCode(),
+        "bsc verify: no entry function " + L.EntrySymbol));
     return VerifyResult::Error;
+  }
+  // Registered C++ by its symbol, for the counterexample's notes.
+  std::map<std::string, std::string> NativeNames;
+  std::vector<const NativeModule *> Modules = C.Checked.NativeModules;
+  Modules.insert(Modules.end(), C.Checked.BindingModules.begin(),
+                 C.Checked.BindingModules.end());
+  if (C.Checked.World)
+    Modules.push_back(C.Checked.World);
+  for (const NativeModule *NM : Modules) {
+    for (const NativeFunction &F : NM->Functions)
+      NativeNames[F.Symbol] = NM->Name + "::" + F.Name;
+    for (const NativeClass &NC : NM->Classes)
+      for (const auto *List : {&NC.Members, &NC.Constructors})
+        for (const NativeFunction &F : *List)
+          NativeNames[F.Symbol] = NC.QualifiedName + "::" + F.Name;
   }
 
   z3::context Z;
@@ -218,8 +243,11 @@ VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
               << J + 1 << Line;
         }
         for (const NativeResult &N : NativesPerCycle[J]) {
+          auto Name = NativeNames.find(N.Callee);
           C.Diags.report(llvm::SMLoc(), diag::note_verify_native)
-              << J + 1 << N.Callee << describeValue(Z, Model, N.Value);
+              << J + 1
+              << (Name != NativeNames.end() ? Name->second : N.Callee)
+              << describeValue(Z, Model, N.Value);
         }
       }
       if (!Opts.CounterexamplePath.empty()) {

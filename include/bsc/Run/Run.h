@@ -50,6 +50,10 @@ struct LoadOptions {
   /// Counters of what runs, for --coverage and `:coverage`
   /// (CodeGenOptions::Coverage).
   bool Coverage = false;
+  /// The debugger's probes (CodeGenOptions::Probes: every local kept in
+  /// the state, the site of a crash). `bsc verify` loads without them, so
+  /// that the JIT's state has the layout of the code it checks.
+  bool Probes = true;
 };
 
 /// A behavior compiled into its own JIT, ready for a session.
