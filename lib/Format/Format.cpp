@@ -61,7 +61,8 @@ readProgram(llvm::StringRef Text) {
   if (Quiet.hasErrors())
     Tokens.push_back("(lexical errors)");
   for (llvm::StringRef C : Comments)
-    CommentTexts.push_back(C.rtrim(" \t").str());
+    // Trailing blanks, carriage returns among them, are no part of it.
+    CommentTexts.push_back(C.rtrim(" \t\r").str());
   return {Tokens, CommentTexts};
 }
 

@@ -270,7 +270,7 @@ void Lexer::skipComment() {
   while (Cur != BufEnd && *Cur != '\n')
     ++Cur;
   if (Comments)
-    Comments->push_back(llvm::StringRef(Start, Cur - Start).rtrim("\r"));
+    Comments->push_back(llvm::StringRef(Start, Cur - Start).rtrim(" \t\r"));
 }
 
 bool Lexer::nextLineStartsStatement() {
