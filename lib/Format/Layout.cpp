@@ -52,10 +52,12 @@ public:
     if (T == tok::r_paren || T == tok::r_square || T == tok::comma ||
         T == tok::semi)
       return false;
-    // `1.5 .w` (an error Sema reports) stays apart: `1.5.w` would lex as
-    // another token.
-    if (T == tok::period &&
-        (P == tok::int_literal || P == tok::float_literal))
+    // A number and a `.` beside it stay apart (`1.5 .w`, `a. 1`: errors
+    // the parser reports): `1.5.w` and `.1` would lex as other tokens.
+    auto IsNumber = [](tok::Kind K) {
+      return K == tok::int_literal || K == tok::float_literal;
+    };
+    if ((T == tok::period && IsNumber(P)) || (P == tok::period && IsNumber(T)))
       return true;
     if (P == tok::period || P == tok::coloncolon || T == tok::period ||
         T == tok::coloncolon)
