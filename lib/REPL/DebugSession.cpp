@@ -4,8 +4,8 @@
 // are the REPL's, numbered as `:breaks` lists them, with the debugger's
 // hit conditions and logpoints; runs are step(), time travel is travelTo();
 // values are read as `:tasks` reads them. A behavior's state exists only
-// between cycles, so a "line" the debugger stops at is where a task waits
-// (its yield), and stepping is by cycles:
+// between cycles, so the debugger stops after a cycle (that ran a line,
+// or left a task waiting at a yield on it), and stepping is by cycles:
 //
 //   next       one cycle
 //   step in    cycles until the behavior does what it did not in the
@@ -306,7 +306,8 @@ std::string DebugSession::describeCounter(unsigned Counter) const {
          std::to_string(R->C->SM.FindLineNumber(Site.N->getLoc(), Buffer));
 }
 
-/// Where robot S's innermost active task waits: (task, line), or none.
+/// Where the innermost active task of `Frames` waits: (task, line), or
+/// none.
 static std::optional<std::pair<unsigned, unsigned>>
 innermostPlace(const std::vector<DebugFrame> &Frames) {
   if (Frames.empty() || !Frames.front().Task)
