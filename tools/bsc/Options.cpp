@@ -345,6 +345,7 @@ cl::opt<bool> EmitHeaderFlag(
     BSC_TOP);
 cl::opt<std::string> OutputFile("o", cl::desc("Output file ('-' for stdout)"),
                                 cl::value_desc("file"), BSC_TOP,
+                                cl::sub(cl::SubCommand::getTopLevel()),
                                 cl::sub(VerifyCmd));
 cl::opt<std::string>
     TargetArg("target",
