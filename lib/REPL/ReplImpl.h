@@ -19,6 +19,7 @@
 #include "llvm/LineEditor/LineEditor.h"
 #include "llvm/Support/raw_ostream.h"
 #include <functional>
+#include <map>
 #include <optional>
 
 namespace bsc {
@@ -310,6 +311,10 @@ private:
   std::vector<std::unique_ptr<CycleHistory>> Histories;
   CycleHistory *History = nullptr;
   std::string NoHistory; ///< Why there is no History.
+  /// How each cycle that broke live ended, by robot and cycle: a re-run
+  /// that cannot break the same way (inside C++) says this instead.
+  std::map<std::pair<unsigned, uint32_t>, BehaviorSession::Outcome>
+      BrokenOutcomes;
   /// With a team: each robot's copy of the log of `:why` (keepExplainLog).
   std::vector<std::vector<unsigned char>> ExplainLogs;
   /// --world-output's file and `:quiet`'s /dev/null (-1: not open).

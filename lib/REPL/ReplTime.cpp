@@ -119,9 +119,12 @@ BehaviorSession::Outcome Repl::runRobotCycle(unsigned K, bool &FromHistory) {
     O = R.runCycle(Opts.CycleLimitMs);
     if (H) {
       H->recordCycle(R.getLastCalls(), getBlocks(R));
-      // A crashed cycle cannot be re-run: its moment is the copy.
-      if (O.K != BehaviorSession::Outcome::Completed)
+      // A cycle that broke: its moment is the copy (below), and what broke
+      // it is kept to say again.
+      if (O.K != BehaviorSession::Outcome::Completed) {
         H->keepPresent(Next, getBlocks(R), /*Broken=*/true);
+        BrokenOutcomes.insert_or_assign({K, Next}, O);
+      }
     }
   } else if (H->isEdited(Next)) {
     // A cycle that broke breaks again on its logged input and calls, and
@@ -132,6 +135,11 @@ BehaviorSession::Outcome Repl::runRobotCycle(unsigned K, bool &FromHistory) {
       CycleRecord Calls;
       H->getCalls(Next, Calls);
       O = R.replayCycle(Opts.CycleLimitMs, Calls);
+      // A crash inside C++ cannot happen again without calling it (its
+      // record ends there): the live outcome is what the cycle did.
+      auto Live = BrokenOutcomes.find({K, Next});
+      if (Live != BrokenOutcomes.end() && O.K != Live->second.K)
+        O = Live->second;
     }
     restoreFromHistory(K, Next, /*Before=*/false);
     keepExplainLog(K);
