@@ -275,6 +275,40 @@ bool Encoder::encodeCall(llvm::CallInst &C, Memory &M, z3::expr Reached) {
       std::optional<z3::expr> A = Arg(0);
       return A && Set(z3::ite(*A < 0, -*A, *A));
     }
+    case llvm::Intrinsic::fptosi_sat:
+    case llvm::Intrinsic::fptoui_sat: {
+      // Saturating: NaN is 0, out of range the nearest end.
+      std::optional<z3::expr> A = floating(C.getArgOperand(0));
+      if (!A)
+        return false;
+      unsigned W = C.getType()->getIntegerBitWidth();
+      bool Signed = II->getIntrinsicID() == llvm::Intrinsic::fptosi_sat;
+      z3::expr RTZ(Z, Z3_mk_fpa_rtz(Z));
+      z3::expr Converted(Z, Signed ? Z3_mk_fpa_to_sbv(Z, RTZ, *A, W)
+                                   : Z3_mk_fpa_to_ubv(Z, RTZ, *A, W));
+      llvm::APInt MaxI = Signed ? llvm::APInt::getSignedMaxValue(W)
+                                : llvm::APInt::getMaxValue(W);
+      llvm::APInt MinI = Signed ? llvm::APInt::getSignedMinValue(W)
+                                : llvm::APInt::getMinValue(W);
+      z3::sort S = A->get_sort();
+      z3::expr Hi(Z, Signed ? Z3_mk_fpa_to_fp_signed(Z, RTZ,
+                                  Z.bv_val(MaxI.getSExtValue(), W), S)
+                            : Z3_mk_fpa_to_fp_unsigned(Z, RTZ,
+                                  Z.bv_val(MaxI.getZExtValue(), W), S));
+      z3::expr Lo(Z, Signed ? Z3_mk_fpa_to_fp_signed(Z, RTZ,
+                                  Z.bv_val(MinI.getSExtValue(), W), S)
+                            : Z3_mk_fpa_to_fp_unsigned(Z, RTZ,
+                                  Z.bv_val(MinI.getZExtValue(), W), S));
+      // Hi is the largest float at most the maximum (rounded towards
+      // zero): above it is out of range; Lo is exact.
+      z3::expr R = z3::ite(
+          z3::expr(Z, Z3_mk_fpa_is_nan(Z, *A)), Z.bv_val(0, W),
+          z3::ite(z3::expr(Z, Z3_mk_fpa_gt(Z, *A, Hi)),
+                  Z.bv_val(MaxI.getZExtValue(), W),
+                  z3::ite(z3::expr(Z, Z3_mk_fpa_lt(Z, *A, Lo)),
+                          Z.bv_val(MinI.getZExtValue(), W), Converted)));
+      return Set(R);
+    }
     case llvm::Intrinsic::fabs: {
       std::optional<z3::expr> A = floating(C.getArgOperand(0));
       if (!A)
@@ -427,9 +461,14 @@ bool Encoder::encodeInstruction(llvm::Instruction &I, Memory &M,
     if (Cmp->getOperand(0)->getType()->isPointerTy()) {
       std::optional<Pointer> A = pointer(Cmp->getOperand(0)),
                              C = pointer(Cmp->getOperand(1));
-      if (!A || !C || A->Object != C->Object)
-        return unsupported("a comparison of pointers: " + describe(I));
-      z3::expr Eq = A->Offset == C->Offset;
+      if (!A || !C)
+        return false;
+      if (!Cmp->isEquality())
+        return unsupported("an ordering of pointers: " + describe(I));
+      // Distinct objects are at distinct addresses (the optimiser merged
+      // equal constants before): a string compared by its address first.
+      z3::expr Eq = A->Object == C->Object ? A->Offset == C->Offset
+                                           : Z.bool_val(false);
       return SetBits(fromBool(Cmp->getPredicate() == llvm::CmpInst::ICMP_EQ
                                   ? Eq
                                   : !Eq));
@@ -681,6 +720,34 @@ bool Encoder::encode(llvm::Function &F, llvm::ArrayRef<Pointer> Args,
   for (unsigned I = 0; I < Args.size() && I < F.arg_size(); ++I)
     set(F.getArg(I), Value{Value::Ptr, Args[I].Offset, Args[I].Object});
 
+  // Constant globals the code reads (strings, tables) are objects of their
+  // bytes; a global the code could write is not known.
+  for (llvm::BasicBlock &BB : F)
+    for (llvm::Instruction &I : BB)
+      for (llvm::Value *Op : I.operands()) {
+        auto *GV = llvm::dyn_cast<llvm::GlobalVariable>(Op);
+        if (!GV || Values.count(GV))
+          continue;
+        if (!GV->isConstant() || !GV->hasDefinitiveInitializer())
+          return unsupported("the global " + GV->getName().str() +
+                             ", which the code may change");
+        std::vector<z3::expr> Bytes;
+        const llvm::Constant *Init = GV->getInitializer();
+        uint64_t Size = DL.getTypeAllocSize(Init->getType());
+        if (auto *Data = llvm::dyn_cast<llvm::ConstantDataSequential>(Init)) {
+          llvm::StringRef Raw = Data->getRawDataValues();
+          for (uint64_t B = 0; B < Size; ++B)
+            Bytes.push_back(Z.bv_val(
+                B < Raw.size() ? unsigned((unsigned char)Raw[B]) : 0u, 8));
+        } else if (Init->isNullValue()) {
+          for (uint64_t B = 0; B < Size; ++B)
+            Bytes.push_back(Z.bv_val(0, 8));
+        } else {
+          return unsupported("the constant " + describe(*GV));
+        }
+        unsigned Object = Mem.add(GV->getName(), std::move(Bytes));
+        set(GV, Value{Value::Ptr, Z.bv_val(0, 64), Object});
+      }
   llvm::ReversePostOrderTraversal<llvm::Function *> RPO(&F);
   llvm::DenseMap<llvm::BasicBlock *, unsigned> Order;
   for (llvm::BasicBlock *BB : RPO)

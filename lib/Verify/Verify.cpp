@@ -171,6 +171,14 @@ VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
         "bsc verify: the verifier's state is not the JIT's"));
     return VerifyResult::Error;
   }
+  // One function: every task and func inlined into the entry, whatever
+  // the inliner's thresholds say (a behavior's call graph has no cycle).
+  for (llvm::Function &F : *M)
+    if (!F.isDeclaration() && F.getName() != L.EntrySymbol) {
+      F.removeFnAttr(llvm::Attribute::NoInline);
+      F.removeFnAttr(llvm::Attribute::OptimizeNone);
+      F.addFnAttr(llvm::Attribute::AlwaysInline);
+    }
   optimizeModule(*M, nullptr, 2);
   llvm::Function *Cycle = M->getFunction(L.EntrySymbol);
   if (!Cycle || Cycle->isDeclaration()) {

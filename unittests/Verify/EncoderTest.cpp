@@ -198,6 +198,40 @@ define void @f(ptr %s, ptr %in) {
   EXPECT_EQ(E->getChecks()[2].Index, 3u);
 }
 
+TEST_F(EncoderTest, ConstantGlobalsAreObjectsOfTheirBytes) {
+  // A string's bytes read through its pointer; two strings are at two
+  // addresses; the saturating conversion of a NaN is 0.
+  encode(R"(
+@a = private unnamed_addr constant [3 x i8] c"hi\00"
+@b = private unnamed_addr constant [3 x i8] c"ho\00"
+declare i32 @llvm.fptosi.sat.i32.f32(float)
+define void @f(ptr %s, ptr %in) {
+  %p = getelementptr inbounds i8, ptr @a, i64 1
+  %c = load i8, ptr %p
+  %w = zext i8 %c to i32
+  store i32 %w, ptr %s
+  %same = icmp eq ptr @a, @b
+  %x = zext i1 %same to i32
+  %q = getelementptr inbounds i8, ptr %s, i64 4
+  store i32 %x, ptr %q
+  %f = load float, ptr %in
+  %k = call i32 @llvm.fptosi.sat.i32.f32(float %f)
+  %r = getelementptr inbounds i8, ptr %s, i64 8
+  store i32 %k, ptr %r
+  ret void
+}
+)");
+  ASSERT_TRUE(Encoded) << E->getUnsupported();
+  EXPECT_TRUE(proves(word(0) == 'i'));
+  EXPECT_TRUE(proves(word(4) == 0));
+  z3::expr F(Z, Z3_mk_fpa_to_fp_bv(Z, inputWord(0), Z.fpa_sort<32>()));
+  EXPECT_TRUE(proves(z3::implies(z3::expr(Z, Z3_mk_fpa_is_nan(Z, F)),
+                                 word(8) == 0)));
+  // 3e9 saturates to the largest int.
+  EXPECT_TRUE(proves(z3::implies(inputWord(0) == Z.bv_val(0x4F32D05E, 32),
+                                 word(8) == 0x7FFFFFFF)));
+}
+
 TEST_F(EncoderTest, LoopsAndUnknownConstructsAreRefusedWithTheReason) {
   encode(R"(
 define void @f(ptr %s, ptr %in) {
