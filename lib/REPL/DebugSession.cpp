@@ -97,15 +97,6 @@ std::string DebugSession::takeErrors() {
 unsigned DebugSession::getRobots() const { return R->Robots->size(); }
 uint32_t DebugSession::getCycle() const { return R->S->getCycle(); }
 
-void DebugSession::selectRobot(unsigned K) {
-  if (K >= R->Robots->size() || K == R->Selected)
-    return;
-  R->Selected = K;
-  R->S = &(*R->Robots)[K];
-  if (!R->Histories.empty())
-    R->History = R->Histories[K].get();
-}
-
 //===----------------------------------------------------------------------===//
 // Breakpoints
 //===----------------------------------------------------------------------===//
@@ -144,12 +135,11 @@ static bool splitLogMessage(llvm::StringRef Message,
   return true;
 }
 
-std::optional<BreakpointState>
+std::optional<std::string>
 DebugSession::compileBreakpointParts(llvm::StringRef Condition,
                                      llvm::StringRef HitCondition,
                                      llvm::StringRef LogMessage) {
   Breakpoint &B = R->Breakpoints.back();
-  BreakpointState Bad;
   // The condition and the log see the task's parameters and locals
   // unqualified, as its code does.
   const TaskDecl *Frame = R->Checker->getFrame();
@@ -159,41 +149,52 @@ DebugSession::compileBreakpointParts(llvm::StringRef Condition,
   if (!HitCondition.trim().empty()) {
     std::optional<repl::HitCondition> H =
         repl::HitCondition::parse(HitCondition);
-    if (!H) {
-      Bad.Message = "a hit count is a number after '>=', '==', '>' or '%' "
-                    "(a number alone: '>='), not '" +
-                    HitCondition.str() + "'";
-      return Bad;
-    }
+    if (!H)
+      return "a hit count is a number after '>=', '==', '>' or '%' (a "
+             "number alone: '>='), not '" +
+             HitCondition.str() + "'";
     B.Hits = *H;
   }
   if (!Condition.trim().empty()) {
     std::optional<Probe> If = R->compileProbe(Condition, "break", /*Bool=*/true,
                                               R->addBuffer(Condition));
-    if (!If) {
-      Bad.Message = takeErrors();
-      return Bad;
-    }
-    R->Breakpoints.back().If = *If;
+    if (!If)
+      return takeErrors();
+    B.If = *If;
   }
   if (!LogMessage.empty()) {
     std::vector<std::string> Texts, Exprs;
-    if (!splitLogMessage(LogMessage, Texts, Exprs)) {
-      Bad.Message = "a '{' in the log message is not closed";
-      return Bad;
-    }
+    if (!splitLogMessage(LogMessage, Texts, Exprs))
+      return std::string("a '{' in the log message is not closed");
     for (const std::string &E : Exprs) {
       std::optional<Probe> P =
           R->compileProbe(E, "log", /*Bool=*/false, R->addBuffer(E));
-      if (!P) {
-        Bad.Message = takeErrors();
-        return Bad;
-      }
-      R->Breakpoints.back().LogValues.push_back(*P);
+      if (!P)
+        return takeErrors();
+      B.LogValues.push_back(*P);
     }
-    R->Breakpoints.back().Log = Texts;
+    B.Log = Texts;
   }
   return std::nullopt;
+}
+
+bool DebugSession::addBreakpoint(Breakpoint B, llvm::StringRef Condition,
+                                 llvm::StringRef HitCondition,
+                                 llvm::StringRef LogMessage,
+                                 BreakpointState &State) {
+  unsigned Number = B.Number;
+  R->Breakpoints.push_back(std::move(B));
+  if (std::optional<std::string> Why =
+          compileBreakpointParts(Condition, HitCondition, LogMessage)) {
+    R->destroyBreakpoint(R->Breakpoints.back());
+    R->Breakpoints.pop_back();
+    State.Message = *Why;
+    return false;
+  }
+  ++R->NextBreakpoint;
+  State.Verified = true;
+  State.Id = Number;
+  return true;
 }
 
 std::vector<BreakpointState>
@@ -217,20 +218,9 @@ DebugSession::setSourceBreakpoints(llvm::StringRef Path,
     }
     B->Text =
         llvm::sys::path::filename(Path).str() + ":" + std::to_string(SB.Line);
-    unsigned Number = B->Number;
-    R->Breakpoints.push_back(std::move(*B));
-    if (std::optional<BreakpointState> Bad = compileBreakpointParts(
-            SB.Condition, SB.HitCondition, SB.LogMessage)) {
-      R->destroyBreakpoint(R->Breakpoints.back());
-      R->Breakpoints.pop_back();
-      Bad->Line = SB.Line;
-      States.push_back(*Bad);
-      continue;
-    }
-    ++R->NextBreakpoint;
-    Numbers.push_back(Number);
-    State.Verified = true;
-    State.Id = Number;
+    if (addBreakpoint(std::move(*B), SB.Condition, SB.HitCondition,
+                      SB.LogMessage, State))
+      Numbers.push_back(State.Id);
     States.push_back(State);
   }
   return States;
@@ -250,20 +240,11 @@ DebugSession::setTaskBreakpoints(llvm::ArrayRef<TaskBreakpoint> Wanted) {
     }
     std::optional<Breakpoint> B =
         R->makeBreakpoint(TB.Name, R->addBuffer(TB.Name));
-    unsigned Number = B->Number;
-    R->Breakpoints.push_back(std::move(*B));
-    if (std::optional<BreakpointState> Bad =
-            compileBreakpointParts(TB.Condition, TB.HitCondition, "")) {
-      R->destroyBreakpoint(R->Breakpoints.back());
-      R->Breakpoints.pop_back();
-      States.push_back(*Bad);
-      continue;
+    if (addBreakpoint(std::move(*B), TB.Condition, TB.HitCondition, "",
+                      State)) {
+      TaskNumbers.push_back(State.Id);
+      State.Line = R->L->Tables.Tasks[*Task].Line;
     }
-    ++R->NextBreakpoint;
-    TaskNumbers.push_back(Number);
-    State.Verified = true;
-    State.Id = Number;
-    State.Line = R->L->Tables.Tasks[*Task].Line;
     States.push_back(State);
   }
   return States;
@@ -513,7 +494,7 @@ DebugStop DebugSession::reverseContinue() {
   R->travelTo(Found ? *Found : First);
   R->flushDiagnostics();
   if (Found) {
-    selectRobot(HitRobot);
+    R->selectRobot(HitRobot);
     R->reportStop(Why);
     Stop.Robot = HitRobot;
     Stop.Why = DebugStop::Breakpoint;
@@ -652,7 +633,7 @@ std::optional<DebugValue> DebugSession::getOutput(unsigned Robot) const {
 std::optional<DebugValue> DebugSession::evaluate(llvm::StringRef Line,
                                                  unsigned Robot,
                                                  std::optional<unsigned> Task) {
-  selectRobot(Robot);
+  R->selectRobot(Robot);
   // In the frame's scope for this line only; `:frame` in the console sets
   // the scope of the lines after it.
   const TaskDecl *Frame = R->Checker->getFrame();
@@ -674,7 +655,7 @@ std::optional<DebugValue> DebugSession::evaluate(llvm::StringRef Line,
 }
 
 void DebugSession::runConsoleLine(llvm::StringRef Line, unsigned Robot) {
-  selectRobot(Robot);
+  R->selectRobot(Robot);
   R->handleLine(Line);
   R->flushDiagnostics();
 }

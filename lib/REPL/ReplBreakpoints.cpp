@@ -33,10 +33,7 @@ std::string Repl::checkBreakpoints() {
     return checkRobotBreakpoints(Selected, /*Counting=*/true);
   for (unsigned K = 0; K < Robots->size(); ++K)
     if (std::string Why = checkRobotBreakpoints(K, true); !Why.empty()) {
-      Selected = K;
-      S = &(*Robots)[K];
-      if (!Histories.empty())
-        History = Histories[K].get();
+      selectRobot(K);
       return Why;
     }
   return "";

@@ -363,6 +363,13 @@ void Repl::cmdQuiet(llvm::StringRef Args, llvm::SMLoc Loc) {
   }
 }
 
+void Repl::selectRobot(unsigned K) {
+  Selected = K;
+  S = &(*Robots)[K];
+  if (!Histories.empty())
+    History = Histories[K].get();
+}
+
 void Repl::cmdRobot(llvm::StringRef Args, llvm::SMLoc Loc) {
   unsigned K;
   if (!Args.empty()) {
@@ -371,10 +378,7 @@ void Repl::cmdRobot(llvm::StringRef Args, llvm::SMLoc Loc) {
           << Robots->size() - 1 << Args;
       return;
     }
-    Selected = K;
-    S = &(*Robots)[K];
-    if (!Histories.empty())
-      History = Histories[K].get();
+    selectRobot(K);
   }
   OS << "robot " << Selected << " of " << Robots->size()
      << ": lines, :tasks, :why, :history, breakpoints and watches follow "

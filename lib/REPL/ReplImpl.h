@@ -186,6 +186,8 @@ private:
   /// one behavior into one state: `:reload`, `requires`); true for one
   /// robot.
   bool oneRobot(llvm::StringRef Name, llvm::SMLoc Loc);
+  /// Shows robot K: lines, breakpoints, `:why` and the history follow it.
+  void selectRobot(unsigned K);
   /// "cycle N" and, for a team, ", robot K".
   std::string cycleName(uint32_t Cycle, unsigned Robot) const;
 

@@ -117,8 +117,8 @@ std::optional<Encoder::Value> Encoder::fresh(llvm::Type *T,
                                              const std::string &Name) {
   std::string Full = TagPrefix + Name + "." + std::to_string(Fresh++);
   if (T->isIntegerTy())
-    return Value{Value::Bits,
-                 Z.bv_const(Full.c_str(), T->getIntegerBitWidth()), 0};
+    return Value{Value::Bits, Z.bv_const(Full.c_str(), T->getIntegerBitWidth()),
+                 0};
   if (T->isFloatTy() || T->isDoubleTy())
     return Value{Value::Float, Z.constant(Full.c_str(), floatSort(T)), 0};
   unsupported("a value of type " + describe(*llvm::UndefValue::get(T)));
@@ -160,8 +160,7 @@ std::optional<z3::expr> Encoder::load(const Memory &M, const Pointer &P,
   return V;
 }
 
-bool Encoder::store(Memory &M, const Pointer &P, const z3::expr &Bits,
-                    const z3::expr &) {
+bool Encoder::store(Memory &M, const Pointer &P, const z3::expr &Bits) {
   std::vector<z3::expr> &Bytes = M.Bytes[P.Object];
   unsigned Size = Bits.get_sort().bv_size() / 8;
   if (Size == 0 || Size > Bytes.size())
@@ -185,7 +184,7 @@ bool Encoder::store(Memory &M, const Pointer &P, const z3::expr &Bits,
 
 /// The memory where the paths `Conds` select meet: each byte is the one
 /// of the path taken (the last is the rest).
-static Memory merge(z3::context &Z, const std::vector<const Memory *> &Ins,
+static Memory merge(const std::vector<const Memory *> &Ins,
                     const std::vector<z3::expr> &Conds, bool &Ok) {
   Memory M = *Ins.back();
   for (size_t K = Ins.size() - 1; K-- > 0;) {
@@ -205,7 +204,6 @@ static Memory merge(z3::context &Z, const std::vector<const Memory *> &Ins,
       }
     }
   }
-  (void)Z;
   return M;
 }
 
@@ -291,14 +289,14 @@ bool Encoder::encodeCall(llvm::CallInst &C, Memory &M, z3::expr Reached) {
       llvm::APInt MinI = Signed ? llvm::APInt::getSignedMinValue(W)
                                 : llvm::APInt::getMinValue(W);
       z3::sort S = A->get_sort();
-      z3::expr Hi(Z, Signed ? Z3_mk_fpa_to_fp_signed(Z, RTZ,
-                                  Z.bv_val(MaxI.getSExtValue(), W), S)
-                            : Z3_mk_fpa_to_fp_unsigned(Z, RTZ,
-                                  Z.bv_val(MaxI.getZExtValue(), W), S));
-      z3::expr Lo(Z, Signed ? Z3_mk_fpa_to_fp_signed(Z, RTZ,
-                                  Z.bv_val(MinI.getSExtValue(), W), S)
-                            : Z3_mk_fpa_to_fp_unsigned(Z, RTZ,
-                                  Z.bv_val(MinI.getZExtValue(), W), S));
+      z3::expr Hi(Z, Signed ? Z3_mk_fpa_to_fp_signed(
+                                  Z, RTZ, Z.bv_val(MaxI.getSExtValue(), W), S)
+                            : Z3_mk_fpa_to_fp_unsigned(
+                                  Z, RTZ, Z.bv_val(MaxI.getZExtValue(), W), S));
+      z3::expr Lo(Z, Signed ? Z3_mk_fpa_to_fp_signed(
+                                  Z, RTZ, Z.bv_val(MinI.getSExtValue(), W), S)
+                            : Z3_mk_fpa_to_fp_unsigned(
+                                  Z, RTZ, Z.bv_val(MinI.getZExtValue(), W), S));
       // Hi is the largest float at most the maximum (rounded towards
       // zero): above it is out of range; Lo is exact.
       z3::expr R = z3::ite(
@@ -335,7 +333,7 @@ bool Encoder::encodeCall(llvm::CallInst &C, Memory &M, z3::expr Reached) {
             return false;
           Byte = load(M, {Src->Object, Src->Offset + Z.bv_val(I, 64)}, 1);
         }
-        if (!Byte || !store(M, D, *Byte, Reached))
+        if (!Byte || !store(M, D, *Byte))
           return false;
       }
       return true;
@@ -467,11 +465,10 @@ bool Encoder::encodeInstruction(llvm::Instruction &I, Memory &M,
         return unsupported("an ordering of pointers: " + describe(I));
       // Distinct objects are at distinct addresses (the optimiser merged
       // equal constants before): a string compared by its address first.
-      z3::expr Eq = A->Object == C->Object ? A->Offset == C->Offset
-                                           : Z.bool_val(false);
-      return SetBits(fromBool(Cmp->getPredicate() == llvm::CmpInst::ICMP_EQ
-                                  ? Eq
-                                  : !Eq));
+      z3::expr Eq =
+          A->Object == C->Object ? A->Offset == C->Offset : Z.bool_val(false);
+      return SetBits(
+          fromBool(Cmp->getPredicate() == llvm::CmpInst::ICMP_EQ ? Eq : !Eq));
     }
     std::optional<z3::expr> A = bits(Cmp->getOperand(0)),
                             C = bits(Cmp->getOperand(1));
@@ -479,16 +476,36 @@ bool Encoder::encodeInstruction(llvm::Instruction &I, Memory &M,
       return false;
     z3::expr R = Z.bool_val(false);
     switch (Cmp->getPredicate()) {
-    case llvm::CmpInst::ICMP_EQ: R = *A == *C; break;
-    case llvm::CmpInst::ICMP_NE: R = *A != *C; break;
-    case llvm::CmpInst::ICMP_UGT: R = z3::ugt(*A, *C); break;
-    case llvm::CmpInst::ICMP_UGE: R = z3::uge(*A, *C); break;
-    case llvm::CmpInst::ICMP_ULT: R = z3::ult(*A, *C); break;
-    case llvm::CmpInst::ICMP_ULE: R = z3::ule(*A, *C); break;
-    case llvm::CmpInst::ICMP_SGT: R = *A > *C; break;
-    case llvm::CmpInst::ICMP_SGE: R = *A >= *C; break;
-    case llvm::CmpInst::ICMP_SLT: R = *A < *C; break;
-    case llvm::CmpInst::ICMP_SLE: R = *A <= *C; break;
+    case llvm::CmpInst::ICMP_EQ:
+      R = *A == *C;
+      break;
+    case llvm::CmpInst::ICMP_NE:
+      R = *A != *C;
+      break;
+    case llvm::CmpInst::ICMP_UGT:
+      R = z3::ugt(*A, *C);
+      break;
+    case llvm::CmpInst::ICMP_UGE:
+      R = z3::uge(*A, *C);
+      break;
+    case llvm::CmpInst::ICMP_ULT:
+      R = z3::ult(*A, *C);
+      break;
+    case llvm::CmpInst::ICMP_ULE:
+      R = z3::ule(*A, *C);
+      break;
+    case llvm::CmpInst::ICMP_SGT:
+      R = *A > *C;
+      break;
+    case llvm::CmpInst::ICMP_SGE:
+      R = *A >= *C;
+      break;
+    case llvm::CmpInst::ICMP_SLT:
+      R = *A < *C;
+      break;
+    case llvm::CmpInst::ICMP_SLE:
+      R = *A <= *C;
+      break;
     default:
       return unsupported("the instruction " + describe(I));
     }
@@ -506,22 +523,54 @@ bool Encoder::encodeInstruction(llvm::Instruction &I, Memory &M,
     z3::expr R = Z.bool_val(false);
     using P = llvm::CmpInst::Predicate;
     switch (Cmp->getPredicate()) {
-    case P::FCMP_FALSE: R = Z.bool_val(false); break;
-    case P::FCMP_TRUE: R = Z.bool_val(true); break;
-    case P::FCMP_OEQ: R = Eq; break;
-    case P::FCMP_OGT: R = Gt; break;
-    case P::FCMP_OGE: R = Gt || Eq; break;
-    case P::FCMP_OLT: R = Lt; break;
-    case P::FCMP_OLE: R = Lt || Eq; break;
-    case P::FCMP_ONE: R = Lt || Gt; break;
-    case P::FCMP_ORD: R = !Unordered; break;
-    case P::FCMP_UNO: R = Unordered; break;
-    case P::FCMP_UEQ: R = Unordered || Eq; break;
-    case P::FCMP_UGT: R = Unordered || Gt; break;
-    case P::FCMP_UGE: R = Unordered || Gt || Eq; break;
-    case P::FCMP_ULT: R = Unordered || Lt; break;
-    case P::FCMP_ULE: R = Unordered || Lt || Eq; break;
-    case P::FCMP_UNE: R = !Eq; break;
+    case P::FCMP_FALSE:
+      R = Z.bool_val(false);
+      break;
+    case P::FCMP_TRUE:
+      R = Z.bool_val(true);
+      break;
+    case P::FCMP_OEQ:
+      R = Eq;
+      break;
+    case P::FCMP_OGT:
+      R = Gt;
+      break;
+    case P::FCMP_OGE:
+      R = Gt || Eq;
+      break;
+    case P::FCMP_OLT:
+      R = Lt;
+      break;
+    case P::FCMP_OLE:
+      R = Lt || Eq;
+      break;
+    case P::FCMP_ONE:
+      R = Lt || Gt;
+      break;
+    case P::FCMP_ORD:
+      R = !Unordered;
+      break;
+    case P::FCMP_UNO:
+      R = Unordered;
+      break;
+    case P::FCMP_UEQ:
+      R = Unordered || Eq;
+      break;
+    case P::FCMP_UGT:
+      R = Unordered || Gt;
+      break;
+    case P::FCMP_UGE:
+      R = Unordered || Gt || Eq;
+      break;
+    case P::FCMP_ULT:
+      R = Unordered || Lt;
+      break;
+    case P::FCMP_ULE:
+      R = Unordered || Lt || Eq;
+      break;
+    case P::FCMP_UNE:
+      R = !Eq;
+      break;
     default:
       return unsupported("the instruction " + describe(I));
     }
@@ -558,8 +607,8 @@ bool Encoder::encodeInstruction(llvm::Instruction &I, Memory &M,
     case Instruction::BitCast:
       if (To->isFloatingPointTy()) {
         std::optional<z3::expr> A = bits(Cast->getOperand(0));
-        return A && SetFloat(z3::expr(
-                        Z, Z3_mk_fpa_to_fp_bv(Z, *A, floatSort(To))));
+        return A &&
+               SetFloat(z3::expr(Z, Z3_mk_fpa_to_fp_bv(Z, *A, floatSort(To))));
       }
       if (To->isIntegerTy()) {
         std::optional<z3::expr> A = bits(Cast->getOperand(0));
@@ -583,10 +632,9 @@ bool Encoder::encodeInstruction(llvm::Instruction &I, Memory &M,
         return false;
       z3::expr RTZ(Z, Z3_mk_fpa_rtz(Z));
       unsigned W = To->getIntegerBitWidth();
-      return SetBits(z3::expr(
-          Z, Cast->getOpcode() == Instruction::FPToSI
-                 ? Z3_mk_fpa_to_sbv(Z, RTZ, *A, W)
-                 : Z3_mk_fpa_to_ubv(Z, RTZ, *A, W)));
+      return SetBits(z3::expr(Z, Cast->getOpcode() == Instruction::FPToSI
+                                     ? Z3_mk_fpa_to_sbv(Z, RTZ, *A, W)
+                                     : Z3_mk_fpa_to_ubv(Z, RTZ, *A, W)));
     }
     case Instruction::FPExt:
     case Instruction::FPTrunc: {
@@ -610,9 +658,10 @@ bool Encoder::encodeInstruction(llvm::Instruction &I, Memory &M,
       if (llvm::StructType *ST = It.getStructTypeOrNull()) {
         unsigned Field =
             llvm::cast<llvm::ConstantInt>(It.getOperand())->getZExtValue();
-        Offset = Offset + Z.bv_val(uint64_t(DL.getStructLayout(ST)
-                                                ->getElementOffset(Field)),
-                                   64);
+        Offset =
+            Offset +
+            Z.bv_val(uint64_t(DL.getStructLayout(ST)->getElementOffset(Field)),
+                     64);
         continue;
       }
       std::optional<z3::expr> Index = bits(It.getOperand());
@@ -675,7 +724,7 @@ bool Encoder::encodeInstruction(llvm::Instruction &I, Memory &M,
     unsigned Bytes = DL.getTypeStoreSize(V->getType());
     unsigned W = B->get_sort().bv_size();
     z3::expr Wide = W == 8 * Bytes ? *B : z3::zext(*B, 8 * Bytes - W);
-    return store(M, *P, Wide, Reached);
+    return store(M, *P, Wide);
   }
   if (auto *A = llvm::dyn_cast<llvm::AllocaInst>(&I)) {
     std::optional<llvm::TypeSize> Size = A->getAllocationSize(DL);
@@ -683,8 +732,8 @@ bool Encoder::encodeInstruction(llvm::Instruction &I, Memory &M,
       return unsupported("the instruction " + describe(I));
     std::vector<z3::expr> Content;
     for (uint64_t B = 0; B < Size->getFixedValue(); ++B)
-      Content.push_back(freshByte(TagPrefix + "stack." +
-                                  std::to_string(Fresh++)));
+      Content.push_back(
+          freshByte(TagPrefix + "stack." + std::to_string(Fresh++)));
     unsigned Object = M.add("a local", std::move(Content));
     set(&I, Value{Value::Ptr, Z.bv_val(0, 64), Object});
     return true;
@@ -708,7 +757,6 @@ bool Encoder::encodeInstruction(llvm::Instruction &I, Memory &M,
 bool Encoder::encode(llvm::Function &F, llvm::ArrayRef<Pointer> Args,
                      Memory &Mem, llvm::StringRef Tag) {
   Values.clear();
-  Reach.clear();
   Out.clear();
   Edges.clear();
   Checks.clear();
@@ -782,7 +830,7 @@ bool Encoder::encode(llvm::Function &F, llvm::ArrayRef<Pointer> Args,
       if (Ins.empty())
         continue;
       bool Ok = true;
-      M = merge(Z, Ins, Conds, Ok);
+      M = merge(Ins, Conds, Ok);
       if (!Ok)
         return unsupported("a pointer to one object or another in " +
                            F.getName().str());
@@ -806,7 +854,6 @@ bool Encoder::encode(llvm::Function &F, llvm::ArrayRef<Pointer> Args,
       }
     }
     z3::expr ReachBB = Reached.simplify();
-    Reach.insert_or_assign(BB, ReachBB);
     for (llvm::Instruction &I : *BB) {
       if (llvm::isa<llvm::PHINode>(I))
         continue;
@@ -869,7 +916,7 @@ bool Encoder::encode(llvm::Function &F, llvm::ArrayRef<Pointer> Args,
   if (Returns.empty())
     return unsupported(F.getName().str() + " never returns");
   bool Ok = true;
-  Mem = merge(Z, Returns, ReturnConds, Ok);
+  Mem = merge(Returns, ReturnConds, Ok);
   return Ok || unsupported("a pointer to one object or another in " +
                            F.getName().str());
 }

@@ -67,7 +67,6 @@ struct NativeResult {
   z3::expr Value;
 };
 
-
 class Encoder {
 public:
   Encoder(z3::context &Z, const llvm::DataLayout &DL) : Z(Z), DL(DL) {}
@@ -82,9 +81,7 @@ public:
   /// paths taken); the results of its calls into registered C++.
   const std::vector<Check> &getChecks() const { return Checks; }
   z3::expr getAssumed() const { return Assumed; }
-  const std::vector<NativeResult> &getNativeResults() const {
-    return Natives;
-  }
+  const std::vector<NativeResult> &getNativeResults() const { return Natives; }
   /// "a loop (block ... of F)", "the instruction 'fdiv <2 x float>'".
   const std::string &getUnsupported() const { return Unsupported; }
 
@@ -116,8 +113,7 @@ private:
   /// Reads `Size` bytes at P as a bit-vector; writes one.
   std::optional<z3::expr> load(const Memory &M, const Pointer &P,
                                unsigned Size);
-  bool store(Memory &M, const Pointer &P, const z3::expr &Bits,
-             const z3::expr &Reached);
+  bool store(Memory &M, const Pointer &P, const z3::expr &Bits);
   /// The fresh value of type T named Name.
   std::optional<Value> fresh(llvm::Type *T, const std::string &Name);
   z3::expr asBool(const z3::expr &Bit) { return Bit == Z.bv_val(1, 1); }
@@ -131,11 +127,9 @@ private:
   std::string TagPrefix;
   unsigned Fresh = 0;
   std::map<llvm::Value *, Value> Values;
-  std::map<llvm::BasicBlock *, z3::expr> Reach;
   /// Each block's memory at its end, and the condition of each edge.
   std::map<llvm::BasicBlock *, Memory> Out;
-  std::map<std::pair<llvm::BasicBlock *, llvm::BasicBlock *>, z3::expr>
-      Edges;
+  std::map<std::pair<llvm::BasicBlock *, llvm::BasicBlock *>, z3::expr> Edges;
   std::vector<Check> Checks;
   std::vector<NativeResult> Natives;
   /// Pure natives called with the same arguments give the same result.

@@ -24,7 +24,8 @@
 namespace bsc {
 namespace repl {
 class Repl;
-}
+struct Breakpoint;
+} // namespace repl
 
 /// A task of the active hierarchy (DebugSession::getFrames).
 struct DebugFrame {
@@ -168,8 +169,6 @@ public:
 
 private:
   explicit DebugSession(const ReplOptions &Opts);
-  /// Shows robot K (lines, probes and `:why` follow it).
-  void selectRobot(unsigned K);
   DebugStop makeStop(DebugRun How);
   /// `Game.bs:23`: where coverage counter `Counter`'s statement is.
   std::string describeCounter(unsigned Counter) const;
@@ -178,10 +177,14 @@ private:
   /// Gives the breakpoint last added its condition, hit condition and
   /// log, compiled in its task's frame; why it cannot be set, or
   /// std::nullopt.
-  std::optional<BreakpointState>
+  std::optional<std::string>
   compileBreakpointParts(llvm::StringRef Condition,
                          llvm::StringRef HitCondition,
                          llvm::StringRef LogMessage);
+  /// Adds `B` with those parts: State says its number, or why not.
+  bool addBreakpoint(repl::Breakpoint B, llvm::StringRef Condition,
+                     llvm::StringRef HitCondition, llvm::StringRef LogMessage,
+                     BreakpointState &State);
 
   ReplOptions Opts;
   std::string Output, Errors;
