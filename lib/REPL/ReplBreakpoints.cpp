@@ -61,11 +61,7 @@ std::string Repl::checkRobotBreakpoints(unsigned K, bool Counting) {
       for (const debug::Activation &A : Records) {
         const debug::DebugTables::Task &T = L->Tables.Tasks[A.Task];
         if (A.Resume > 0 && T.YieldLines[A.Resume - 1] == B.LineNo &&
-            isFile(C->SM.getMemoryBuffer(C->SM.FindBufferContainingLoc(
-                                             L->Layout.Tasks[A.Task]
-                                                 .Decl->getLoc()))
-                       ->getBufferIdentifier(),
-                   B.File)) {
+            llvm::is_contained(B.LineTasks, A.Task)) {
           Hit = T.Name + " waits at " + B.Text;
           break;
         }
@@ -192,14 +188,8 @@ const TaskDecl *Repl::getBreakpointTask(const Breakpoint &B) const {
     return llvm::dyn_cast<TaskDecl>(
         L->Layout.CoverageSites[B.Counters.front()].Owner);
   case Breakpoint::Line:
-    for (size_t I = 0; I < L->Tables.Tasks.size(); ++I) {
-      const CallableDecl *D = L->Layout.Tasks[I].Decl;
-      unsigned Buffer = C->SM.FindBufferContainingLoc(D->getLoc());
-      if (Buffer && llvm::is_contained(L->Tables.Tasks[I].YieldLines, B.LineNo) &&
-          isFile(C->SM.getMemoryBuffer(Buffer)->getBufferIdentifier(), B.File))
-        return llvm::dyn_cast<TaskDecl>(D);
-    }
-    return nullptr;
+    return llvm::dyn_cast<TaskDecl>(
+        L->Layout.Tasks[B.LineTasks.front()].Decl);
   default:
     return nullptr;
   }
@@ -293,22 +283,19 @@ std::optional<Breakpoint> Repl::makeBreakpoint(llvm::StringRef Where,
     B.K = Breakpoint::Budget;
   } else if (auto [File, LineText] = Where.rsplit(':');
              !LineText.empty() && llvm::all_of(LineText, llvm::isDigit)) {
-    B.File = File.str();
     LineText.getAsInteger(10, B.LineNo);
     // A yield's line stops where a task waits; another line with code
     // stops after a cycle that ran it.
     B.K = Breakpoint::Line;
-    bool Yield = false;
-    for (const BehaviorLayout::Task &T : L->Layout.Tasks) {
-      unsigned Buffer = C->SM.FindBufferContainingLoc(T.Decl->getLoc());
-      const debug::DebugTables::Task &DT =
-          L->Tables.Tasks[&T - L->Layout.Tasks.data()];
-      Yield |= Buffer &&
-               isFile(C->SM.getMemoryBuffer(Buffer)->getBufferIdentifier(),
-                      File) &&
-               llvm::is_contained(DT.YieldLines, B.LineNo);
+    for (unsigned I = 0; I < L->Layout.Tasks.size(); ++I) {
+      unsigned Buffer =
+          C->SM.FindBufferContainingLoc(L->Layout.Tasks[I].Decl->getLoc());
+      if (Buffer &&
+          llvm::is_contained(L->Tables.Tasks[I].YieldLines, B.LineNo) &&
+          isFile(C->SM.getMemoryBuffer(Buffer)->getBufferIdentifier(), File))
+        B.LineTasks.push_back(I);
     }
-    if (!Yield) {
+    if (B.LineTasks.empty()) {
       B.K = Breakpoint::Code;
       B.Counters = findLineCounters(File, B.LineNo);
       if (B.Counters.empty()) {

@@ -63,11 +63,11 @@ struct Breakpoint {
   unsigned Number;
   std::string Text; ///< As the user wrote it (LOC for `LOC if EXPR`).
   unsigned TaskIndex = 0;
-  std::string File;
   unsigned LineNo = 0;
-  /// Code: the coverage counters of the statements on the line (a task's
-  /// header counts its calls).
-  std::vector<unsigned> Counters;
+  /// Line: the tasks (by index) with a yield on it, found once rather than
+  /// by file names after every cycle. Code: the coverage counters of the
+  /// statements on the line (a task's header counts its calls).
+  std::vector<unsigned> LineTasks, Counters;
   /// Watch: the expression and its last value.
   Probe Watched;
   llvm::json::Value Last = nullptr;
