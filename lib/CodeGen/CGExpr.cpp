@@ -256,6 +256,17 @@ FunctionEmitter::emitNativeCall(const NativeFunction &NF, llvm::Value *Self,
 llvm::Value *FunctionEmitter::emitNativeCallWithValues(
     const NativeFunction &NF, llvm::Value *Self,
     llvm::ArrayRef<llvm::Value *> Values) {
+  // `bsc verify --model`: the model stands for the C++, but in itself
+  // (where a call of the C++ is what it constrains).
+  if (const FuncDecl *Model = CGM.getModel(NF); Model && Model != &D) {
+    llvm::SmallVector<llvm::Value *, 4> Args;
+    if (Self)
+      Args.push_back(Self);
+    Args.append(Values.begin(), Values.end());
+    return emitCallWithValues(*Model, NF.ResultViaOut ? NF.Result.TheClass
+                                                      : nullptr,
+                              Args);
+  }
   llvm::FunctionCallee Callee = CGM.getNative(NF);
   llvm::FunctionType *FTy = Callee.getFunctionType();
   llvm::SmallVector<llvm::Value *, 6> Args;
@@ -425,31 +436,13 @@ llvm::Value *FunctionEmitter::emitCall(const CallExpr &E) {
   case CallKind::Func:
   case CallKind::Task: {
     // Tasks and funcs alike: (state, args...). A task call runs one step.
-    llvm::Function *Callee = CGM.getFunction(E.Target);
-    llvm::SmallVector<llvm::Value *, 4> Args = {StatePtr};
-    llvm::AllocaInst *Out = nullptr;
-    if (ModuleEmitter::returnsClass(*E.Target)) {
-      Out = createClassTemp(E.Ty->getClass(), E.Target->getName().Name);
-      Args.push_back(Out);
-    }
-    for (const Expr *A : E.Args) {
-      llvm::Value *V = emitExpr(A);
-      llvm::Type *PTy = Callee->getArg(Args.size())->getType();
-      if (PTy->isFloatTy() && V->getType()->isIntegerTy(32))
-        V = Builder.CreateSIToFP(V, PTy);
-      Args.push_back(V);
-    }
-    if (Out) {
-      Builder.CreateCall(Callee, Args);
-      pushTemp(E.Ty->getClass(), Out);
-      return Out;
-    }
-    if (Callee->getReturnType()->isVoidTy())
-      return Builder.CreateCall(Callee, Args);
-    llvm::CallInst *Call =
-        Builder.CreateCall(Callee, Args, E.Target->getName().Name);
+    llvm::SmallVector<llvm::Value *, 4> Values;
+    for (const Expr *A : E.Args)
+      Values.push_back(emitExpr(A));
+    llvm::Value *Call = emitCallWithValues(
+        *E.Target, E.Ty->isClass() ? E.Ty->getClass() : nullptr, Values);
     if (E.Kind == CallKind::Task)
-      LastTaskCall = Call;
+      LastTaskCall = llvm::cast<llvm::CallInst>(Call);
     return Call;
   }
   case CallKind::NativeFunction:
@@ -463,6 +456,33 @@ llvm::Value *FunctionEmitter::emitCall(const CallExpr &E) {
     break;
   }
   llvm_unreachable("Sema resolves every call");
+}
+
+llvm::Value *
+FunctionEmitter::emitCallWithValues(const CallableDecl &Target,
+                                    const NativeClass *ResultClass,
+                                    llvm::ArrayRef<llvm::Value *> Values) {
+  llvm::Function *Callee = CGM.getFunction(&Target);
+  llvm::SmallVector<llvm::Value *, 4> Args = {StatePtr};
+  llvm::AllocaInst *Out = nullptr;
+  if (ModuleEmitter::returnsClass(Target)) {
+    Out = createClassTemp(ResultClass, Target.getName().Name);
+    Args.push_back(Out);
+  }
+  for (llvm::Value *V : Values) {
+    llvm::Type *PTy = Callee->getArg(Args.size())->getType();
+    if (PTy->isFloatTy() && V->getType()->isIntegerTy(32))
+      V = Builder.CreateSIToFP(V, PTy);
+    Args.push_back(V);
+  }
+  if (Out) {
+    Builder.CreateCall(Callee, Args);
+    pushTemp(ResultClass, Out);
+    return Out;
+  }
+  if (Callee->getReturnType()->isVoidTy())
+    return Builder.CreateCall(Callee, Args);
+  return Builder.CreateCall(Callee, Args, Target.getName().Name);
 }
 
 llvm::Value *FunctionEmitter::emitUnary(const UnaryExpr &E) {

@@ -38,33 +38,41 @@ llvm::FunctionCallee ModuleEmitter::getNative(const NativeFunction &NF) {
   llvm::FunctionCallee Thunk = M.getOrInsertFunction(NF.Symbol, FTy);
   if (auto *F = llvm::dyn_cast<llvm::Function>(Thunk.getCallee()))
     F->addFnAttr(llvm::Attribute::NoUnwind);
-  if (NF.Pure || !(Opts.Boundary || Opts.FlightRecorder))
-    return Slot = Thunk;
   // What the thunk may write besides the view: a class result's storage,
-  // the object of a non-const method, `T&` arguments.
-  llvm::SmallVector<std::pair<unsigned, uint64_t>, 4> Writable;
+  // the object of a non-const method, `T&` arguments; what it reads.
+  BehaviorLayout::NativeCall Shape;
   unsigned Arg = 0;
   if (NF.ResultViaOut)
-    Writable.push_back({Arg++, NF.Result.TheClass->Size});
+    Shape.Writes.push_back({Arg++, NF.Result.TheClass->Size});
   if (NF.hasSelf()) {
-    if (!NF.ConstSelf && NF.Owner)
-      Writable.push_back({Arg, NF.Owner->Size});
+    if (NF.Owner) {
+      Shape.Reads.push_back({Arg, NF.Owner->Size});
+      if (!NF.ConstSelf)
+        Shape.Writes.push_back({Arg, NF.Owner->Size});
+    }
     ++Arg;
   }
   if (NF.TakesContext)
     ++Arg; // The state: in the view.
   for (const NativeType &P : NF.Params) {
-    if (P.MutableRef && P.TheClass)
-      Writable.push_back({Arg, P.TheClass->Size});
+    if (P.TheClass) {
+      Shape.Reads.push_back({Arg, P.TheClass->Size});
+      if (P.MutableRef)
+        Shape.Writes.push_back({Arg, P.TheClass->Size});
+    }
     ++Arg;
   }
   bool Standard = false;
-  std::string Name = getNativeName(NF, Standard);
-  uint32_t Flags = (Standard ? SiteStandard : SiteNoFlags) |
-                   (!NF.ResultViaOut && NF.Result.TheCode == NativeType::String
-                        ? SiteResultIsString
-                        : SiteNoFlags);
-  return Slot = wrapForBoundary(Thunk, Name, Flags, Writable);
+  Shape.Name = getNativeName(NF, Standard);
+  Shape.Flags = (Standard ? SiteStandard : SiteNoFlags) |
+                (!NF.ResultViaOut && NF.Result.TheCode == NativeType::String
+                     ? SiteResultIsString
+                     : SiteNoFlags);
+  Shape.Pure = NF.Pure;
+  Layout.NativeCalls[NF.Symbol] = Shape;
+  if (NF.Pure)
+    return Slot = Thunk;
+  return Slot = wrapForBoundary(Thunk, Shape.Name, Shape.Flags, Shape.Writes);
 }
 
 std::string ModuleEmitter::getNativeName(const NativeFunction &NF,
@@ -248,9 +256,11 @@ ModuleEmitter::getNativeSetter(const NativeFunction &NF) {
   if (auto *Fn = llvm::dyn_cast<llvm::Function>(F.getCallee()))
     Fn->addFnAttr(llvm::Attribute::NoUnwind);
   bool Standard;
-  std::string Name = getNativeName(NF, Standard) + " (set)";
-  return wrapForBoundary(F, Name, Standard ? SiteStandard : SiteNoFlags,
-                         {{0, NF.Owner ? NF.Owner->Size : 0}});
+  BehaviorLayout::NativeCall &Shape = Layout.NativeCalls[NF.Setter];
+  Shape.Name = getNativeName(NF, Standard) + " (set)";
+  Shape.Flags = Standard ? SiteStandard : SiteNoFlags;
+  Shape.Writes = {{0, NF.Owner ? NF.Owner->Size : 0}};
+  return wrapForBoundary(F, Shape.Name, Shape.Flags, Shape.Writes);
 }
 
 llvm::FunctionCallee ModuleEmitter::getLifeThunk(const NativeClass *C,
@@ -268,10 +278,13 @@ llvm::FunctionCallee ModuleEmitter::getLifeThunk(const NativeClass *C,
                      : Symbol == C->Copy    ? "copy"
                      : Symbol == C->Assign  ? "assign"
                                             : "destroy";
-  return wrapForBoundary(F, C->QualifiedName + " (" + What + ")",
-                         C->Module && C->Module->Standard ? SiteStandard
-                                                          : SiteNoFlags,
-                         {{0, C->Size}});
+  BehaviorLayout::NativeCall &Shape = Layout.NativeCalls[Symbol.str()];
+  Shape.Name = C->QualifiedName + " (" + What + ")";
+  Shape.Flags = C->Module && C->Module->Standard ? SiteStandard : SiteNoFlags;
+  Shape.Writes = {{0, C->Size}};
+  if (NumPtrs == 2) // The copy's source.
+    Shape.Reads = {{1, C->Size}};
+  return wrapForBoundary(F, Shape.Name, Shape.Flags, Shape.Writes);
 }
 
 llvm::Constant *ModuleEmitter::getString(llvm::StringRef S) {

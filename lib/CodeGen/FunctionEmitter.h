@@ -113,6 +113,12 @@ private:
   llvm::Value *emitCond(const Expr *E);
   llvm::Value *emitName(const NameExpr &E);
   llvm::Value *emitCall(const CallExpr &E);
+  /// A call of func or task `Target` with its arguments' values: (state,
+  /// [the class result's storage], args...). `ResultClass`: the class it
+  /// returns, if any.
+  llvm::Value *emitCallWithValues(const CallableDecl &Target,
+                                  const NativeClass *ResultClass,
+                                  llvm::ArrayRef<llvm::Value *> Values);
   llvm::Value *emitUnary(const UnaryExpr &E);
   llvm::Value *emitBinary(const BinaryExpr &E);
   llvm::Value *emitLogical(const BinaryExpr &E);

@@ -80,6 +80,13 @@ public:
   void emitFlightTable();
   llvm::GlobalVariable *getFlightTable();
   llvm::StructType *getFlightTableType();
+  /// The model of `NF` (CodeGenOptions::Models), or null.
+  const FuncDecl *getModel(const NativeFunction &NF) const {
+    if (!Opts.Models)
+      return nullptr;
+    auto It = Opts.Models->find(&NF);
+    return It == Opts.Models->end() ? nullptr : It->second;
+  }
   /// `Module::f` or `Class::m`, and whether the module is a standard one.
   std::string getNativeName(const NativeFunction &NF, bool &Standard) const;
   /// The storage of a registered class value in frames and allocas: Size

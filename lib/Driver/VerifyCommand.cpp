@@ -20,6 +20,13 @@ int bsc::verifyCommand(Compilation &C, const FrontendOptions &FOpts,
         << MaxVerifyCycles << Opts.Cycles.value_or("");
     OK = false;
   }
+  if (Opts.LoopLimit &&
+      (llvm::StringRef(*Opts.LoopLimit).getAsInteger(10, V.LoopLimit) ||
+       V.LoopLimit == 0 || V.LoopLimit > MaxLoopLimit)) {
+    C.Diags.report(llvm::SMLoc(), diag::err_verify_loop_limit)
+        << MaxLoopLimit << *Opts.LoopLimit;
+    OK = false;
+  }
   if (!OK || !runFrontend(C, FOpts))
     return finishCompilation(C);
   V.EntryName = Opts.EntryName;

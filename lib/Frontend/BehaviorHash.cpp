@@ -77,6 +77,8 @@ std::string bsc::computeBehaviorHash(const Compilation &C,
   // what decides the calls a cycle makes, on any target.
   std::string Text = "bsc-behavior-2\n" + Entry.getQualifiedName() + "\n";
   for (const ModuleAST *M : C.Modules) {
+    if (M->IsModel) // bsc verify's: the behavior never calls them.
+      continue;
     Text += M->Name + "\n";
     Text += C.SM.getMemoryBuffer(M->BufferID)->getBuffer().str();
     Text += "\n";

@@ -84,6 +84,13 @@ public:
   void loadInputs() {
     for (const std::string &Path : Opts.Inputs)
       loadFile(Path);
+    // A model the behavior also requires (or named twice) stays what it
+    // was first.
+    for (const std::string &Path : Opts.Models) {
+      size_t Before = C.Modules.size();
+      if (ModuleAST *M = loadFile(Path); M && C.Modules.size() > Before)
+        M->IsModel = true;
+    }
     // Modules grows while requires are resolved; index, not iterate.
     for (size_t I = 0; I != C.Modules.size(); ++I)
       resolveRequires(*C.Modules[I]);

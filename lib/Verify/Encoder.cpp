@@ -2,8 +2,10 @@
 //
 // Blocks are encoded in reverse post-order: a block is reached when one of
 // the edges into it is taken, its phis are the value of the edge taken,
-// and its memory is its predecessors' merged by the same conditions. A
-// back edge (a loop the optimiser did not unroll) stops the encoding.
+// and its memory is its predecessors' merged by the same conditions. The
+// head of a loop (what is left of it after Verify.cpp peeled passes off
+// it) is not encoded: reaching it is an escape, which the verifier asks
+// the solver about.
 // Floats are Z3's IEEE floats with rounding to nearest even, as the host
 // computes them; comparisons follow LLVM's ordered and unordered forms.
 //
@@ -62,13 +64,13 @@ std::optional<Encoder::Value> Encoder::valueOf(llvm::Value *V) {
     unsigned W = A.getBitWidth();
     z3::expr E = W <= 64 ? Z.bv_val(uint64_t(A.getZExtValue()), W)
                          : Z.bv_val(llvm::toString(A, 10, false).c_str(), W);
-    return Value{Value::Bits, E, 0};
+    return Value::bits(E);
   }
   if (auto *CF = llvm::dyn_cast<llvm::ConstantFP>(V)) {
     llvm::APInt Bits = CF->getValueAPF().bitcastToAPInt();
     z3::expr B = Z.bv_val(uint64_t(Bits.getZExtValue()), Bits.getBitWidth());
     z3::expr F(Z, Z3_mk_fpa_to_fp_bv(Z, B, floatSort(CF->getType())));
-    return Value{Value::Float, F, 0};
+    return Value::flt(F);
   }
   if (llvm::isa<llvm::UndefValue>(V) || llvm::isa<llvm::PoisonValue>(V))
     return fresh(V->getType(), "undef");
@@ -110,17 +112,16 @@ std::optional<Pointer> Encoder::pointer(llvm::Value *V) {
     unsupported("a number used as a pointer: " + describe(*V));
     return std::nullopt;
   }
-  return X->pointer();
+  return *X->P;
 }
 
 std::optional<Encoder::Value> Encoder::fresh(llvm::Type *T,
                                              const std::string &Name) {
   std::string Full = TagPrefix + Name + "." + std::to_string(Fresh++);
   if (T->isIntegerTy())
-    return Value{Value::Bits, Z.bv_const(Full.c_str(), T->getIntegerBitWidth()),
-                 0};
+    return Value::bits(Z.bv_const(Full.c_str(), T->getIntegerBitWidth()));
   if (T->isFloatTy() || T->isDoubleTy())
-    return Value{Value::Float, Z.constant(Full.c_str(), floatSort(T)), 0};
+    return Value::flt(Z.constant(Full.c_str(), floatSort(T)));
   unsupported("a value of type " + describe(*llvm::UndefValue::get(T)));
   return std::nullopt;
 }
@@ -129,48 +130,67 @@ std::optional<Encoder::Value> Encoder::fresh(llvm::Type *T,
 // Memory
 //===----------------------------------------------------------------------===//
 
-std::optional<z3::expr> Encoder::load(const Memory &M, const Pointer &P,
-                                      unsigned Size) {
-  const std::vector<z3::expr> &Bytes = M.Bytes[P.Object];
-  if (Size == 0 || Size > Bytes.size()) {
-    unsupported("a read of " + std::to_string(Size) + " bytes of " +
-                M.Names[P.Object]);
+Pointer Pointer::choose(const z3::expr &C, const Pointer &A,
+                        const Pointer &B) {
+  z3::expr Offset = z3::eq(A.Offset, B.Offset) ? A.Offset
+                                                : z3::ite(C, A.Offset, B.Offset);
+  if (A.isKnown() && B.isKnown() && A.Objects[0] == B.Objects[0])
+    return A.at(Offset);
+  std::vector<unsigned> Objects = A.Objects;
+  for (unsigned O : B.Objects)
+    if (!llvm::is_contained(Objects, O))
+      Objects.push_back(O);
+  return Pointer{std::move(Objects), z3::ite(C, A.Which, B.Which), Offset};
+}
+
+std::optional<z3::expr> Encoder::loadFrom(const std::vector<z3::expr> &Bytes,
+                                          const z3::expr &At, unsigned Size) {
+  if (Size == 0 || Size > Bytes.size())
     return std::nullopt;
-  }
-  auto At = [&](uint64_t Offset) {
+  auto Read = [&](uint64_t Offset) {
     z3::expr V = Bytes[Offset];
     for (unsigned I = 1; I < Size; ++I) // Little-endian.
       V = z3::concat(Bytes[Offset + I], V);
     return V;
   };
-  z3::expr Offset = P.Offset.simplify();
-  uint64_t Known;
-  if (Offset.is_numeral_u64(Known)) {
-    if (Known + Size > Bytes.size()) {
-      unsupported("a read past the end of " + M.Names[P.Object]);
-      return std::nullopt;
-    }
-    return At(Known);
-  }
-  // An index the behavior computed: any place the read fits (bsc clamps
-  // indices, so there is one).
-  z3::expr V = At(Bytes.size() - Size);
-  for (uint64_t O = Bytes.size() - Size; O-- > 0;)
-    V = z3::ite(Offset == Z.bv_val(O, 64), At(O), V);
-  return V;
-}
-
-bool Encoder::store(Memory &M, const Pointer &P, const z3::expr &Bits) {
-  std::vector<z3::expr> &Bytes = M.Bytes[P.Object];
-  unsigned Size = Bits.get_sort().bv_size() / 8;
-  if (Size == 0 || Size > Bytes.size())
-    return unsupported("a write of " + std::to_string(Size) + " bytes to " +
-                       M.Names[P.Object]);
-  z3::expr Offset = P.Offset.simplify();
+  z3::expr Offset = At.simplify();
   uint64_t Known;
   if (Offset.is_numeral_u64(Known)) {
     if (Known + Size > Bytes.size())
-      return unsupported("a write past the end of " + M.Names[P.Object]);
+      return std::nullopt;
+    return Read(Known);
+  }
+  // An index the behavior computed: any place the read fits (bsc clamps
+  // indices, so there is one).
+  z3::expr V = Read(Bytes.size() - Size);
+  for (uint64_t O = Bytes.size() - Size; O-- > 0;)
+    V = z3::ite(Offset == Z.bv_val(O, 64), Read(O), V);
+  return V;
+}
+
+std::optional<z3::expr> Encoder::load(const Memory &M, const Pointer &P,
+                                      unsigned Size) {
+  // Of several objects, those the read fits (the code reads no other).
+  std::optional<z3::expr> V;
+  for (unsigned O : P.Objects)
+    if (std::optional<z3::expr> X = loadFrom(M.Bytes[O], P.Offset, Size))
+      V = V ? z3::ite(P.isIn(O), *X, *V) : *X;
+  if (!V)
+    unsupported("a read of " + std::to_string(Size) + " bytes past the end of " +
+                M.Names[P.Objects.front()]);
+  return V;
+}
+
+bool Encoder::storeInto(std::vector<z3::expr> &Bytes, const z3::expr &At,
+                        const z3::expr &Bits) {
+  unsigned Size = Bits.get_sort().bv_size() / 8;
+  if (Size == 0 || Size > Bytes.size())
+    return false;
+  z3::expr Offset = At.simplify();
+  uint64_t Known;
+  if (Offset.is_numeral_u64(Known)) {
+    if (Known + Size > Bytes.size())
+      return false;
     for (unsigned I = 0; I < Size; ++I)
       Bytes[Known + I] = Bits.extract(8 * I + 7, 8 * I).simplify();
     return true;
@@ -182,26 +202,79 @@ bool Encoder::store(Memory &M, const Pointer &P, const z3::expr &Bits) {
   return true;
 }
 
-/// The memory where the paths `Conds` select meet: each byte is the one
-/// of the path taken (the last is the rest).
+bool Encoder::store(Memory &M, const Pointer &P, const z3::expr &Bits) {
+  if (P.isKnown()) {
+    if (storeInto(M.Bytes[P.Objects[0]], P.Offset, Bits))
+      return true;
+  } else {
+    // Each object the write fits changes where the pointer is into it.
+    bool Any = false;
+    for (unsigned O : P.Objects) {
+      std::vector<z3::expr> New = M.Bytes[O];
+      if (!storeInto(New, P.Offset, Bits))
+        continue;
+      Any = true;
+      z3::expr In = P.isIn(O);
+      for (size_t B = 0; B < New.size(); ++B)
+        if (!z3::eq(New[B], M.Bytes[O][B]))
+          M.Bytes[O][B] = z3::ite(In, New[B], M.Bytes[O][B]);
+    }
+    if (Any)
+      return true;
+  }
+  return unsupported("a write of " + std::to_string(Bits.get_sort().bv_size() / 8) +
+                     " bytes past the end of " + M.Names[P.Objects.front()]);
+}
+
+std::optional<Pointer> Encoder::loadPointer(const Memory &M,
+                                            const Pointer &P) {
+  uint64_t Known;
+  std::optional<Pointer> V;
+  if (P.Offset.simplify().is_numeral_u64(Known))
+    for (unsigned O : P.Objects) {
+      auto It = M.Cells.find({O, Known});
+      if (It == M.Cells.end())
+        continue;
+      V = V ? Pointer::choose(P.isIn(O), It->second, *V) : It->second;
+    }
+  return V;
+}
+
+bool Encoder::storePointer(Memory &M, const Pointer &P,
+                           const Pointer &Stored) {
+  uint64_t Known;
+  if (!P.Offset.simplify().is_numeral_u64(Known))
+    return false;
+  for (unsigned O : P.Objects) {
+    auto It = M.Cells.find({O, Known});
+    if (P.isKnown() || It == M.Cells.end())
+      M.Cells.insert_or_assign({O, Known}, Stored);
+    else
+      It->second = Pointer::choose(P.isIn(O), Stored, It->second);
+  }
+  return true;
+}
+
+/// The memory where the paths `Conds` select meet: each byte (and pointer
+/// kept whole) is the one of the path taken (the last is the rest).
 static Memory merge(const std::vector<const Memory *> &Ins,
-                    const std::vector<z3::expr> &Conds, bool &Ok) {
+                    const std::vector<z3::expr> &Conds) {
   Memory M = *Ins.back();
   for (size_t K = Ins.size() - 1; K-- > 0;) {
     const Memory &In = *Ins[K];
+    // An object only one path made (a local of a branch) is that path's.
+    for (size_t O = M.Bytes.size(); O < In.Bytes.size(); ++O)
+      M.add(In.Names[O], In.Bytes[O]);
     for (size_t O = 0; O < In.Bytes.size() && O < M.Bytes.size(); ++O)
       for (size_t B = 0; B < In.Bytes[O].size(); ++B)
         if (!z3::eq(In.Bytes[O][B], M.Bytes[O][B]))
           M.Bytes[O][B] = z3::ite(Conds[K], In.Bytes[O][B], M.Bytes[O][B]);
     for (const auto &[Key, P] : In.Cells) {
       auto It = M.Cells.find(Key);
-      if (It == M.Cells.end()) {
+      if (It == M.Cells.end())
         M.Cells.insert({Key, P});
-      } else if (It->second.Object != P.Object) {
-        Ok = false; // A pointer to one object or another.
-      } else if (!z3::eq(It->second.Offset, P.Offset)) {
-        It->second.Offset = z3::ite(Conds[K], P.Offset, It->second.Offset);
-      }
+      else
+        It->second = Pointer::choose(Conds[K], P, It->second);
     }
   }
   return M;
@@ -231,7 +304,7 @@ bool Encoder::encodeCall(llvm::CallInst &C, Memory &M, z3::expr Reached) {
   if (auto *II = llvm::dyn_cast<llvm::IntrinsicInst>(&C)) {
     auto Arg = [&](unsigned I) { return bits(C.getArgOperand(I)); };
     auto Set = [&](z3::expr E) {
-      set(&C, Value{Value::Bits, E, 0});
+      set(&C, Value::bits(E));
       return true;
     };
     switch (II->getIntrinsicID()) {
@@ -311,7 +384,7 @@ bool Encoder::encodeCall(llvm::CallInst &C, Memory &M, z3::expr Reached) {
       std::optional<z3::expr> A = floating(C.getArgOperand(0));
       if (!A)
         return false;
-      set(&C, Value{Value::Float, z3::abs(*A), 0});
+      set(&C, Value::flt(z3::abs(*A)));
       return true;
     }
     case llvm::Intrinsic::memset:
@@ -323,7 +396,7 @@ bool Encoder::encodeCall(llvm::CallInst &C, Memory &M, z3::expr Reached) {
         return unsupported("a copy of a length the verifier cannot see: " +
                            describe(C));
       for (uint64_t I = 0; I < Len->getZExtValue(); ++I) {
-        Pointer D{Dst->Object, Dst->Offset + Z.bv_val(I, 64)};
+        Pointer D = Dst->at(Dst->Offset + Z.bv_val(I, 64));
         std::optional<z3::expr> Byte;
         if (II->getIntrinsicID() == llvm::Intrinsic::memset) {
           Byte = Arg(1);
@@ -331,7 +404,7 @@ bool Encoder::encodeCall(llvm::CallInst &C, Memory &M, z3::expr Reached) {
           std::optional<Pointer> Src = pointer(C.getArgOperand(1));
           if (!Src)
             return false;
-          Byte = load(M, {Src->Object, Src->Offset + Z.bv_val(I, 64)}, 1);
+          Byte = load(M, Src->at(Src->Offset + Z.bv_val(I, 64)), 1);
         }
         if (!Byte || !store(M, D, *Byte))
           return false;
@@ -345,37 +418,73 @@ bool Encoder::encodeCall(llvm::CallInst &C, Memory &M, z3::expr Reached) {
   if (!Callee->isDeclaration())
     return unsupported("a call of " + Callee->getName().str() +
                        " that was not inlined (a recursive func?)");
-  // Registered C++: a fresh result, the same for the same arguments if it
-  // reads no memory.
-  llvm::Type *T = C.getType();
-  if (T->isVoidTy())
-    return true;
+  // Registered C++ (NativeCall says what it is): a fresh result, fresh
+  // bytes where it may write, the same result for the same arguments (and
+  // the same bytes of the objects it reads) where it is pure.
+  const BehaviorLayout::NativeCall *Known = nullptr;
+  if (Natives) {
+    auto It = Natives->find(Callee->getName().str());
+    Known = It != Natives->end() ? &It->second : nullptr;
+  }
+  NativeResult Result{Callee->getName().str(), Reached, std::nullopt, {}};
+  Result.Recorded = Known && !Known->Pure && !(Known->Flags & SiteStandard);
   std::vector<z3::expr> Args;
-  bool Pure = C.doesNotAccessMemory();
-  for (llvm::Value *A : C.args()) {
-    if (A->getType()->isPointerTy()) {
-      Pure = false;
+  for (unsigned I = 0; I < C.arg_size(); ++I) {
+    llvm::Value *A = C.getArgOperand(I);
+    if (!A->getType()->isPointerTy()) {
+      std::optional<z3::expr> E = bits(A);
+      if (!E)
+        return false;
+      Args.push_back(*E);
       continue;
     }
-    std::optional<z3::expr> E = bits(A);
-    if (!E)
-      return false;
-    Args.push_back(*E);
+    // A pure function's objects are part of its arguments.
+    if (!Known || !Known->Pure)
+      continue;
+    for (auto [Arg, Size] : Known->Reads)
+      if (Arg == I && Size) {
+        std::optional<Pointer> P = pointer(A);
+        std::optional<z3::expr> Bytes = P ? load(M, *P, Size) : std::nullopt;
+        if (!Bytes)
+          return false;
+        Args.push_back(*Bytes);
+      }
   }
-  std::optional<Value> V = fresh(T, "native");
-  if (!V)
-    return false;
-  if (Pure) {
-    for (const auto &[Seen, Old] : PureCalls[Callee->getName().str()]) {
-      z3::expr Same = Z.bool_val(true);
-      for (size_t I = 0; I < Args.size(); ++I)
-        Same = Same && Seen[I] == Args[I];
-      Assumed = Assumed && z3::implies(Same, V->E == Old.E);
+  if (Known)
+    for (auto [Arg, Size] : Known->Writes) {
+      std::optional<Pointer> P = pointer(C.getArgOperand(Arg));
+      if (!P)
+        return false;
+      std::vector<z3::expr> Written;
+      for (uint64_t B = 0; B < Size; ++B) {
+        Written.push_back(
+            freshByte(TagPrefix + "wrote." + std::to_string(Fresh++)));
+        if (!store(M, P->at(P->Offset + Z.bv_val(B, 64)), Written.back()))
+          return false;
+      }
+      Result.Ptrs.push_back(std::move(Written));
     }
-    PureCalls[Callee->getName().str()].push_back({Args, *V});
+  llvm::Type *T = C.getType();
+  if (!T->isVoidTy()) {
+    std::optional<Value> V = fresh(T, "native");
+    if (!V)
+      return false;
+    if (Known && Known->Pure) {
+      for (const auto &[Seen, Old] : PureCalls[Callee->getName().str()]) {
+        z3::expr Same = Z.bool_val(Seen.size() == Args.size());
+        for (size_t I = 0; I < Args.size() && I < Seen.size(); ++I)
+          Same = Same && (Seen[I].get_sort().bv_size() ==
+                                  Args[I].get_sort().bv_size()
+                              ? Seen[I] == Args[I]
+                              : Z.bool_val(false));
+        Assumed = Assumed && z3::implies(Same, V->E == Old.E);
+      }
+      PureCalls[Callee->getName().str()].push_back({Args, *V});
+    }
+    Result.Value = V->E;
+    set(&C, *V);
   }
-  Natives.push_back({Callee->getName().str(), V->E});
-  set(&C, *V);
+  NativeCalls.push_back(std::move(Result));
   return true;
 }
 
@@ -383,11 +492,11 @@ bool Encoder::encodeInstruction(llvm::Instruction &I, Memory &M,
                                 z3::expr Reached) {
   using llvm::Instruction;
   auto SetBits = [&](z3::expr E) {
-    set(&I, Value{Value::Bits, E, 0});
+    set(&I, Value::bits(E));
     return true;
   };
   auto SetFloat = [&](z3::expr E) {
-    set(&I, Value{Value::Float, E, 0});
+    set(&I, Value::flt(E));
     return true;
   };
   z3::expr RNE(Z, Z3_mk_fpa_rne(Z));
@@ -465,8 +574,10 @@ bool Encoder::encodeInstruction(llvm::Instruction &I, Memory &M,
         return unsupported("an ordering of pointers: " + describe(I));
       // Distinct objects are at distinct addresses (the optimiser merged
       // equal constants before): a string compared by its address first.
-      z3::expr Eq =
-          A->Object == C->Object ? A->Offset == C->Offset : Z.bool_val(false);
+      z3::expr Eq = A->isKnown() && C->isKnown()
+                        ? (A->Objects[0] == C->Objects[0] ? A->Offset == C->Offset
+                                                          : Z.bool_val(false))
+                        : A->Which == C->Which && A->Offset == C->Offset;
       return SetBits(
           fromBool(Cmp->getPredicate() == llvm::CmpInst::ICMP_EQ ? Eq : !Eq));
     }
@@ -583,9 +694,10 @@ bool Encoder::encodeInstruction(llvm::Instruction &I, Memory &M,
     if (!Cond || !A || !C || A->K != C->K)
       return Cond && A && C ? unsupported("the instruction " + describe(I))
                             : false;
-    if (A->K == Value::Ptr && A->Object != C->Object)
-      return unsupported("a choice of objects: " + describe(I));
-    set(&I, Value{A->K, z3::ite(asBool(*Cond), A->E, C->E), A->Object});
+    if (A->K == Value::Ptr)
+      set(&I, Value::ptr(Pointer::choose(asBool(*Cond), *A->P, *C->P)));
+    else
+      set(&I, Value{A->K, z3::ite(asBool(*Cond), A->E, C->E), {}});
     return true;
   }
   if (auto *Cast = llvm::dyn_cast<llvm::CastInst>(&I)) {
@@ -672,7 +784,7 @@ bool Encoder::encodeInstruction(llvm::Instruction &I, Memory &M,
       Offset = Offset +
                I64 * Z.bv_val(uint64_t(It.getSequentialElementStride(DL)), 64);
     }
-    set(&I, Value{Value::Ptr, Offset.simplify(), Base->Object});
+    set(&I, Value::ptr(Base->at(Offset.simplify())));
     return true;
   }
   if (auto *Ld = llvm::dyn_cast<llvm::LoadInst>(&I)) {
@@ -681,15 +793,12 @@ bool Encoder::encodeInstruction(llvm::Instruction &I, Memory &M,
       return false;
     llvm::Type *T = Ld->getType();
     if (T->isPointerTy()) {
-      uint64_t Known;
-      auto It = M.Cells.end();
-      if (P->Offset.simplify().is_numeral_u64(Known))
-        It = M.Cells.find({P->Object, Known});
-      if (It == M.Cells.end())
+      std::optional<Pointer> Loaded = loadPointer(M, *P);
+      if (!Loaded)
         return unsupported("a pointer read from memory the verifier does "
                            "not follow: " +
                            describe(I));
-      set(&I, Value{Value::Ptr, It->second.Offset, It->second.Object});
+      set(&I, Value::ptr(*Loaded));
       return true;
     }
     std::optional<z3::expr> B = load(M, *P, DL.getTypeStoreSize(T));
@@ -710,12 +819,12 @@ bool Encoder::encodeInstruction(llvm::Instruction &I, Memory &M,
     llvm::Value *V = St->getValueOperand();
     if (V->getType()->isPointerTy()) {
       std::optional<Pointer> Stored = pointer(V);
-      uint64_t Known;
-      if (!Stored || !P->Offset.simplify().is_numeral_u64(Known))
+      if (!Stored)
+        return false;
+      if (!storePointer(M, *P, *Stored))
         return unsupported("a pointer written where the verifier does not "
                            "follow it: " +
                            describe(I));
-      M.Cells.insert_or_assign({P->Object, Known}, *Stored);
       return true;
     }
     std::optional<z3::expr> B = bits(V);
@@ -735,7 +844,7 @@ bool Encoder::encodeInstruction(llvm::Instruction &I, Memory &M,
       Content.push_back(
           freshByte(TagPrefix + "stack." + std::to_string(Fresh++)));
     unsigned Object = M.add("a local", std::move(Content));
-    set(&I, Value{Value::Ptr, Z.bv_val(0, 64), Object});
+    set(&I, Value::ptr(Pointer::into(Object, Z.bv_val(0, 64))));
     return true;
   }
   if (auto *C = llvm::dyn_cast<llvm::CallInst>(&I))
@@ -760,13 +869,14 @@ bool Encoder::encode(llvm::Function &F, llvm::ArrayRef<Pointer> Args,
   Out.clear();
   Edges.clear();
   Checks.clear();
-  Natives.clear();
+  NativeCalls.clear();
+  Escapes.clear();
   PureCalls.clear();
   Unsupported.clear();
   Assumed = Z.bool_val(true);
   TagPrefix = Tag.str() + ".";
   for (unsigned I = 0; I < Args.size() && I < F.arg_size(); ++I)
-    set(F.getArg(I), Value{Value::Ptr, Args[I].Offset, Args[I].Object});
+    set(F.getArg(I), Value::ptr(Args[I]));
 
   // Constant globals the code reads (strings, tables) are objects of their
   // bytes; a global the code could write is not known.
@@ -794,7 +904,7 @@ bool Encoder::encode(llvm::Function &F, llvm::ArrayRef<Pointer> Args,
           return unsupported("the constant " + describe(*GV));
         }
         unsigned Object = Mem.add(GV->getName(), std::move(Bytes));
-        set(GV, Value{Value::Ptr, Z.bv_val(0, 64), Object});
+        set(GV, Value::ptr(Pointer::into(Object, Z.bv_val(0, 64))));
       }
   llvm::ReversePostOrderTraversal<llvm::Function *> RPO(&F);
   llvm::DenseMap<llvm::BasicBlock *, unsigned> Order;
@@ -812,13 +922,11 @@ bool Encoder::encode(llvm::Function &F, llvm::ArrayRef<Pointer> Args,
       std::vector<const Memory *> Ins;
       std::vector<z3::expr> Conds;
       std::vector<llvm::BasicBlock *> Preds;
+      bool LoopHead = false;
       for (llvm::BasicBlock *P : llvm::predecessors(BB)) {
         if (!Order.count(P) || llvm::is_contained(Preds, P))
           continue; // Unreachable from the entry, or seen (a switch).
-        if (Order[P] >= Order[BB])
-          return unsupported("a loop" + placeOf(*BB) +
-                             " that was not unrolled (its passes depend on "
-                             "what the cycle computes)");
+        LoopHead |= Order[P] >= Order[BB];
         auto E = Edges.find({P, BB});
         if (E == Edges.end())
           continue;
@@ -829,11 +937,13 @@ bool Encoder::encode(llvm::Function &F, llvm::ArrayRef<Pointer> Args,
       }
       if (Ins.empty())
         continue;
-      bool Ok = true;
-      M = merge(Ins, Conds, Ok);
-      if (!Ok)
-        return unsupported("a pointer to one object or another in " +
-                           F.getName().str());
+      // A loop that runs more passes than were peeled off it: what follows
+      // is not encoded, and a run that gets here is not explored.
+      if (LoopHead) {
+        Escapes.push_back({Reached.simplify(), BB, placeOf(*BB)});
+        continue;
+      }
+      M = merge(Ins, Conds);
       for (llvm::PHINode &Phi : BB->phis()) {
         std::optional<Value> V;
         for (size_t K = Ins.size(); K-- > 0;) {
@@ -843,9 +953,10 @@ bool Encoder::encode(llvm::Function &F, llvm::ArrayRef<Pointer> Args,
             return false;
           if (!V) {
             V = In;
-          } else if (V->K != In->K ||
-                     (V->K == Value::Ptr && V->Object != In->Object)) {
+          } else if (V->K != In->K) {
             return unsupported("the phi " + describe(Phi));
+          } else if (V->K == Value::Ptr) {
+            V = Value::ptr(Pointer::choose(Conds[K], *In->P, *V->P));
           } else {
             V->E = z3::ite(Conds[K], In->E, V->E);
           }
@@ -915,8 +1026,6 @@ bool Encoder::encode(llvm::Function &F, llvm::ArrayRef<Pointer> Args,
   }
   if (Returns.empty())
     return unsupported(F.getName().str() + " never returns");
-  bool Ok = true;
-  Mem = merge(Returns, ReturnConds, Ok);
-  return Ok || unsupported("a pointer to one object or another in " +
-                           F.getName().str());
+  Mem = merge(Returns, ReturnConds);
+  return true;
 }

@@ -23,6 +23,7 @@
 #define BSC_LIB_VERIFY_ENCODER_H
 
 #include "bsc/AST/Layout.h"
+#include "bsc/CodeGen/CodeGen.h"
 #include "llvm/ADT/DenseMap.h"
 #include "llvm/IR/DataLayout.h"
 #include "llvm/IR/Function.h"
@@ -34,10 +35,31 @@
 
 namespace bsc::verify {
 
-/// A place in memory: an object and a byte offset (a 64-bit term).
+/// A place in memory: an object and a byte offset (a 64-bit term). Most
+/// pointers know their object; one chosen by a branch (the string of one
+/// branch or the other) may be in any of `Objects`, the one whose index
+/// the 32-bit term `Which` is.
 struct Pointer {
-  unsigned Object = 0;
+  std::vector<unsigned> Objects;
+  z3::expr Which;
   z3::expr Offset;
+  /// A pointer into `Object`.
+  static Pointer into(unsigned Object, const z3::expr &Offset) {
+    z3::context &Z = Offset.ctx();
+    return Pointer{{Object}, Z.bv_val(Object, 32), Offset};
+  }
+  /// `C` ? A : B.
+  static Pointer choose(const z3::expr &C, const Pointer &A, const Pointer &B);
+  /// The same objects, at another offset.
+  Pointer at(const z3::expr &NewOffset) const {
+    return Pointer{Objects, Which, NewOffset};
+  }
+  bool isKnown() const { return Objects.size() == 1; }
+  /// True where the pointer is into `Object`.
+  z3::expr isIn(unsigned Object) const {
+    return isKnown() ? Which.ctx().bool_val(Objects[0] == Object)
+                     : Which == Which.ctx().bv_val(Object, 32);
+  }
 };
 
 /// What the cycle sees of memory.
@@ -61,15 +83,36 @@ struct Check {
   z3::expr Fails;
 };
 
-/// Registered C++ calls of a cycle: each result, for the counterexample.
+/// A loop that runs more passes than the verifier follows: where it is
+/// (" at Loop.bs:7") and when the cycle gets there.
+struct Escape {
+  z3::expr Reached;
+  const llvm::BasicBlock *Head;
+  std::string Place;
+};
+
+/// A call of registered C++ in a cycle, for the counterexample: whether
+/// it ran, its result and the bytes it wrote through its pointer arguments
+/// (BehaviorLayout::NativeCall::Writes).
 struct NativeResult {
-  std::string Callee;
-  z3::expr Value;
+  std::string Callee; ///< The thunk's symbol.
+  z3::expr Reached;
+  std::optional<z3::expr> Value;
+  std::vector<std::vector<z3::expr>> Ptrs;
+  /// Kept by the JIT's recorder (not pure, not the standard `io`): a
+  /// recording of the counterexample holds it.
+  bool Recorded = false;
 };
 
 class Encoder {
 public:
-  Encoder(z3::context &Z, const llvm::DataLayout &DL) : Z(Z), DL(DL) {}
+  /// `Natives`: the thunks the code calls (BehaviorLayout::NativeCalls);
+  /// without it every declaration is an unknown function that writes
+  /// nothing.
+  Encoder(z3::context &Z, const llvm::DataLayout &DL,
+          const std::map<std::string, BehaviorLayout::NativeCall> *Natives =
+              nullptr)
+      : Z(Z), DL(DL), Natives(Natives) {}
 
   /// Encodes one call of `F` with `Args` (pointers), reading and updating
   /// `Mem`. `Tag` makes its fresh names unique (`c3`). False if F holds a
@@ -81,8 +124,12 @@ public:
   /// paths taken); the results of its calls into registered C++.
   const std::vector<Check> &getChecks() const { return Checks; }
   z3::expr getAssumed() const { return Assumed; }
-  const std::vector<NativeResult> &getNativeResults() const { return Natives; }
-  /// "a loop (block ... of F)", "the instruction 'fdiv <2 x float>'".
+  const std::vector<NativeResult> &getNativeResults() const {
+    return NativeCalls;
+  }
+  /// The loops this call may run further than the code encoded follows.
+  const std::vector<Escape> &getEscapes() const { return Escapes; }
+  /// "a call through a pointer: ...", "the instruction 'fdiv ...'".
   const std::string &getUnsupported() const { return Unsupported; }
 
   /// A fresh byte.
@@ -92,12 +139,14 @@ public:
 
 private:
   /// A value: a bit-vector (integers, i1 as bv1), a float, or a pointer
-  /// (E is then its offset in Object).
+  /// (P; E is then its offset).
   struct Value {
     enum Kind { Bits, Float, Ptr } K;
     z3::expr E;
-    unsigned Object = 0;
-    Pointer pointer() const { return Pointer{Object, E}; }
+    std::optional<Pointer> P;
+    static Value bits(const z3::expr &E) { return Value{Bits, E, {}}; }
+    static Value flt(const z3::expr &E) { return Value{Float, E, {}}; }
+    static Value ptr(const Pointer &P) { return Value{Ptr, P.Offset, P}; }
   };
   void set(llvm::Value *V, Value X) { Values.insert_or_assign(V, X); }
 
@@ -114,6 +163,15 @@ private:
   std::optional<z3::expr> load(const Memory &M, const Pointer &P,
                                unsigned Size);
   bool store(Memory &M, const Pointer &P, const z3::expr &Bits);
+  /// The same in one object; nullopt or false (nothing reported) where the
+  /// access does not fit it.
+  std::optional<z3::expr> loadFrom(const std::vector<z3::expr> &Bytes,
+                                   const z3::expr &Offset, unsigned Size);
+  bool storeInto(std::vector<z3::expr> &Bytes, const z3::expr &Offset,
+                 const z3::expr &Bits);
+  /// A pointer stored in memory at P; a pointer stored there.
+  std::optional<Pointer> loadPointer(const Memory &M, const Pointer &P);
+  bool storePointer(Memory &M, const Pointer &P, const Pointer &Stored);
   /// The fresh value of type T named Name.
   std::optional<Value> fresh(llvm::Type *T, const std::string &Name);
   z3::expr asBool(const z3::expr &Bit) { return Bit == Z.bv_val(1, 1); }
@@ -124,6 +182,7 @@ private:
 
   z3::context &Z;
   const llvm::DataLayout &DL;
+  const std::map<std::string, BehaviorLayout::NativeCall> *Natives;
   std::string TagPrefix;
   unsigned Fresh = 0;
   std::map<llvm::Value *, Value> Values;
@@ -131,7 +190,8 @@ private:
   std::map<llvm::BasicBlock *, Memory> Out;
   std::map<std::pair<llvm::BasicBlock *, llvm::BasicBlock *>, z3::expr> Edges;
   std::vector<Check> Checks;
-  std::vector<NativeResult> Natives;
+  std::vector<NativeResult> NativeCalls;
+  std::vector<Escape> Escapes;
   /// Pure natives called with the same arguments give the same result.
   std::map<std::string, std::vector<std::pair<std::vector<z3::expr>, Value>>>
       PureCalls;

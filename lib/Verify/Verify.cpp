@@ -16,8 +16,19 @@
 #include "Encoder.h"
 #include "bsc/Basic/Output.h"
 #include "bsc/CodeGen/Target.h"
+#include "bsc/JIT/Boundary.h"
 #include "bscript/bscript.h"
+#include "Models.h"
+#include "llvm/Analysis/AssumptionCache.h"
+#include "llvm/Analysis/LoopInfo.h"
+#include "llvm/Analysis/ScalarEvolution.h"
+#include "llvm/Analysis/TargetLibraryInfo.h"
+#include "llvm/IR/DebugInfoMetadata.h"
+#include "llvm/IR/Dominators.h"
 #include "llvm/IR/LLVMContext.h"
+#include "llvm/Transforms/Utils/LoopPeel.h"
+#include "llvm/Transforms/Utils/LoopSimplify.h"
+#include "llvm/Transforms/Utils/LoopUtils.h"
 #include "llvm/Support/Format.h"
 #include "llvm/Support/Timer.h"
 #include "llvm/Support/ToolOutputFile.h"
@@ -100,17 +111,67 @@ bool provesByInduction(z3::context &Z, Encoder &E, llvm::Function &Cycle,
     for (unsigned I = 0; I < 4; ++I)
       Mem.Bytes[O.State][offsetof(bs_state_header, cycle) + I] =
           Number.extract(8 * I + 7, 8 * I);
-    if (!E.encode(Cycle, {Pointer{O.State, Z.bv_val(0, 64)}}, Mem, Tag)) {
+    if (!E.encode(Cycle, {Pointer::into(O.State, Z.bv_val(0, 64))}, Mem, Tag)) {
       Unsupported = E.getUnsupported();
       return false;
     }
     Solver.add(E.getAssumed());
+    // A loop that runs further than followed counts as a failure: the
+    // step shows that it cannot, as that no assertion fails.
     z3::expr AnyFails = Z.bool_val(false);
     for (const Check &Ch : E.getChecks())
       AnyFails = AnyFails || Ch.Fails;
+    for (const Escape &Esc : E.getEscapes())
+      AnyFails = AnyFails || Esc.Reached;
     Solver.add(K < Depth ? !AnyFails : AnyFails);
   }
   return Solver.check() == z3::unsat;
+}
+
+/// Peels `Limit` passes off each loop the optimiser left in `F` (a loop
+/// whose passes depend on what the cycle computes), nested loops too, so
+/// that the encoder follows up to `Limit` passes of each; what remains of
+/// a loop is reached only by a run of more passes (Encoder::getEscapes).
+/// `Places` gets each remaining loop's head and its line (` at F.bs:6`,
+/// its `for`'s); false with `Where` set for a loop that cannot be peeled.
+bool peelLoops(llvm::Function &F, unsigned Limit, std::string &Where,
+               std::map<const llvm::BasicBlock *, std::string> &Places) {
+  // Peeling a loop copies the loops inside it: each round peels one loop
+  // not peeled before (a copy has a header of its own), until none is left.
+  constexpr unsigned MaxLoops = 64;
+  llvm::SmallPtrSet<const llvm::BasicBlock *, 8> Peeled;
+  llvm::TargetLibraryInfoImpl TLII(
+      llvm::Triple(F.getParent()->getTargetTriple()));
+  llvm::TargetLibraryInfo TLI(TLII);
+  for (;;) {
+    llvm::DominatorTree DT(F);
+    llvm::LoopInfo LI(DT);
+    llvm::AssumptionCache AC(F);
+    llvm::ScalarEvolution SE(F, TLI, AC, DT, LI);
+    auto Loops = LI.getLoopsInPreorder();
+    auto Next = llvm::find_if(
+        Loops, [&](llvm::Loop *L) { return !Peeled.count(L->getHeader()); });
+    if (Next == Loops.end())
+      return true;
+    llvm::DebugLoc Loc = (*Next)->getStartLoc();
+    Where = Loc ? Loc->getFilename().str() + ":" + std::to_string(Loc.getLine())
+                : F.getName().str();
+    if (Peeled.size() == MaxLoops)
+      return false;
+    // The optimiser's last passes may leave a loop without a preheader;
+    // values used after it go through phis of its exits (LCSSA), which
+    // peeling extends by the values of each pass peeled.
+    llvm::simplifyLoop(*Next, &DT, &LI, &SE, &AC, nullptr,
+                       /*PreserveLCSSA=*/false);
+    llvm::formLCSSARecursively(**Next, DT, &LI, &SE);
+    if (!llvm::canPeel(*Next))
+      return false;
+    Peeled.insert((*Next)->getHeader());
+    Places[(*Next)->getHeader()] = " at " + Where;
+    llvm::ValueToValueMapTy VMap;
+    llvm::peelLoop(*Next, Limit, &LI, &SE, DT, &AC, /*PreserveLCSSA=*/true,
+                   VMap);
+  }
 }
 
 /// The value the model gives a byte term.
@@ -119,6 +180,49 @@ unsigned char byteIn(const z3::model &Model, const z3::expr &Byte) {
   Model.eval(Byte, /*model_completion=*/true).is_numeral_u64(V);
   return static_cast<unsigned char>(V);
 }
+/// The bytes of `V` (a bit-vector or a float) in the model, little-endian.
+std::vector<unsigned char> bytesIn(z3::context &Z, const z3::model &Model,
+                                   const z3::expr &V) {
+  z3::expr Bits =
+      V.get_sort().is_bv() ? V : z3::expr(Z, Z3_mk_fpa_to_ieee_bv(Z, V));
+  unsigned W = Bits.get_sort().bv_size();
+  if (W % 8)
+    Bits = z3::zext(Bits, 8 - W % 8);
+  std::vector<unsigned char> Bytes;
+  for (unsigned I = 0; I < (W + 7) / 8; ++I)
+    Bytes.push_back(byteIn(Model, Bits.extract(8 * I + 7, 8 * I)));
+  return Bytes;
+}
+
+/// The calls of one cycle that the JIT's recorder keeps, as the model has
+/// them: a recording's `calls` (bsc/JIT/Boundary.h), so that an exact
+/// replay takes the values the counterexample needs from it; nullopt for
+/// a cycle without such calls.
+std::optional<llvm::json::Value>
+recordCalls(z3::context &Z, const z3::model &Model,
+            const std::vector<NativeResult> &Natives,
+            const BehaviorLayout &Layout, const size_t ViewSizes[3]) {
+  std::vector<RecordedCall> Calls;
+  for (const NativeResult &N : Natives) {
+    if (!N.Recorded || !Model.eval(N.Reached, true).is_true())
+      continue;
+    RecordedCall Call;
+    Call.Name = Layout.NativeCalls.at(N.Callee).Name;
+    if (N.Value)
+      Call.Result = bytesIn(Z, Model, *N.Value);
+    for (const std::vector<z3::expr> &Ptr : N.Ptrs) {
+      Call.Ptrs.emplace_back();
+      for (const z3::expr &Byte : Ptr)
+        Call.Ptrs.back().push_back(byteIn(Model, Byte));
+    }
+    Calls.push_back(std::move(Call));
+  }
+  CycleRecord Record;
+  std::string Error; // The calls write nothing of the view: no error.
+  if (Calls.empty() || !encodeCalls(Calls, ViewSizes, Record, Error))
+    return std::nullopt;
+  return callsToJSON(Record, ViewSizes);
+}
 } // namespace
 
 VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
@@ -126,6 +230,9 @@ VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
   auto Start = std::chrono::steady_clock::now();
   const CallableDecl *Entry = findProgramEntry(C, Opts.EntryName);
   if (!Entry)
+    return VerifyResult::Error;
+  ModelMap Models;
+  if (!findModels(C, Models))
     return VerifyResult::Error;
   // The JIT's load: the initial state, the layout, the world's classes;
   // without probes, which keep every local in the state.
@@ -153,6 +260,7 @@ VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
   CodeGenOptions CGOpts;
   CGOpts.BehaviorName = C.Modules.front()->Name;
   CGOpts.Assertions = AssertionMode::Verify;
+  CGOpts.Models = &Models;
   CGOpts.OptLevel = 2;
   // Lines, for what the verifier cannot explore.
   CGOpts.DebugInfo = true;
@@ -187,22 +295,13 @@ VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
         "bsc verify: no entry function " + L.EntrySymbol));
     return VerifyResult::Error;
   }
-  // Registered C++ by its symbol, for the counterexample's notes.
-  std::map<std::string, std::string> NativeNames;
-  std::vector<const NativeModule *> Modules = C.Checked.NativeModules;
-  Modules.insert(Modules.end(), C.Checked.BindingModules.begin(),
-                 C.Checked.BindingModules.end());
-  if (C.Checked.World)
-    Modules.push_back(C.Checked.World);
-  for (const NativeModule *NM : Modules) {
-    for (const NativeFunction &F : NM->Functions)
-      NativeNames[F.Symbol] = NM->Name + "::" + F.Name;
-    for (const NativeClass &NC : NM->Classes)
-      for (const auto *List : {&NC.Members, &NC.Constructors})
-        for (const NativeFunction &F : *List)
-          NativeNames[F.Symbol] = NC.QualifiedName + "::" + F.Name;
+  std::string LoopPlace;
+  std::map<const llvm::BasicBlock *, std::string> LoopPlaces;
+  if (!peelLoops(*Cycle, Opts.LoopLimit, LoopPlace, LoopPlaces)) {
+    C.Diags.report(llvm::SMLoc(), diag::err_verify_not_explored)
+        << "a loop at " + LoopPlace + " that the verifier cannot unroll";
+    return VerifyResult::NotExplored;
   }
-
   z3::context Z;
   Memory Mem;
   Objects O;
@@ -214,14 +313,16 @@ VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
                                    : std::vector<z3::expr>());
   O.User = Mem.add("the user pointer's object", {});
   Mem.Cells.insert({{O.State, offsetof(bs_state_header, input)},
-                    Pointer{O.Input, Z.bv_val(0, 64)}});
+                    Pointer::into(O.Input, Z.bv_val(0, 64))});
   Mem.Cells.insert({{O.State, offsetof(bs_state_header, output)},
-                    Pointer{O.Output, Z.bv_val(0, 64)}});
+                    Pointer::into(O.Output, Z.bv_val(0, 64))});
   Mem.Cells.insert({{O.State, offsetof(bs_state_header, user)},
-                    Pointer{O.User, Z.bv_val(0, 64)}});
+                    Pointer::into(O.User, Z.bv_val(0, 64))});
   size_t InputSize = L.InputClass ? L.InputClass->Size : 0;
+  const size_t ViewSizes[3] = {L.Layout.StateSize, InputSize,
+                               L.OutputClass ? L.OutputClass->Size : 0};
 
-  Encoder E(Z, M->getDataLayout());
+  Encoder E(Z, M->getDataLayout(), &Layout.NativeCalls);
   z3::solver Solver(Z);
   std::vector<std::vector<z3::expr>> Inputs;
   std::vector<std::vector<NativeResult>> NativesPerCycle;
@@ -239,13 +340,30 @@ VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
     for (unsigned I = 0; I < 4; ++I)
       Mem.Bytes[O.State][offsetof(bs_state_header, cycle) + I] =
           Z.bv_val((K >> (8 * I)) & 0xff, 8);
-    if (!E.encode(*Cycle, {Pointer{O.State, Z.bv_val(0, 64)}}, Mem, Tag)) {
+    if (!E.encode(*Cycle, {Pointer::into(O.State, Z.bv_val(0, 64))}, Mem, Tag)) {
       C.Diags.report(llvm::SMLoc(), diag::err_verify_not_explored)
           << E.getUnsupported();
       return VerifyResult::NotExplored;
     }
     NativesPerCycle.push_back(E.getNativeResults());
     Solver.add(E.getAssumed());
+    // A loop that can run more passes than were followed: not explored.
+    for (const Escape &Esc : E.getEscapes()) {
+      Solver.push();
+      Solver.add(Esc.Reached);
+      z3::check_result R = Solver.check();
+      Solver.pop();
+      if (R != z3::unsat) {
+        C.Diags.report(llvm::SMLoc(), diag::err_verify_not_explored)
+            << "a loop" +
+                   (LoopPlaces.count(Esc.Head) ? LoopPlaces[Esc.Head]
+                                               : Esc.Place) +
+                   " can run more than " +
+                   std::to_string(Opts.LoopLimit) + " passes in cycle " +
+                   std::to_string(K) + " (--loop-limit)";
+        return VerifyResult::NotExplored;
+      }
+    }
     z3::expr AnyFails = Z.bool_val(false);
     for (const Check &Ch : E.getChecks())
       AnyFails = AnyFails || Ch.Fails;
@@ -291,13 +409,11 @@ VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
           C.Diags.report(llvm::SMLoc(), diag::note_verify_input)
               << J + 1 << Line;
         }
-        for (const NativeResult &N : NativesPerCycle[J]) {
-          auto Name = NativeNames.find(N.Callee);
-          C.Diags.report(llvm::SMLoc(), diag::note_verify_native)
-              << J + 1
-              << (Name != NativeNames.end() ? Name->second : N.Callee)
-              << describeValue(Z, Model, N.Value);
-        }
+        for (const NativeResult &N : NativesPerCycle[J])
+          if (N.Value && Model.eval(N.Reached, true).is_true())
+            C.Diags.report(llvm::SMLoc(), diag::note_verify_native)
+                << J + 1 << Layout.NativeCalls[N.Callee].Name
+                << describeValue(Z, Model, *N.Value);
       }
       if (!Opts.CounterexamplePath.empty()) {
         std::unique_ptr<llvm::ToolOutputFile> Out =
@@ -308,6 +424,9 @@ VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
           for (unsigned J = 0; J < K; ++J) {
             llvm::json::Object Line{{"cycle", int64_t(J + 1)},
                                     {"input", std::move(InputValues[J])}};
+            if (std::optional<llvm::json::Value> Calls = recordCalls(
+                    Z, Model, NativesPerCycle[J], Layout, ViewSizes))
+              Line["calls"] = std::move(*Calls);
             debug::printJSON(Out->os(), llvm::json::Value(std::move(Line)));
             Out->os() << "\n";
           }

@@ -85,6 +85,16 @@ cl::opt<std::string> CyclesArg("cycles",
                                cl::desc("Execution cycles to run (default 1)"),
                                cl::value_desc("N"), cl::init("1"), BSC_BOTH,
                                cl::sub(VerifyCmd));
+cl::list<std::string> ModelFiles(
+    "model",
+    cl::desc("A b-script module whose funcs stand for registered C++ "
+             "(`Math_abs` for Math::abs; repeatable; docs/verify.md)"),
+    cl::value_desc("file.bs"), cl::sub(VerifyCmd));
+cl::opt<std::string> LoopLimitArg(
+    "loop-limit",
+    cl::desc("Passes of a loop the verifier follows in one cycle (default "
+             "16); a loop that can run more is not fully explored"),
+    cl::value_desc("N"), cl::sub(VerifyCmd));
 cl::opt<std::string>
     OptLevelArg("O", cl::Prefix,
                 cl::desc("Optimisation level 0..3 (default 0)"),
@@ -501,6 +511,9 @@ tool::CommandLine tool::readCommandLine() {
       CyclesArg.getNumOccurrences() ? std::optional<std::string>(CyclesArg)
                                     : std::nullopt;
   CL.Verify.CounterexamplePath = OutputFile;
+  F.Models.assign(ModelFiles.begin(), ModelFiles.end());
+  if (LoopLimitArg.getNumOccurrences())
+    CL.Verify.LoopLimit = LoopLimitArg;
   CL.TraceDecode.ObjectPath = TraceObject;
   CL.TraceDecode.LogPath = TraceLog;
   CL.TraceDecode.OnlyChanges = TraceChangesFlag;

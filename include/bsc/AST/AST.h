@@ -732,6 +732,8 @@ public:
   std::vector<ConstDecl *> Consts;
   /// The enums, in source order.
   std::vector<EnumDecl *> Enums;
+  /// Given with `bsc verify --model`: its funcs stand for registered C++.
+  bool IsModel = false;
 };
 
 /// Owns every node, module and type of one compilation.

@@ -14,6 +14,7 @@
 #include "bsc/AST/AST.h"
 #include "llvm/Support/SMLoc.h"
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -236,6 +237,20 @@ struct BehaviorLayout {
     uint64_t Offset = 0; ///< Count: of the uint32 counters in the state.
   };
   AssertionLayout Assertions;
+  /// Every thunk of registered C++ the code calls (functions, methods,
+  /// setters, life cycles), by its symbol: what the JIT's recorder calls
+  /// it and what it may write (CodeGenOptions::Boundary; bsc/JIT/
+  /// Boundary.h), for `bsc verify`'s counterexamples.
+  struct NativeCall {
+    std::string Name;   ///< `Math::abs`, `Math::Vector2f (construct)`.
+    uint32_t Flags = 0; ///< BoundarySiteFlags.
+    bool Pure = false;  ///< Registered `.pure()`: never recorded.
+    /// The pointer arguments it may write (a class result's storage, a
+    /// non-const method's object, `T&`) and those it reads (the object of
+    /// a method, class arguments), as (thunk argument, bytes).
+    std::vector<std::pair<unsigned, uint64_t>> Writes, Reads;
+  };
+  std::map<std::string, NativeCall> NativeCalls;
 };
 
 } // namespace bsc

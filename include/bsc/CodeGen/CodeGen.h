@@ -24,6 +24,7 @@
 #include "llvm/IR/Module.h"
 #include "llvm/Support/SourceMgr.h"
 #include "llvm/TargetParser/Triple.h"
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -137,6 +138,10 @@ struct CodeGenOptions {
   /// information depends on it: how a frame variable's place is described
   /// (CGDebugInfo.cpp) and whether the unit says it is optimised.
   unsigned OptLevel = 0;
+  /// `bsc verify --model`: a call of registered C++ that has a model (a
+  /// func of the behavior, checked by lib/Verify to take and return what
+  /// the C++ does) calls the model instead, except in the model itself.
+  const std::map<const NativeFunction *, const FuncDecl *> *Models = nullptr;
   /// The top-level funcs and tasks exported as entries (`bs_<Name>__M__f`),
   /// each callable from C (isCallableFromC). Everything else is internal,
   /// so the optimiser may inline it into its callers. Unset: the behavior's

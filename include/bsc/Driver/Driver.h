@@ -333,7 +333,8 @@ int lspCommand(llvm::StringRef RuntimeDir, const char *Argv0);
 /// `bsc verify` as written on the command line.
 struct VerifyCommandOptions {
   std::string EntryName, CounterexamplePath;
-  std::optional<std::string> Cycles; ///< --cycles N, if given.
+  std::optional<std::string> Cycles;    ///< --cycles N, if given.
+  std::optional<std::string> LoopLimit; ///< --loop-limit N, if given.
 };
 
 /// `bsc verify` (lib/Verify): checks the options, then the behavior's

@@ -41,6 +41,10 @@ inline constexpr const char *StandardModuleNames[] = {"io"};
 
 struct FrontendOptions {
   std::vector<std::string> Inputs;      ///< The .bs files named by the user.
+  /// `bsc verify --model`: modules whose funcs stand for registered C++
+  /// (docs/verify.md), loaded after the inputs; not part of the behavior
+  /// (its hash), which never calls them.
+  std::vector<std::string> Models;
   std::vector<std::string> IncludeDirs; ///< -I: searched after the requiring file's folder.
   /// The standard modules (`io`): binding objects or archives read like
   /// BindObjects and before them, so a --bind module of the same name is

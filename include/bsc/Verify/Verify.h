@@ -15,9 +15,14 @@
 
 namespace bsc {
 
+/// --loop-limit's default and largest value.
+constexpr unsigned DefaultLoopLimit = 16, MaxLoopLimit = 256;
+
 struct VerifyOptions {
   std::string EntryName = "main";
   unsigned Cycles = 0;      ///< --cycles N (required).
+  /// --loop-limit: the passes of each loop followed in one cycle.
+  unsigned LoopLimit = DefaultLoopLimit;
   std::string CounterexamplePath; ///< -o: a recording of the counterexample.
   LoadOptions Load;         ///< The standard modules and --bind objects.
 };
