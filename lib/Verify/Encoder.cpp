@@ -130,10 +130,9 @@ std::optional<Encoder::Value> Encoder::fresh(llvm::Type *T,
 // Memory
 //===----------------------------------------------------------------------===//
 
-Pointer Pointer::choose(const z3::expr &C, const Pointer &A,
-                        const Pointer &B) {
-  z3::expr Offset = z3::eq(A.Offset, B.Offset) ? A.Offset
-                                                : z3::ite(C, A.Offset, B.Offset);
+Pointer Pointer::choose(const z3::expr &C, const Pointer &A, const Pointer &B) {
+  z3::expr Offset =
+      z3::eq(A.Offset, B.Offset) ? A.Offset : z3::ite(C, A.Offset, B.Offset);
   if (A.isKnown() && B.isKnown() && A.Objects[0] == B.Objects[0])
     return A.at(Offset);
   std::vector<unsigned> Objects = A.Objects;
@@ -176,8 +175,8 @@ std::optional<z3::expr> Encoder::load(const Memory &M, const Pointer &P,
     if (std::optional<z3::expr> X = loadFrom(M.Bytes[O], P.Offset, Size))
       V = V ? z3::ite(P.isIn(O), *X, *V) : *X;
   if (!V)
-    unsupported("a read of " + std::to_string(Size) + " bytes past the end of " +
-                M.Names[P.Objects.front()]);
+    unsupported("a read of " + std::to_string(Size) +
+                " bytes past the end of " + M.Names[P.Objects.front()]);
   return V;
 }
 
@@ -222,12 +221,12 @@ bool Encoder::store(Memory &M, const Pointer &P, const z3::expr &Bits) {
     if (Any)
       return true;
   }
-  return unsupported("a write of " + std::to_string(Bits.get_sort().bv_size() / 8) +
+  return unsupported("a write of " +
+                     std::to_string(Bits.get_sort().bv_size() / 8) +
                      " bytes past the end of " + M.Names[P.Objects.front()]);
 }
 
-std::optional<Pointer> Encoder::loadPointer(const Memory &M,
-                                            const Pointer &P) {
+std::optional<Pointer> Encoder::loadPointer(const Memory &M, const Pointer &P) {
   uint64_t Known;
   std::optional<Pointer> V;
   if (P.Offset.simplify().is_numeral_u64(Known))
@@ -240,8 +239,7 @@ std::optional<Pointer> Encoder::loadPointer(const Memory &M,
   return V;
 }
 
-bool Encoder::storePointer(Memory &M, const Pointer &P,
-                           const Pointer &Stored) {
+bool Encoder::storePointer(Memory &M, const Pointer &P, const Pointer &Stored) {
   uint64_t Known;
   if (!P.Offset.simplify().is_numeral_u64(Known))
     return false;
@@ -473,10 +471,10 @@ bool Encoder::encodeCall(llvm::CallInst &C, Memory &M, z3::expr Reached) {
       for (const auto &[Seen, Old] : PureCalls[Callee->getName().str()]) {
         z3::expr Same = Z.bool_val(Seen.size() == Args.size());
         for (size_t I = 0; I < Args.size() && I < Seen.size(); ++I)
-          Same = Same && (Seen[I].get_sort().bv_size() ==
-                                  Args[I].get_sort().bv_size()
-                              ? Seen[I] == Args[I]
-                              : Z.bool_val(false));
+          Same = Same &&
+                 (Seen[I].get_sort().bv_size() == Args[I].get_sort().bv_size()
+                      ? Seen[I] == Args[I]
+                      : Z.bool_val(false));
         Assumed = Assumed && z3::implies(Same, V->E == Old.E);
       }
       PureCalls[Callee->getName().str()].push_back({Args, *V});
@@ -574,10 +572,11 @@ bool Encoder::encodeInstruction(llvm::Instruction &I, Memory &M,
         return unsupported("an ordering of pointers: " + describe(I));
       // Distinct objects are at distinct addresses (the optimiser merged
       // equal constants before): a string compared by its address first.
-      z3::expr Eq = A->isKnown() && C->isKnown()
-                        ? (A->Objects[0] == C->Objects[0] ? A->Offset == C->Offset
-                                                          : Z.bool_val(false))
-                        : A->Which == C->Which && A->Offset == C->Offset;
+      z3::expr Eq =
+          A->isKnown() && C->isKnown()
+              ? (A->Objects[0] == C->Objects[0] ? A->Offset == C->Offset
+                                                : Z.bool_val(false))
+              : A->Which == C->Which && A->Offset == C->Offset;
       return SetBits(
           fromBool(Cmp->getPredicate() == llvm::CmpInst::ICMP_EQ ? Eq : !Eq));
     }

@@ -14,11 +14,11 @@
 //===----------------------------------------------------------------------===//
 #include "bsc/Verify/Verify.h"
 #include "Encoder.h"
+#include "Models.h"
 #include "bsc/Basic/Output.h"
 #include "bsc/CodeGen/Target.h"
 #include "bsc/JIT/Boundary.h"
 #include "bscript/bscript.h"
-#include "Models.h"
 #include "llvm/Analysis/AssumptionCache.h"
 #include "llvm/Analysis/LoopInfo.h"
 #include "llvm/Analysis/ScalarEvolution.h"
@@ -26,12 +26,12 @@
 #include "llvm/IR/DebugInfoMetadata.h"
 #include "llvm/IR/Dominators.h"
 #include "llvm/IR/LLVMContext.h"
-#include "llvm/Transforms/Utils/LoopPeel.h"
-#include "llvm/Transforms/Utils/LoopSimplify.h"
-#include "llvm/Transforms/Utils/LoopUtils.h"
 #include "llvm/Support/Format.h"
 #include "llvm/Support/Timer.h"
 #include "llvm/Support/ToolOutputFile.h"
+#include "llvm/Transforms/Utils/LoopPeel.h"
+#include "llvm/Transforms/Utils/LoopSimplify.h"
+#include "llvm/Transforms/Utils/LoopUtils.h"
 #include <chrono>
 #include <cstddef>
 #include <cstring>
@@ -90,8 +90,8 @@ std::string describeValue(z3::context &Z, const z3::model &Model,
 /// initial state, was checked before). `Proto` gives the objects' sizes
 /// and the header's pointers.
 bool provesByInduction(z3::context &Z, Encoder &E, llvm::Function &Cycle,
-                       const Memory &Proto, const Objects &O,
-                       size_t StateSize, size_t InputSize, unsigned Depth,
+                       const Memory &Proto, const Objects &O, size_t StateSize,
+                       size_t InputSize, unsigned Depth,
                        std::string &Unsupported) {
   Memory Mem = Proto;
   auto Fresh = [&](const std::string &Prefix, size_t N) {
@@ -307,10 +307,9 @@ VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
   Objects O;
   O.State = Mem.add("the state", bytesOf(Z, S.getState(), L.Layout.StateSize));
   O.Input = Mem.add("input", {});
-  O.Output = Mem.add("output", L.OutputClass
-                                   ? bytesOf(Z, S.getOutput(),
-                                             L.OutputClass->Size)
-                                   : std::vector<z3::expr>());
+  O.Output = Mem.add(
+      "output", L.OutputClass ? bytesOf(Z, S.getOutput(), L.OutputClass->Size)
+                              : std::vector<z3::expr>());
   O.User = Mem.add("the user pointer's object", {});
   Mem.Cells.insert({{O.State, offsetof(bs_state_header, input)},
                     Pointer::into(O.Input, Z.bv_val(0, 64))});
@@ -340,7 +339,8 @@ VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
     for (unsigned I = 0; I < 4; ++I)
       Mem.Bytes[O.State][offsetof(bs_state_header, cycle) + I] =
           Z.bv_val((K >> (8 * I)) & 0xff, 8);
-    if (!E.encode(*Cycle, {Pointer::into(O.State, Z.bv_val(0, 64))}, Mem, Tag)) {
+    if (!E.encode(*Cycle, {Pointer::into(O.State, Z.bv_val(0, 64))}, Mem,
+                  Tag)) {
       C.Diags.report(llvm::SMLoc(), diag::err_verify_not_explored)
           << E.getUnsupported();
       return VerifyResult::NotExplored;
@@ -358,9 +358,8 @@ VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
             << "a loop" +
                    (LoopPlaces.count(Esc.Head) ? LoopPlaces[Esc.Head]
                                                : Esc.Place) +
-                   " can run more than " +
-                   std::to_string(Opts.LoopLimit) + " passes in cycle " +
-                   std::to_string(K) + " (--loop-limit)";
+                   " can run more than " + std::to_string(Opts.LoopLimit) +
+                   " passes in cycle " + std::to_string(K) + " (--loop-limit)";
         return VerifyResult::NotExplored;
       }
     }
@@ -454,16 +453,16 @@ VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
     Always = provesByInduction(Z, E, *Cycle, Mem, O, L.Layout.StateSize,
                                InputSize, Opts.Cycles, Unsupported);
   }
-  double Seconds = std::chrono::duration<double>(
-                       std::chrono::steady_clock::now() - Start)
-                       .count();
+  double Seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - Start)
+          .count();
   OS << "verified: " << Assertions
      << (Assertions == 1 ? " assertion holds" : " assertions hold");
   if (Always)
     OS << " in every cycle (by induction over " << Opts.Cycles << ")";
   else
     OS << " for " << Opts.Cycles << " cycles";
-  OS << ", every input the assumptions allow ("
-     << llvm::format("%.2f", Seconds) << " s)\n";
+  OS << ", every input the assumptions allow (" << llvm::format("%.2f", Seconds)
+     << " s)\n";
   return VerifyResult::Verified;
 }

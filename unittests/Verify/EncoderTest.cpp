@@ -36,8 +36,8 @@ protected:
     llvm::Function *F = M->getFunction("f");
     std::vector<Pointer> Args = {Pointer::into(S, Z.bv_val(0, 64)),
                                  Pointer::into(In, Z.bv_val(0, 64))};
-    Encoded = E->encode(*F, llvm::ArrayRef(Args).take_front(F->arg_size()),
-                        Mem, "c1");
+    Encoded = E->encode(*F, llvm::ArrayRef(Args).take_front(F->arg_size()), Mem,
+                        "c1");
   }
   /// The 32-bit little-endian word at `Offset` of the state after the call.
   z3::expr word(unsigned Offset) {
@@ -116,10 +116,10 @@ done:
 )");
   ASSERT_TRUE(Encoded) << E->getUnsupported();
   z3::expr I0 = Z.bv_const("i0", 8);
-  EXPECT_TRUE(proves(z3::implies(I0 == 0, Mem.Bytes[0][8] == 1 &&
-                                              Mem.Bytes[0][9] == 2)));
-  EXPECT_TRUE(proves(z3::implies(I0 != 0, Mem.Bytes[0][8] ==
-                                              Z.bv_const("s8", 8))));
+  EXPECT_TRUE(proves(
+      z3::implies(I0 == 0, Mem.Bytes[0][8] == 1 && Mem.Bytes[0][9] == 2)));
+  EXPECT_TRUE(
+      proves(z3::implies(I0 != 0, Mem.Bytes[0][8] == Z.bv_const("s8", 8))));
 }
 
 TEST_F(EncoderTest, AComputedIndexReadsAndWritesThePlaceItNames) {
@@ -165,7 +165,7 @@ define void @f(ptr %s, ptr %in) {
 }
 )");
   ASSERT_TRUE(Encoded) << E->getUnsupported();
-  EXPECT_TRUE(proves(word(0) == 1)); // 0.1f + 0.2f rounds to 0.3f.
+  EXPECT_TRUE(proves(word(0) == 1));  // 0.1f + 0.2f rounds to 0.3f.
   EXPECT_FALSE(proves(word(4) == 1)); // NaN.
   EXPECT_TRUE(proves(word(8) == 2));  // Towards zero.
 }
@@ -229,8 +229,8 @@ define void @f(ptr %s, ptr %in) {
   EXPECT_TRUE(proves(word(0) == 'i'));
   EXPECT_TRUE(proves(word(4) == 0));
   z3::expr F(Z, Z3_mk_fpa_to_fp_bv(Z, inputWord(0), Z.fpa_sort<32>()));
-  EXPECT_TRUE(proves(z3::implies(z3::expr(Z, Z3_mk_fpa_is_nan(Z, F)),
-                                 word(8) == 0)));
+  EXPECT_TRUE(
+      proves(z3::implies(z3::expr(Z, Z3_mk_fpa_is_nan(Z, F)), word(8) == 0)));
   // 3e9 saturates to the largest int.
   EXPECT_TRUE(proves(z3::implies(inputWord(0) == Z.bv_val(0x4F32D05E, 32),
                                  word(8) == 0x7FFFFFFF)));
