@@ -13,6 +13,8 @@
 #include "Encoder.h"
 #include "llvm/ADT/PostOrderIterator.h"
 #include "llvm/ADT/StringExtras.h"
+#include "llvm/Analysis/PostDominators.h"
+#include "llvm/IR/Dominators.h"
 #include "llvm/IR/GetElementPtrTypeIterator.h"
 #include "llvm/IR/Instructions.h"
 #include "llvm/IR/IntrinsicInst.h"
@@ -319,7 +321,7 @@ bool Encoder::encodeCall(llvm::CallInst &C, Memory &M, z3::expr Reached) {
         return false;
       // What the code generator knows (a task's gap of cycles): true on
       // every path that reaches it.
-      Assumed = Assumed && z3::implies(Reached, asBool(*Cond));
+      Known = Known && z3::implies(Reached, asBool(*Cond));
       return true;
     }
     case llvm::Intrinsic::expect: {
@@ -873,6 +875,7 @@ bool Encoder::encode(llvm::Function &F, llvm::ArrayRef<Pointer> Args,
   PureCalls.clear();
   Unsupported.clear();
   Assumed = Z.bool_val(true);
+  Known = Z.bool_val(true);
   TagPrefix = Tag.str() + ".";
   for (unsigned I = 0; I < Args.size() && I < F.arg_size(); ++I)
     set(F.getArg(I), Value::ptr(Args[I]));
@@ -911,6 +914,13 @@ bool Encoder::encode(llvm::Function &F, llvm::ArrayRef<Pointer> Args,
     Order[BB] = Order.size();
   std::vector<const Memory *> Returns;
   std::vector<z3::expr> ReturnConds;
+  // A block that every path from its dominator passes (the join after an
+  // `if`) is reached when the dominator is: its condition is the
+  // dominator's, not the disjunction of its edges', which would drag the
+  // branches' conditions (a float division) into every later question.
+  llvm::DominatorTree DT(F);
+  llvm::PostDominatorTree PDT(F);
+  std::map<llvm::BasicBlock *, z3::expr> ReachedAt;
   for (llvm::BasicBlock *BB : RPO) {
     // Where control comes from: the entry, or the edges encoded so far.
     Memory M;
@@ -964,6 +974,13 @@ bool Encoder::encode(llvm::Function &F, llvm::ArrayRef<Pointer> Args,
       }
     }
     z3::expr ReachBB = Reached.simplify();
+    if (llvm::DomTreeNode *Node = DT.getNode(BB); Node && Node->getIDom()) {
+      llvm::BasicBlock *Dom = Node->getIDom()->getBlock();
+      auto It = ReachedAt.find(Dom);
+      if (It != ReachedAt.end() && PDT.dominates(BB, Dom))
+        ReachBB = It->second;
+    }
+    ReachedAt.insert_or_assign(BB, ReachBB);
     for (llvm::Instruction &I : *BB) {
       if (llvm::isa<llvm::PHINode>(I))
         continue;
@@ -1017,7 +1034,7 @@ bool Encoder::encode(llvm::Function &F, llvm::ArrayRef<Pointer> Args,
       ReturnConds.push_back(ReachBB);
       continue;
     } else if (llvm::isa<llvm::UnreachableInst>(Term)) {
-      Assumed = Assumed && !ReachBB;
+      Known = Known && !ReachBB;
     } else {
       return unsupported("the instruction " + describe(*Term));
     }

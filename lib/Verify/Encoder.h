@@ -124,6 +124,11 @@ public:
   /// paths taken); the results of its calls into registered C++.
   const std::vector<Check> &getChecks() const { return Checks; }
   z3::expr getAssumed() const { return Assumed; }
+  /// What the code generator knows to hold on every run (llvm.assume, an
+  /// `unreachable`): implied from the initial state, so the bounded check
+  /// leaves it out (it would only add terms), and the induction's step,
+  /// which starts from any state, adds it.
+  z3::expr getKnown() const { return Known; }
   const std::vector<NativeResult> &getNativeResults() const {
     return NativeCalls;
   }
@@ -196,6 +201,7 @@ private:
   std::map<std::string, std::vector<std::pair<std::vector<z3::expr>, Value>>>
       PureCalls;
   z3::expr Assumed{Z};
+  z3::expr Known{Z};
   std::string Unsupported;
 };
 
