@@ -69,6 +69,7 @@ llvm::FunctionCallee ModuleEmitter::getNative(const NativeFunction &NF) {
                      ? SiteResultIsString
                      : SiteNoFlags);
   Shape.Pure = NF.Pure;
+  Shape.Getter = NF.isData();
   Layout.NativeCalls[NF.Symbol] = Shape;
   if (NF.Pure)
     return Slot = Thunk;

@@ -420,12 +420,15 @@ bool Encoder::encodeCall(llvm::CallInst &C, Memory &M, z3::expr Reached) {
                        " that was not inlined (a recursive func?)");
   // Registered C++ (NativeCall says what it is): a fresh result, fresh
   // bytes where it may write, the same result for the same arguments (and
-  // the same bytes of the objects it reads) where it is pure.
+  // the same bytes of the objects it reads) where it is pure or a getter.
   const BehaviorLayout::NativeCall *Known = nullptr;
   if (Natives) {
     auto It = Natives->find(Callee->getName().str());
     Known = It != Natives->end() ? &It->second : nullptr;
   }
+  // The same result for the same arguments: registered pure, or a getter
+  // (whose argument is its object).
+  bool SameForSame = Known && (Known->Pure || Known->Getter);
   NativeResult Result{Callee->getName().str(), Reached, std::nullopt, {}};
   Result.Recorded = Known && !Known->Pure && !(Known->Flags & SiteStandard);
   std::vector<z3::expr> Args;
@@ -439,7 +442,7 @@ bool Encoder::encodeCall(llvm::CallInst &C, Memory &M, z3::expr Reached) {
       continue;
     }
     // A pure function's objects are part of its arguments.
-    if (!Known || !Known->Pure)
+    if (!SameForSame)
       continue;
     for (auto [Arg, Size] : Known->Reads)
       if (Arg == I && Size) {
@@ -469,7 +472,7 @@ bool Encoder::encodeCall(llvm::CallInst &C, Memory &M, z3::expr Reached) {
     std::optional<Value> V = fresh(T, "native");
     if (!V)
       return false;
-    if (Known && Known->Pure) {
+    if (SameForSame) {
       for (const auto &[Seen, Old] : PureCalls[Callee->getName().str()]) {
         z3::expr Same = Z.bool_val(Seen.size() == Args.size());
         for (size_t I = 0; I < Args.size() && I < Seen.size(); ++I)

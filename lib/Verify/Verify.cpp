@@ -199,11 +199,17 @@ struct CycleTerms {
   }
 };
 
-/// The solver: Z3's tactic for bit-vectors and floats, which bit-blasts
-/// the whole formula for each question (far faster here than the
-/// incremental core: a few questions of one large formula each).
+/// The solver: Z3's tactic for bit-vectors and floats after its
+/// simplifications (equalities solved, unconstrained terms eliminated),
+/// which bit-blasts the whole formula for each question: far faster here
+/// than the incremental core, for a few questions of one large formula
+/// each (bench/README.md, "bsc verify").
 z3::solver makeSolver(z3::context &Z) {
-  return z3::tactic(Z, "qffpbv").mk_solver();
+  z3::tactic Tactic(Z, "simplify");
+  for (const char *Next :
+       {"propagate-values", "solve-eqs", "elim-uncnstr", "qffpbv"})
+    Tactic = Tactic & z3::tactic(Z, Next);
+  return Tactic.mk_solver();
 }
 
 double elapsedSince(std::chrono::steady_clock::time_point Start) {
@@ -218,9 +224,7 @@ z3::check_result ask(z3::solver &Solver, const z3::expr &Query,
   Solver.push();
   Solver.add(Query);
   z3::check_result R = Solver.check();
-  Seconds +=
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - Start)
-          .count();
+  Seconds += elapsedSince(Start);
   return R;
 }
 
@@ -232,15 +236,15 @@ struct FirstBad {
   std::optional<std::string> Unknown;
 };
 
-/// One question for all cycles; a model's first bad cycle, then earlier
-/// cycles asked again until none is: the shortest counterexample.
+/// One question for cycles From + 1 to Upto (the earlier ones had nothing
+/// bad); a model's first bad cycle, then earlier cycles asked again until
+/// none is: the shortest counterexample.
 FirstBad findFirstBad(z3::solver &Solver, const std::vector<CycleTerms> &Cycles,
-                      double &Seconds) {
+                      size_t From, size_t Upto, double &Seconds) {
   FirstBad Found;
-  size_t Upto = Cycles.size();
-  while (Upto > 0) {
+  while (Upto > From) {
     z3::expr Any = Solver.ctx().bool_val(false);
-    for (size_t K = 0; K < Upto; ++K)
+    for (size_t K = From; K < Upto; ++K)
       Any = Any || Cycles[K].bad();
     z3::check_result R = ask(Solver, Any, Seconds);
     if (R == z3::unknown) {
@@ -254,7 +258,7 @@ FirstBad findFirstBad(z3::solver &Solver, const std::vector<CycleTerms> &Cycles,
     }
     z3::model Model = Solver.get_model();
     Solver.pop();
-    size_t K = 0;
+    size_t K = From;
     while (K + 1 < Upto && !Model.eval(Cycles[K].bad(), true).is_true())
       ++K;
     Found.Cycle = K + 1;
@@ -458,9 +462,28 @@ VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
     Cycles.push_back({Input, Prefix.simplify(), E.getChecks(), E.getEscapes(),
                       E.getNativeResults()});
   }
+  // Checks from the start and inductions interleaved: cycle 1, then up to
+  // 2, 4, ... cycles checked, each followed by the induction over as many
+  // (whose base case they are); the first induction that succeeds shows
+  // every cycle, and a property that is not inductive is checked for all
+  // the cycles asked for.
   z3::solver Solver = makeSolver(Z);
-  double SolverSeconds = 0;
-  FirstBad Bad = findFirstBad(Solver, Cycles, SolverSeconds);
+  double SolverSeconds = 0, InductionSeconds = 0;
+  std::optional<unsigned> Depth;
+  FirstBad Bad;
+  for (unsigned Checked = 0, Next = 1; Checked < Opts.Cycles; Next *= 2) {
+    unsigned Upto = std::min(Next, Opts.Cycles);
+    Bad = findFirstBad(Solver, Cycles, Checked, Upto, SolverSeconds);
+    Checked = Upto;
+    if (Bad.Cycle || Bad.Unknown)
+      break;
+    if (Assertions > 0 &&
+        provesByInduction(Z, E, *Cycle, Mem, O, L.Layout.StateSize, InputSize,
+                          Upto, InductionSeconds)) {
+      Depth = Upto;
+      break;
+    }
+  }
   if (Bad.Unknown) {
     C.Diags.report(llvm::SMLoc(), diag::err_verify_not_explored)
         << "the solver gave up: " + *Bad.Unknown;
@@ -550,20 +573,6 @@ VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
           firstVacuousCycle(Solver, Cycles, SolverSeconds)) {
     C.Diags.report(llvm::SMLoc(), diag::err_verify_vacuous) << *K;
     return VerifyResult::NotExplored;
-  }
-  // Every cycle, if k-induction shows it: from any state, Cycles cycles
-  // in which everything held are followed by one in which it holds too.
-  // The shortest induction that shows it: 1, 2, 4, ... cycles, at most
-  // the number checked from the initial state (its base case).
-  std::optional<unsigned> Depth;
-  double InductionSeconds = 0;
-  for (unsigned K = 1; Assertions > 0 && !Depth; K *= 2) {
-    K = std::min(K, Opts.Cycles);
-    if (provesByInduction(Z, E, *Cycle, Mem, O, L.Layout.StateSize, InputSize,
-                          K, InductionSeconds))
-      Depth = K;
-    if (K == Opts.Cycles)
-      break;
   }
   double Seconds = elapsedSince(Start);
   OS << "verified: " << Assertions

@@ -245,6 +245,9 @@ struct BehaviorLayout {
     std::string Name;   ///< `Math::abs`, `Math::Vector2f (construct)`.
     uint32_t Flags = 0; ///< BoundarySiteFlags.
     bool Pure = false;  ///< Registered `.pure()`: never recorded.
+    /// A field's or property's getter: what it reads is its object, so
+    /// `bsc verify` takes the same bytes to give the same value.
+    bool Getter = false;
     /// The pointer arguments it may write (a class result's storage, a
     /// non-const method's object, `T&`) and those it reads (the object of
     /// a method, class arguments), as (thunk argument, bytes).
