@@ -42,7 +42,7 @@ run() {
 
 soccer=$(run soccer "$BSC" verify --bind "$SOCCER_O" -I "$PAPER" --entry Striker::play \
   --cycles 30 --model verify/MathModels.bs verify/Striker.bs)
-grep -q '^verified: 2 assertions hold' "$OUT/soccer.out" ||
+grep -q '^verified: 3 assertions hold' "$OUT/soccer.out" ||
   { echo "bench: the soccer behavior was not verified:" >&2; cat "$OUT/soccer.out" >&2; exit 1; }
 echo "soccer, 30 cycles: $soccer (goal < 60 s, < 2048 MB)"
 sed 's/^/  /' "$OUT/soccer.out"
