@@ -37,7 +37,9 @@ checks that the generator writes every node kind, operator and form):
 - `assert(cond)` and `assert(cond, "message")` whose conditions always hold,
   and `assume(...)`s alike before them (what the environment guarantees)
   (`b || !b`, `i == i`) and call nothing: the JIT checks them, objects
-  leave them out, and both must print the same;
+  leave them out, and both must print the same; with `--falsifiable` the
+  assertions (not the assumptions) can fail (`b`, `i != 2`), for `bsc
+  verify`'s differential test (utils/verify-differential.py);
 - bounded `for` loops (a counter only the step changes) with `break` and
   `continue`, and `for(...; yield)` loops in tasks;
 - with `Gen`: class values (constructors, fields, a property, const and
@@ -133,8 +135,9 @@ class Ctx:
 
 
 class Gen:
-    def __init__(self, seed):
+    def __init__(self, seed, falsifiable=False):
         self.rng = random.Random(seed)
+        self.falsifiable = falsifiable  # assertions that can fail
         self.counter = 0
         self.lines = []
         self.tasks = []
@@ -854,6 +857,9 @@ class Gen:
     def stmt(self, ctx, ind):
         r = self.rng
         deep = ctx.stmt_depth >= 3
+        if self.falsifiable and r.random() < 0.15:
+            self.assert_stmt(ctx, ind)
+            return
         k = r.randrange(22)
         if k <= 2:
             self.declare_local(ctx, ind)
@@ -967,6 +973,14 @@ class Gen:
         # An assumption and the assertion it guards: both hold, so runs
         # and objects agree whatever the keyword.
         keyword = "assume" if r.random() < 0.3 else "assert"
+        if self.falsifiable and keyword == "assert":
+            # The same draws, then a condition that some run breaks.
+            ctx.pure += 1
+            if r.random() < 0.5:
+                cond = f"!({cond}) || {self.int_expr(ctx, 0)} != {r.randint(-2, 2)}"
+            else:
+                cond = f"!({cond}) || {self.bool_expr(ctx, 0)}"
+            ctx.pure -= 1
         if r.random() < 0.5:
             self.emit(ind, f'{keyword}({cond}, "{ctx.owner.name} holds")')
         else:
@@ -1228,8 +1242,10 @@ class Gen:
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("seed", type=int)
+    ap.add_argument("--falsifiable", action="store_true",
+                    help="assertions that can fail (for bsc verify)")
     args = ap.parse_args()
-    sys.stdout.write(Gen(args.seed).program())
+    sys.stdout.write(Gen(args.seed, args.falsifiable).program())
 
 
 if __name__ == "__main__":

@@ -27,6 +27,13 @@ int bsc::verifyCommand(Compilation &C, const FrontendOptions &FOpts,
         << MaxLoopLimit << *Opts.LoopLimit;
     OK = false;
   }
+  if (Opts.SolverTimeout &&
+      (llvm::StringRef(*Opts.SolverTimeout).getAsInteger(10, V.SolverTimeout) ||
+       V.SolverTimeout == 0 || V.SolverTimeout > MaxSolverTimeout)) {
+    C.Diags.report(llvm::SMLoc(), diag::err_verify_solver_timeout)
+        << MaxSolverTimeout << *Opts.SolverTimeout;
+    OK = false;
+  }
   if (!OK || !runFrontend(C, FOpts))
     return finishCompilation(C);
   V.EntryName = Opts.EntryName;

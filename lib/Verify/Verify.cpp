@@ -204,12 +204,13 @@ struct CycleTerms {
 /// which bit-blasts the whole formula for each question: far faster here
 /// than the incremental core, for a few questions of one large formula
 /// each (bench/README.md, "bsc verify").
-z3::solver makeSolver(z3::context &Z) {
+z3::solver makeSolver(z3::context &Z, unsigned TimeoutSeconds) {
   z3::tactic Tactic(Z, "simplify");
   for (const char *Next :
        {"propagate-values", "solve-eqs", "elim-uncnstr", "qffpbv"})
     Tactic = Tactic & z3::tactic(Z, Next);
-  return Tactic.mk_solver();
+  // A question that takes longer fails: "unknown", never a proof.
+  return z3::try_for(Tactic, TimeoutSeconds * 1000).mk_solver();
 }
 
 double elapsedSince(std::chrono::steady_clock::time_point Start) {
@@ -300,7 +301,8 @@ std::optional<unsigned> firstVacuousCycle(z3::solver &Solver,
 /// from any state (the bounded check could from the initial one).
 bool provesByInduction(z3::context &Z, Encoder &E, llvm::Function &Cycle,
                        const Memory &Proto, const Objects &O, size_t StateSize,
-                       size_t InputSize, unsigned Depth, double &Seconds) {
+                       size_t InputSize, unsigned Depth,
+                       unsigned TimeoutSeconds, double &Seconds) {
   Memory Mem = Proto;
   auto Fresh = [&](const std::string &Prefix, size_t N) {
     std::vector<z3::expr> Bytes;
@@ -311,7 +313,7 @@ bool provesByInduction(z3::context &Z, Encoder &E, llvm::Function &Cycle,
   Mem.Bytes[O.State] = Fresh("any.state.", StateSize);
   Mem.Bytes[O.Output] = Fresh("any.output.", Proto.Bytes[O.Output].size());
   z3::expr Base = Z.bv_const("any.cycle", 32);
-  z3::solver Solver = makeSolver(Z);
+  z3::solver Solver = makeSolver(Z, TimeoutSeconds);
   for (unsigned K = 0; K <= Depth; ++K) {
     std::string Tag = "k" + std::to_string(K);
     Mem.Bytes[O.Input] = Fresh(Tag + ".input.", InputSize);
@@ -415,7 +417,10 @@ VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
         << "a loop at " + LoopPlace + " that the verifier cannot unroll";
     return VerifyResult::NotExplored;
   }
-  z3::context Z;
+  // Deleting a context whose formulas were large takes Z3 minutes (its
+  // tables, not the terms); the command ends right after the check, so
+  // the context is left to the process's end.
+  z3::context &Z = *new z3::context;
   Memory Mem;
   Objects O;
   O.State = Mem.add("the state", bytesOf(Z, S.getState(), L.Layout.StateSize));
@@ -467,7 +472,7 @@ VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
   // (whose base case they are); the first induction that succeeds shows
   // every cycle, and a property that is not inductive is checked for all
   // the cycles asked for.
-  z3::solver Solver = makeSolver(Z);
+  z3::solver Solver = makeSolver(Z, Opts.SolverTimeout);
   double SolverSeconds = 0, InductionSeconds = 0;
   std::optional<unsigned> Depth;
   FirstBad Bad;
@@ -479,7 +484,7 @@ VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
       break;
     if (Assertions > 0 &&
         provesByInduction(Z, E, *Cycle, Mem, O, L.Layout.StateSize, InputSize,
-                          Upto, InductionSeconds)) {
+                          Upto, Opts.SolverTimeout, InductionSeconds)) {
       Depth = Upto;
       break;
     }
@@ -512,9 +517,14 @@ VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
         Failed = &Ch;
     const AssertStmt *A = C.Checked.Assertions[Failed->Index].S;
     std::string Message = A->Message ? ": " + A->Message->Value : "";
+    // The condition as the JIT's failed assertion spells it.
+    std::vector<ExpressionPart> Parts = listExpressionParts(*A->Cond);
     llvm::SMRange Cond = A->Cond->getRange();
-    std::string Text(Cond.Start.getPointer(),
-                     Cond.End.getPointer() - Cond.Start.getPointer());
+    std::string Text =
+        !Parts.empty()
+            ? Parts.front().Text
+            : std::string(Cond.Start.getPointer(),
+                          Cond.End.getPointer() - Cond.Start.getPointer());
     C.Diags.report(A->getLoc(), diag::err_verify_counterexample)
         << K << Text << Message;
     // Each cycle's input and the results of registered C++, as the model

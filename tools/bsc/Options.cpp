@@ -90,6 +90,11 @@ cl::list<std::string> ModelFiles(
     cl::desc("A b-script module whose funcs stand for registered C++ "
              "(`Math_abs` for Math::abs; repeatable; docs/verify.md)"),
     cl::value_desc("file.bs"), cl::sub(VerifyCmd));
+cl::opt<std::string> SolverTimeoutArg(
+    "solver-timeout",
+    cl::desc("Seconds one question to the solver may take (default 600); "
+             "one that takes longer makes the result not fully explored"),
+    cl::value_desc("S"), cl::sub(VerifyCmd));
 cl::opt<std::string> LoopLimitArg(
     "loop-limit",
     cl::desc("Passes of a loop the verifier follows in one cycle (default "
@@ -514,6 +519,8 @@ tool::CommandLine tool::readCommandLine() {
   F.Models.assign(ModelFiles.begin(), ModelFiles.end());
   if (LoopLimitArg.getNumOccurrences())
     CL.Verify.LoopLimit = LoopLimitArg;
+  if (SolverTimeoutArg.getNumOccurrences())
+    CL.Verify.SolverTimeout = SolverTimeoutArg;
   CL.TraceDecode.ObjectPath = TraceObject;
   CL.TraceDecode.LogPath = TraceLog;
   CL.TraceDecode.OnlyChanges = TraceChangesFlag;

@@ -335,6 +335,7 @@ struct VerifyCommandOptions {
   std::string EntryName, CounterexamplePath;
   std::optional<std::string> Cycles;    ///< --cycles N, if given.
   std::optional<std::string> LoopLimit; ///< --loop-limit N, if given.
+  std::optional<std::string> SolverTimeout; ///< --solver-timeout S.
 };
 
 /// `bsc verify` (lib/Verify): checks the options, then the behavior's

@@ -17,12 +17,17 @@ namespace bsc {
 
 /// --loop-limit's default and largest value.
 constexpr unsigned DefaultLoopLimit = 16, MaxLoopLimit = 256;
+/// --solver-timeout's default and largest value, in seconds.
+constexpr unsigned DefaultSolverTimeout = 600, MaxSolverTimeout = 86400;
 
 struct VerifyOptions {
   std::string EntryName = "main";
   unsigned Cycles = 0;      ///< --cycles N (required).
   /// --loop-limit: the passes of each loop followed in one cycle.
   unsigned LoopLimit = DefaultLoopLimit;
+  /// --solver-timeout: the seconds one question to the solver may take
+  /// before the result is "not fully explored".
+  unsigned SolverTimeout = DefaultSolverTimeout;
   std::string CounterexamplePath; ///< -o: a recording of the counterexample.
   LoadOptions Load;         ///< The standard modules and --bind objects.
 };
