@@ -338,6 +338,49 @@ bool provesByInduction(z3::context &Z, Encoder &E, llvm::Function &Cycle,
   }
   return false;
 }
+/// Writes the counterexample as a recording: its cycles run in the JIT
+/// from `S`'s initial state on the model's `Inputs`, each taking its calls
+/// of registered C++ from `Calls` (the model's), so that each line holds
+/// what `bsc run --record` writes, the output and tasks the JIT computed
+/// (what `bsc timeline` draws) with the calls; the last is the cycle whose
+/// assertion fails, as the cycle left them. False after reporting.
+bool writeCounterexample(
+    Compilation &C, const LoadedBehavior &L, BehaviorSession &S,
+    const std::vector<std::vector<unsigned char>> &Inputs,
+    const std::vector<std::optional<llvm::json::Value>> &Calls,
+    llvm::StringRef Path) {
+  std::unique_ptr<llvm::ToolOutputFile> Out =
+      openOutput(C.Diags, Path, /*Text=*/true);
+  if (!Out)
+    return false;
+  debug::ValueIO Values(
+      [&L](llvm::StringRef Sym) { return L.JIT->lookup(Sym); });
+  debug::printJSON(Out->os(), recordHeader(L));
+  Out->os() << "\n";
+  for (size_t J = 0; J < Inputs.size(); ++J) {
+    std::memcpy(S.getInput(), Inputs[J].data(), Inputs[J].size());
+    CycleRecord Record;
+    std::string Error;
+    if (Calls[J] && !parseRecordedCalls(*Calls[J], S, Record, Error)) {
+      reportInternalError(llvm::createStringError(
+          llvm::inconvertibleErrorCode(),
+          "bsc verify: the counterexample's calls: " + Error));
+      return false;
+    }
+    // The failing assertion ends the last cycle; the run says so, not this.
+    S.replayCycle(DefaultCycleLimitMs, Record);
+    llvm::json::Value Line = recordCycle(Values, L, S);
+    llvm::json::Object &Fields = *Line.getAsObject();
+    if (L.InputClass) // As the cycle began.
+      Fields["input"] = Values.readClass(*L.InputClass, Inputs[J].data());
+    if (Calls[J])
+      Fields["calls"] = *Calls[J];
+    debug::printJSON(Out->os(), Line);
+    Out->os() << "\n";
+  }
+  Out->keep();
+  return true;
+}
 } // namespace
 
 VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
@@ -532,17 +575,16 @@ VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
     // prints values.
     debug::ValueIO Values(
         [&L](llvm::StringRef Sym) { return L.JIT->lookup(Sym); });
-    std::vector<llvm::json::Value> InputValues;
+    std::vector<std::vector<unsigned char>> InputBytes;
     for (unsigned J = 0; J < K; ++J) {
-      auto *In = static_cast<unsigned char *>(S.getInput());
+      InputBytes.emplace_back();
       for (size_t I = 0; I < InputSize; ++I)
-        In[I] = byteIn(Model, Cycles[J].Input[I]);
-      InputValues.push_back(L.InputClass ? Values.readClass(*L.InputClass, In)
-                                         : llvm::json::Value(nullptr));
+        InputBytes.back().push_back(byteIn(Model, Cycles[J].Input[I]));
       if (L.InputClass) {
         std::string Line;
         llvm::raw_string_ostream LS(Line);
-        debug::printJSON(LS, InputValues.back());
+        debug::printJSON(
+            LS, Values.readClass(*L.InputClass, InputBytes.back().data()));
         C.Diags.report(llvm::SMLoc(), diag::note_verify_input) << J + 1 << Line;
       }
       for (const NativeResult &N : Cycles[J].Natives)
@@ -552,23 +594,13 @@ VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
               << describeValue(Z, Model, *N.Value);
     }
     if (!Opts.CounterexamplePath.empty()) {
-      std::unique_ptr<llvm::ToolOutputFile> Out =
-          openOutput(C.Diags, Opts.CounterexamplePath, /*Text=*/true);
-      if (Out) {
-        debug::printJSON(Out->os(), recordHeader(L));
-        Out->os() << "\n";
-        for (unsigned J = 0; J < K; ++J) {
-          llvm::json::Object Line{{"cycle", int64_t(J + 1)},
-                                  {"input", std::move(InputValues[J])}};
-          if (std::optional<llvm::json::Value> Calls =
-                  recordCalls(Z, Model, Cycles[J].Natives, Layout, ViewSizes))
-            Line["calls"] = std::move(*Calls);
-          debug::printJSON(Out->os(), llvm::json::Value(std::move(Line)));
-          Out->os() << "\n";
-        }
-        Out->keep();
+      std::vector<std::optional<llvm::json::Value>> Calls;
+      for (unsigned J = 0; J < K; ++J)
+        Calls.push_back(
+            recordCalls(Z, Model, Cycles[J].Natives, Layout, ViewSizes));
+      if (writeCounterexample(C, L, S, InputBytes, Calls,
+                              Opts.CounterexamplePath))
         OS << "wrote the counterexample to " << Opts.CounterexamplePath << "\n";
-      }
     }
     OS << "counterexample: an assertion of " << Assertions
        << " can fail in cycle " << K << " of " << Opts.Cycles << " ("
