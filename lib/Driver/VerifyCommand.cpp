@@ -5,6 +5,19 @@
 
 using namespace bsc;
 
+/// A count option of 1 to `Max` into `Into` (left as it is if not given);
+/// false after reporting `Diag` if it is not one.
+static bool readCount(Compilation &C, const std::optional<std::string> &Given,
+                      unsigned Max, unsigned &Into, diag::Kind Diag) {
+  if (!Given)
+    return true;
+  if (!llvm::StringRef(*Given).getAsInteger(10, Into) && Into != 0 &&
+      Into <= Max)
+    return true;
+  C.Diags.report(llvm::SMLoc(), Diag) << Max << *Given;
+  return false;
+}
+
 int bsc::verifyCommand(Compilation &C, const FrontendOptions &FOpts,
                        const VerifyCommandOptions &Opts) {
   VerifyOptions V;
@@ -13,27 +26,13 @@ int bsc::verifyCommand(Compilation &C, const FrontendOptions &FOpts,
     C.Diags.report(llvm::SMLoc(), diag::err_no_input_files);
     OK = false;
   }
-  if (!Opts.Cycles ||
-      llvm::StringRef(*Opts.Cycles).getAsInteger(10, V.Cycles) ||
-      V.Cycles == 0 || V.Cycles > MaxVerifyCycles) {
-    C.Diags.report(llvm::SMLoc(), diag::err_verify_cycles)
-        << MaxVerifyCycles << Opts.Cycles.value_or("");
-    OK = false;
-  }
-  if (Opts.LoopLimit &&
-      (llvm::StringRef(*Opts.LoopLimit).getAsInteger(10, V.LoopLimit) ||
-       V.LoopLimit == 0 || V.LoopLimit > MaxLoopLimit)) {
-    C.Diags.report(llvm::SMLoc(), diag::err_verify_loop_limit)
-        << MaxLoopLimit << *Opts.LoopLimit;
-    OK = false;
-  }
-  if (Opts.SolverTimeout &&
-      (llvm::StringRef(*Opts.SolverTimeout).getAsInteger(10, V.SolverTimeout) ||
-       V.SolverTimeout == 0 || V.SolverTimeout > MaxSolverTimeout)) {
-    C.Diags.report(llvm::SMLoc(), diag::err_verify_solver_timeout)
-        << MaxSolverTimeout << *Opts.SolverTimeout;
-    OK = false;
-  }
+  // --cycles is required: without it, the message names ''.
+  OK &= readCount(C, Opts.Cycles.value_or(""), MaxVerifyCycles, V.Cycles,
+                  diag::err_verify_cycles);
+  OK &= readCount(C, Opts.LoopLimit, MaxLoopLimit, V.LoopLimit,
+                  diag::err_verify_loop_limit);
+  OK &= readCount(C, Opts.SolverTimeout, MaxSolverTimeout, V.SolverTimeout,
+                  diag::err_verify_solver_timeout);
   if (!OK || !runFrontend(C, FOpts))
     return finishCompilation(C);
   V.EntryName = Opts.EntryName;
