@@ -381,6 +381,155 @@ bool writeCounterexample(
   Out->keep();
   return true;
 }
+/// The behavior's cycle as the verifier reads it: compiled with
+/// AssertionMode::Verify and `Models`, every task and func inlined into
+/// the entry (L.EntrySymbol) and optimised as `-O2`, in a module of `Ctx`
+/// laid out as the JIT's `L` is (`Layout`). Null after an internal error.
+std::unique_ptr<llvm::Module>
+emitCycle(Compilation &C, const CallableDecl &Entry, const LoadedBehavior &L,
+          const ModelMap &Models, llvm::LLVMContext &Ctx,
+          BehaviorLayout &Layout) {
+  CodeGenOptions CGOpts;
+  CGOpts.BehaviorName = C.Modules.front()->Name;
+  CGOpts.Assertions = AssertionMode::Verify;
+  CGOpts.Models = &Models;
+  CGOpts.OptLevel = 2;
+  // Lines, for what the verifier cannot explore.
+  CGOpts.DebugInfo = true;
+  CGOpts.Sources = &C.SM;
+  CGOpts.Exports.emplace();
+  if (isCallableFromC(Entry))
+    CGOpts.Exports->push_back(&Entry);
+  std::unique_ptr<llvm::Module> M =
+      emitLLVM(C.Checked, Ctx, L.JIT->getTriple(), L.JIT->getDataLayout(),
+               CGOpts, Layout);
+  // Both without probes: one layout. Else a bug of bsc's.
+  if (Layout.StateSize != L.Layout.StateSize) {
+    reportInternalError(llvm::createStringError(
+        llvm::inconvertibleErrorCode(),
+        "bsc verify: the verifier's state is not the JIT's"));
+    return nullptr;
+  }
+  // One function: every task and func inlined into the entry, whatever
+  // the inliner's thresholds say (a behavior's call graph has no cycle).
+  for (llvm::Function &F : *M)
+    if (!F.isDeclaration() && F.getName() != L.EntrySymbol) {
+      F.removeFnAttr(llvm::Attribute::NoInline);
+      F.removeFnAttr(llvm::Attribute::OptimizeNone);
+      F.addFnAttr(llvm::Attribute::AlwaysInline);
+    }
+  optimizeModule(*M, nullptr, 2);
+  llvm::Function *Cycle = M->getFunction(L.EntrySymbol);
+  if (!Cycle || Cycle->isDeclaration()) {
+    reportInternalError(llvm::createStringError(
+        llvm::inconvertibleErrorCode(),
+        "bsc verify: no entry function " + L.EntrySymbol));
+    return nullptr;
+  }
+  return M;
+}
+
+/// What the report of a result needs of the check.
+struct CheckRun {
+  Compilation &C;
+  const LoadedBehavior &L;
+  BehaviorSession &S;
+  BehaviorLayout &Layout;
+  const VerifyOptions &Opts;
+  z3::context &Z;
+  const std::vector<CycleTerms> &Cycles;
+  std::map<const llvm::BasicBlock *, std::string> &LoopPlaces;
+  const size_t *ViewSizes;
+  std::chrono::steady_clock::time_point Start;
+  double SolverSeconds;
+  unsigned Assertions;
+};
+
+/// Reports the first bad cycle `K` of `Model`: the assertion that fails,
+/// each cycle's input and calls, and with -o the recording; or the loop
+/// that ran further than followed.
+VerifyResult reportCounterexample(const CheckRun &R, unsigned K,
+                                  const z3::model &Model,
+                                  llvm::raw_ostream &OS) {
+  auto &[C, L, S, Layout, Opts, Z, Cycles, LoopPlaces, ViewSizes, Start,
+         SolverSeconds, Assertions] = R;
+  const CycleTerms &At = Cycles[K - 1];
+  size_t InputSize = ViewSizes[1];
+  // A loop that ran further than followed makes what the model says of
+  // the rest of the cycle unknown; else the first check the model fails
+  // names the assertion.
+  for (const Escape &Esc : At.Escapes)
+    if (Model.eval(Esc.Reached, true).is_true()) {
+      C.Diags.report(llvm::SMLoc(), diag::err_verify_not_explored)
+          << "a loop" +
+                 (LoopPlaces.count(Esc.Head) ? LoopPlaces[Esc.Head]
+                                             : Esc.Place) +
+                 " can run more than " + std::to_string(Opts.LoopLimit) +
+                 " passes in cycle " + std::to_string(K) + " (--loop-limit)";
+      return VerifyResult::NotExplored;
+    }
+  const Check *Failed = nullptr;
+  for (const Check &Ch : At.Checks)
+    if (!Failed && Model.eval(Ch.Fails, true).is_true())
+      Failed = &Ch;
+  if (!Failed) { // CycleTerms::bad held: a check or an escape did.
+    reportInternalError(llvm::createStringError(
+        llvm::inconvertibleErrorCode(),
+        "bsc verify: the model fails no check of cycle " + std::to_string(K)));
+    return VerifyResult::Error;
+  }
+  const AssertStmt *A = C.Checked.Assertions[Failed->Index].S;
+  std::string Message = A->Message ? ": " + A->Message->Value : "";
+  // The condition as the JIT's failed assertion spells it.
+  std::vector<ExpressionPart> Parts = listExpressionParts(*A->Cond);
+  llvm::SMRange Cond = A->Cond->getRange();
+  std::string Text =
+      !Parts.empty()
+          ? Parts.front().Text
+          : std::string(Cond.Start.getPointer(),
+                        Cond.End.getPointer() - Cond.Start.getPointer());
+  C.Diags.report(A->getLoc(), diag::err_verify_counterexample)
+      << K << Text << Message;
+  // Each cycle's input and the results of registered C++, as the model
+  // has them; written into the session's input to read it as the REPL
+  // prints values.
+  debug::ValueIO Values(
+      [&L](llvm::StringRef Sym) { return L.JIT->lookup(Sym); });
+  std::vector<std::vector<unsigned char>> InputBytes;
+  for (unsigned J = 0; J < K; ++J) {
+    InputBytes.emplace_back();
+    for (size_t I = 0; I < InputSize; ++I)
+      InputBytes.back().push_back(byteIn(Model, Cycles[J].Input[I]));
+    if (L.InputClass) {
+      std::string Line;
+      llvm::raw_string_ostream LS(Line);
+      debug::printJSON(
+          LS, Values.readClass(*L.InputClass, InputBytes.back().data()));
+      C.Diags.report(llvm::SMLoc(), diag::note_verify_input) << J + 1 << Line;
+    }
+    for (const NativeResult &N : Cycles[J].Natives)
+      if (N.Value && Model.eval(N.Reached, true).is_true())
+        C.Diags.report(llvm::SMLoc(), diag::note_verify_native)
+            << J + 1 << Layout.NativeCalls[N.Callee].Name
+            << describeValue(Z, Model, *N.Value);
+  }
+  if (!Opts.CounterexamplePath.empty()) {
+    std::vector<std::optional<llvm::json::Value>> Calls;
+    for (unsigned J = 0; J < K; ++J)
+      Calls.push_back(
+          recordCalls(Z, Model, Cycles[J].Natives, Layout, ViewSizes));
+    if (writeCounterexample(C, L, S, InputBytes, Calls,
+                            Opts.CounterexamplePath))
+      OS << "wrote the counterexample to " << Opts.CounterexamplePath << "\n";
+  }
+  OS << "counterexample: an assertion of " << Assertions
+     << " can fail in cycle " << K << " of " << Opts.Cycles << " ("
+     << llvm::format("%.2f s; the solver %.2f s", elapsedSince(Start),
+                     SolverSeconds)
+     << ")\n";
+  return VerifyResult::Counterexample;
+}
+
 } // namespace
 
 VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
@@ -415,44 +564,12 @@ VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
 
   // The cycle as the verifier reads it.
   llvm::LLVMContext Ctx;
-  CodeGenOptions CGOpts;
-  CGOpts.BehaviorName = C.Modules.front()->Name;
-  CGOpts.Assertions = AssertionMode::Verify;
-  CGOpts.Models = &Models;
-  CGOpts.OptLevel = 2;
-  // Lines, for what the verifier cannot explore.
-  CGOpts.DebugInfo = true;
-  CGOpts.Sources = &C.SM;
-  CGOpts.Exports.emplace();
-  if (isCallableFromC(*Entry))
-    CGOpts.Exports->push_back(Entry);
   BehaviorLayout Layout;
   std::unique_ptr<llvm::Module> M =
-      emitLLVM(C.Checked, Ctx, L.JIT->getTriple(), L.JIT->getDataLayout(),
-               CGOpts, Layout);
-  // Both without probes: one layout. Else a bug of bsc's.
-  if (Layout.StateSize != L.Layout.StateSize) {
-    reportInternalError(llvm::createStringError(
-        llvm::inconvertibleErrorCode(),
-        "bsc verify: the verifier's state is not the JIT's"));
+      emitCycle(C, *Entry, L, Models, Ctx, Layout);
+  if (!M)
     return VerifyResult::Error;
-  }
-  // One function: every task and func inlined into the entry, whatever
-  // the inliner's thresholds say (a behavior's call graph has no cycle).
-  for (llvm::Function &F : *M)
-    if (!F.isDeclaration() && F.getName() != L.EntrySymbol) {
-      F.removeFnAttr(llvm::Attribute::NoInline);
-      F.removeFnAttr(llvm::Attribute::OptimizeNone);
-      F.addFnAttr(llvm::Attribute::AlwaysInline);
-    }
-  optimizeModule(*M, nullptr, 2);
   llvm::Function *Cycle = M->getFunction(L.EntrySymbol);
-  if (!Cycle || Cycle->isDeclaration()) {
-    reportInternalError(llvm::createStringError(
-        llvm::inconvertibleErrorCode(),
-        "bsc verify: no entry function " + L.EntrySymbol));
-    return VerifyResult::Error;
-  }
   std::string LoopPlace;
   std::map<const llvm::BasicBlock *, std::string> LoopPlaces;
   if (!peelLoops(*Cycle, Opts.LoopLimit, LoopPlace, LoopPlaces)) {
@@ -537,78 +654,10 @@ VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
         << "the solver gave up: " + *Bad.Unknown;
     return VerifyResult::NotExplored;
   }
-  if (Bad.Cycle) {
-    unsigned K = *Bad.Cycle;
-    const CycleTerms &At = Cycles[K - 1];
-    const z3::model &Model = *Bad.Model;
-    // A loop that ran further than followed makes what the model says of
-    // the rest of the cycle unknown; else the first check the model fails
-    // names the assertion.
-    for (const Escape &Esc : At.Escapes)
-      if (Model.eval(Esc.Reached, true).is_true()) {
-        C.Diags.report(llvm::SMLoc(), diag::err_verify_not_explored)
-            << "a loop" +
-                   (LoopPlaces.count(Esc.Head) ? LoopPlaces[Esc.Head]
-                                               : Esc.Place) +
-                   " can run more than " + std::to_string(Opts.LoopLimit) +
-                   " passes in cycle " + std::to_string(K) + " (--loop-limit)";
-        return VerifyResult::NotExplored;
-      }
-    const Check *Failed = nullptr;
-    for (const Check &Ch : At.Checks)
-      if (!Failed && Model.eval(Ch.Fails, true).is_true())
-        Failed = &Ch;
-    const AssertStmt *A = C.Checked.Assertions[Failed->Index].S;
-    std::string Message = A->Message ? ": " + A->Message->Value : "";
-    // The condition as the JIT's failed assertion spells it.
-    std::vector<ExpressionPart> Parts = listExpressionParts(*A->Cond);
-    llvm::SMRange Cond = A->Cond->getRange();
-    std::string Text =
-        !Parts.empty()
-            ? Parts.front().Text
-            : std::string(Cond.Start.getPointer(),
-                          Cond.End.getPointer() - Cond.Start.getPointer());
-    C.Diags.report(A->getLoc(), diag::err_verify_counterexample)
-        << K << Text << Message;
-    // Each cycle's input and the results of registered C++, as the model
-    // has them; written into the session's input to read it as the REPL
-    // prints values.
-    debug::ValueIO Values(
-        [&L](llvm::StringRef Sym) { return L.JIT->lookup(Sym); });
-    std::vector<std::vector<unsigned char>> InputBytes;
-    for (unsigned J = 0; J < K; ++J) {
-      InputBytes.emplace_back();
-      for (size_t I = 0; I < InputSize; ++I)
-        InputBytes.back().push_back(byteIn(Model, Cycles[J].Input[I]));
-      if (L.InputClass) {
-        std::string Line;
-        llvm::raw_string_ostream LS(Line);
-        debug::printJSON(
-            LS, Values.readClass(*L.InputClass, InputBytes.back().data()));
-        C.Diags.report(llvm::SMLoc(), diag::note_verify_input) << J + 1 << Line;
-      }
-      for (const NativeResult &N : Cycles[J].Natives)
-        if (N.Value && Model.eval(N.Reached, true).is_true())
-          C.Diags.report(llvm::SMLoc(), diag::note_verify_native)
-              << J + 1 << Layout.NativeCalls[N.Callee].Name
-              << describeValue(Z, Model, *N.Value);
-    }
-    if (!Opts.CounterexamplePath.empty()) {
-      std::vector<std::optional<llvm::json::Value>> Calls;
-      for (unsigned J = 0; J < K; ++J)
-        Calls.push_back(
-            recordCalls(Z, Model, Cycles[J].Natives, Layout, ViewSizes));
-      if (writeCounterexample(C, L, S, InputBytes, Calls,
-                              Opts.CounterexamplePath))
-        OS << "wrote the counterexample to " << Opts.CounterexamplePath << "\n";
-    }
-    OS << "counterexample: an assertion of " << Assertions
-       << " can fail in cycle " << K << " of " << Opts.Cycles << " ("
-       << llvm::format("%.2f s; the solver %.2f s", elapsedSince(Start),
-                       SolverSeconds)
-       << ")\n";
-    return VerifyResult::Counterexample;
-  }
+  if (Bad.Cycle)
+    return reportCounterexample({C, L, S, Layout, Opts, Z, Cycles, LoopPlaces,
+                                 ViewSizes, Start, SolverSeconds, Assertions},
+                                *Bad.Cycle, *Bad.Model, OS);
   // Assumptions that no input meets prove anything: say so, with the first
   // cycle they exclude every input from.
   if (std::optional<unsigned> K =
