@@ -233,9 +233,10 @@ std::optional<Pointer> Encoder::loadPointer(const Memory &M, const Pointer &P) {
   std::optional<Pointer> V;
   if (P.Offset.simplify().is_numeral_u64(Known))
     for (unsigned O : P.Objects) {
+      // Every object it may be into must hold a pointer there.
       auto It = M.Cells.find({O, Known});
       if (It == M.Cells.end())
-        continue;
+        return std::nullopt;
       V = V ? Pointer::choose(P.isIn(O), It->second, *V) : It->second;
     }
   return V;
