@@ -469,6 +469,10 @@ bool Encoder::encodeCall(llvm::CallInst &C, Memory &M, z3::expr Reached) {
       Result.Ptrs.push_back(std::move(Written));
     }
   llvm::Type *T = C.getType();
+  if (T->isPointerTy())
+    return unsupported("a string returned by registered C++ ('" +
+                       (Known ? Known->Name : Callee->getName().str()) +
+                       "')");
   if (!T->isVoidTy()) {
     std::optional<Value> V = fresh(T, "native");
     if (!V)

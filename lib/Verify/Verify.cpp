@@ -27,6 +27,7 @@
 #include "llvm/IR/Dominators.h"
 #include "llvm/IR/LLVMContext.h"
 #include "llvm/Support/Format.h"
+#include "llvm/Support/MathExtras.h"
 #include "llvm/Support/Timer.h"
 #include "llvm/Support/ToolOutputFile.h"
 #include "llvm/Transforms/Utils/LoopPeel.h"
@@ -59,11 +60,14 @@ std::vector<z3::expr> bytesOf(z3::context &Z, const void *Data, size_t Size) {
 std::string describeValue(z3::context &Z, const z3::model &Model,
                           const z3::expr &V) {
   if (V.get_sort().is_bv()) {
+    // Z3 gives a bit-vector's value unsigned: signed as the behavior reads
+    // it, here.
     unsigned W = V.get_sort().bv_size();
-    int64_t I = 0;
-    z3::expr Wide = W < 64 ? z3::sext(V, 64 - W) : V;
-    Model.eval(Wide, true).is_numeral_i64(I);
-    return W == 1 ? (I ? "true" : "false") : std::to_string(I);
+    uint64_t U = 0;
+    Model.eval(V, true).is_numeral_u64(U);
+    if (W == 1)
+      return U ? "true" : "false";
+    return std::to_string(llvm::SignExtend64(U, std::min(W, 64u)));
   }
   uint64_t Bits = 0;
   Model.eval(z3::expr(Z, Z3_mk_fpa_to_ieee_bv(Z, V)), true)
