@@ -599,9 +599,10 @@ VerifyResult bsc::verifyBehavior(Compilation &C, const VerifyOptions &Opts,
                     Pointer::into(O.Output, Z.bv_val(0, 64))});
   Mem.Cells.insert({{O.State, offsetof(bs_state_header, user)},
                     Pointer::into(O.User, Z.bv_val(0, 64))});
-  size_t InputSize = L.InputClass ? L.InputClass->Size : 0;
-  const size_t ViewSizes[3] = {L.Layout.StateSize, InputSize,
-                               L.OutputClass ? L.OutputClass->Size : 0};
+  // The recorder's view (state, input, output), as recordings count it.
+  size_t ViewSizes[3];
+  S.getViewSizes(ViewSizes);
+  size_t InputSize = ViewSizes[1];
 
   Encoder E(Z, M->getDataLayout(), &Layout.NativeCalls);
   unsigned Assertions = 0;
