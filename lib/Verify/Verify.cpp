@@ -154,13 +154,13 @@ std::vector<unsigned char> bytesIn(z3::context &Z, const z3::model &Model,
 }
 
 /// The calls of one cycle that the JIT's recorder keeps, as the model has
-/// them: a recording's `calls` (bsc/JIT/Boundary.h), so that an exact
-/// replay takes the values the counterexample needs from it; nullopt for
-/// a cycle without such calls.
-std::optional<llvm::json::Value>
-recordCalls(z3::context &Z, const z3::model &Model,
-            const std::vector<NativeResult> &Natives,
-            const BehaviorLayout &Layout, const size_t ViewSizes[3]) {
+/// them (bsc/JIT/Boundary.h): what the counterexample's cycle takes from
+/// its record, and what its recording says, so that an exact replay takes
+/// the values the counterexample needs.
+CycleRecord recordCalls(z3::context &Z, const z3::model &Model,
+                        const std::vector<NativeResult> &Natives,
+                        const BehaviorLayout &Layout,
+                        const size_t ViewSizes[3]) {
   std::vector<RecordedCall> Calls;
   for (const NativeResult &N : Natives) {
     if (!N.Recorded || !Model.eval(N.Reached, true).is_true())
@@ -178,9 +178,8 @@ recordCalls(z3::context &Z, const z3::model &Model,
   }
   CycleRecord Record;
   std::string Error; // The calls write nothing of the view: no error.
-  if (Calls.empty() || !encodeCalls(Calls, ViewSizes, Record, Error))
-    return std::nullopt;
-  return callsToJSON(Record, ViewSizes);
+  encodeCalls(Calls, ViewSizes, Record, Error);
+  return Record;
 }
 /// One cycle, encoded: its input's bytes, the assumptions of it and every
 /// cycle before, its checks, its loops that may run further than followed
@@ -348,11 +347,11 @@ bool provesByInduction(z3::context &Z, Encoder &E, llvm::Function &Cycle,
 /// what `bsc run --record` writes, the output and tasks the JIT computed
 /// (what `bsc timeline` draws) with the calls; the last is the cycle whose
 /// assertion fails, as the cycle left them. False after reporting.
-bool writeCounterexample(
-    Compilation &C, const LoadedBehavior &L, BehaviorSession &S,
-    const std::vector<std::vector<unsigned char>> &Inputs,
-    const std::vector<std::optional<llvm::json::Value>> &Calls,
-    llvm::StringRef Path) {
+bool writeCounterexample(Compilation &C, const LoadedBehavior &L,
+                         BehaviorSession &S,
+                         const std::vector<std::vector<unsigned char>> &Inputs,
+                         const std::vector<CycleRecord> &Calls,
+                         const size_t ViewSizes[3], llvm::StringRef Path) {
   std::unique_ptr<llvm::ToolOutputFile> Out =
       openOutput(C.Diags, Path, /*Text=*/true);
   if (!Out)
@@ -363,22 +362,15 @@ bool writeCounterexample(
   Out->os() << "\n";
   for (size_t J = 0; J < Inputs.size(); ++J) {
     std::memcpy(S.getInput(), Inputs[J].data(), Inputs[J].size());
-    CycleRecord Record;
-    std::string Error;
-    if (Calls[J] && !parseRecordedCalls(*Calls[J], S, Record, Error)) {
-      reportInternalError(llvm::createStringError(
-          llvm::inconvertibleErrorCode(),
-          "bsc verify: the counterexample's calls: " + Error));
-      return false;
-    }
     // The failing assertion ends the last cycle; the run says so, not this.
-    S.replayCycle(DefaultCycleLimitMs, Record);
+    S.replayCycle(DefaultCycleLimitMs, Calls[J]);
     llvm::json::Value Line = recordCycle(Values, L, S);
     llvm::json::Object &Fields = *Line.getAsObject();
     if (L.InputClass) // As the cycle began.
       Fields["input"] = Values.readClass(*L.InputClass, Inputs[J].data());
-    if (Calls[J])
-      Fields["calls"] = *Calls[J];
+    // A cycle that called no C++ (or only pure C++) has no `calls`.
+    if (Calls[J].NumCalls)
+      Fields["calls"] = callsToJSON(Calls[J], ViewSizes);
     debug::printJSON(Out->os(), Line);
     Out->os() << "\n";
   }
@@ -518,11 +510,11 @@ VerifyResult reportCounterexample(const CheckRun &R, unsigned K,
             << describeValue(Z, Model, *N.Value);
   }
   if (!Opts.CounterexamplePath.empty()) {
-    std::vector<std::optional<llvm::json::Value>> Calls;
+    std::vector<CycleRecord> Calls;
     for (unsigned J = 0; J < K; ++J)
       Calls.push_back(
           recordCalls(Z, Model, Cycles[J].Natives, Layout, ViewSizes));
-    if (writeCounterexample(C, L, S, InputBytes, Calls,
+    if (writeCounterexample(C, L, S, InputBytes, Calls, ViewSizes,
                             Opts.CounterexamplePath))
       OS << "wrote the counterexample to " << Opts.CounterexamplePath << "\n";
   }
