@@ -3,13 +3,16 @@
 // The behavior is loaded into the JIT as `bsc run` loads it, for the state
 // its first cycle starts from (bs_state_init's, the constructors of its
 // C++ values included) and the layout of `input` and `output`. Its cycle
-// is then compiled again with AssertionMode::Verify, optimised as `-O2`
-// (tasks and funcs inlined into the entry, counted loops unrolled), and
+// is then compiled again with AssertionMode::Verify and the `--model`s,
+// optimised as `-O2` (tasks and funcs inlined into the entry, counted
+// loops unrolled, the other loops peeled `--loop-limit` passes), and
 // encoded once per cycle: the state, `input` and `output` are bytes that
 // carry from one cycle to the next, the header's cycle number is the
-// cycle's, `input` is free in every cycle. Z3 is asked, cycle after cycle,
-// whether an assertion can fail there while every assumption so far held;
-// the first that can is the counterexample, its inputs the model's.
+// cycle's, `input` is free in every cycle. Z3 is then asked whether an
+// assertion can fail (or a loop run further) in cycles 1 to k while every
+// assumption so far held, and whether k-induction shows it for every
+// cycle, for k = 1, 2, 4, ... up to the cycles asked for; the first bad
+// cycle is the counterexample, its inputs and C++ results the model's.
 //
 //===----------------------------------------------------------------------===//
 #include "bsc/Verify/Verify.h"

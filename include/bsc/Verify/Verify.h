@@ -5,7 +5,8 @@
 // into one function, is encoded cycle after cycle (lib/Verify/Encoder.h)
 // from the state the JIT starts with, each cycle's `input` free but for
 // the behavior's `assume`s; Z3 looks for the first cycle in which an
-// assertion can fail. Registered C++ returns any value.
+// assertion can fail, and tries k-induction. Registered C++ returns any
+// value, unless a model (a b-script func, lib/Verify/Models.h) says more.
 //
 //===----------------------------------------------------------------------===//
 #ifndef BSC_VERIFY_VERIFY_H
